@@ -1,0 +1,47 @@
+/* Writes frames to files: Wavefront OBJ with optional vertex normals. */
+#include "config.h"
+#include "internal.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+int msocl_write_obj(const char *path, int npoints, const float *xyz,
+                    const float *normals, int ntriangles, const int *ijk)
+{
+  msocl__clear_error();
+  if (!path || !xyz || (ntriangles > 0 && !ijk))
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "path or array is NULL");
+  if (npoints <= 0 || ntriangles < 0)
+    return msocl__fail(MSOCL_ERR_BAD_COUNT, "%d points, %d triangles",
+                       npoints, ntriangles);
+  for (int t = 0; t < 3 * ntriangles; t++)
+    if (ijk[t] < 0 || ijk[t] >= npoints)
+      return msocl__fail(MSOCL_ERR_BAD_INDEX,
+                         "triangle %d: index %d out of range [0, %d)", t / 3,
+                         ijk[t], npoints);
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return msocl__fail(MSOCL_ERR_IO, "cannot create %s: %s", path,
+                       strerror(errno));
+  fprintf(f, "# libmsocl frame: %d points, %d triangles\n", npoints,
+          ntriangles);
+  for (int i = 0; i < npoints; i++)
+    fprintf(f, "v %.9g %.9g %.9g\n", xyz[3 * i], xyz[3 * i + 1],
+            xyz[3 * i + 2]);
+  if (normals)
+    for (int i = 0; i < npoints; i++)
+      fprintf(f, "vn %.6g %.6g %.6g\n", normals[3 * i], normals[3 * i + 1],
+              normals[3 * i + 2]);
+  for (int t = 0; t < ntriangles; t++) {
+    int a = ijk[3 * t] + 1, b = ijk[3 * t + 1] + 1, c = ijk[3 * t + 2] + 1;
+    if (normals)
+      fprintf(f, "f %d//%d %d//%d %d//%d\n", a, a, b, b, c, c);
+    else
+      fprintf(f, "f %d %d %d\n", a, b, c);
+  }
+  int bad = ferror(f);
+  if (fclose(f) != 0 || bad)
+    return msocl__fail(MSOCL_ERR_IO, "error writing %s", path);
+  return MSOCL_OK;
+}

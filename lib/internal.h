@@ -1,0 +1,112 @@
+/* Private structures and msocl__ helpers shared by the library's modules. */
+#ifndef MSOCL_INTERNAL_H
+#define MSOCL_INTERNAL_H
+
+#define CL_TARGET_OPENCL_VERSION 120
+#ifdef __APPLE__
+#include <OpenCL/opencl.h>
+#else
+#include <CL/cl.h>
+#endif
+
+#include "msocl.h"
+
+#define MSOCL__MAX_DEVICES 16
+#define MSOCL__MAX_COLLIDERS 16
+/* The paper's connectivity texture holds 16 springs per point. */
+#define MSOCL__IMAGE_SLOTS 16
+
+/* Records a detailed message for msocl_last_error() and returns `code`. */
+int msocl__fail(int code, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+/* Clears the thread's last-error message (call on entry of public calls
+ * that may fail, so a stale message is never reported). */
+void msocl__clear_error(void);
+
+/* Returns from the enclosing function with the OpenCL status if a CL call
+ * failed, naming the call. */
+#define MSOCL__CL(call)                                                       \
+  do {                                                                        \
+    cl_int msocl__e = (call);                                                 \
+    if (msocl__e != CL_SUCCESS)                                               \
+      return msocl__fail(msocl__e, "%s failed: %s (%d)", #call,               \
+                         msocl_err_name(msocl__e), (int)msocl__e);            \
+  } while (0)
+
+/* ------------------------------------------------------------------ model */
+
+enum { MSOCL__PLANE = 1, MSOCL__SPHERE = 2, MSOCL__TABLE = 3 };
+
+/* One collider: kind, then p = (normal xyz, offset) for a plane,
+ * (centre xyz, radius) for a sphere, (top centre xyz, radius) for a table. */
+struct msocl__collider {
+  int kind;
+  float p[4];
+  float friction;
+};
+
+struct msocl_model {
+  int n, cap;            /* points */
+  float *pos;            /* 3n */
+  float *mass;           /* n */
+  unsigned char *pinned; /* n, 0/1 */
+  int ns, scap;          /* springs */
+  int *ij;               /* 2 ns */
+  float *k, *rest, *damp; /* ns each */
+  int nt, tcap;          /* triangles (normals only) */
+  int *tri;              /* 3 nt */
+  float gravity[3];
+  float viscous;
+  int ncol;
+  struct msocl__collider col[MSOCL__MAX_COLLIDERS];
+};
+
+/* Per-point adjacency in slot order: slot s of point i is spring
+ * adj[off[i] + s], the other end other[off[i] + s]. Springs appear in the
+ * order they were added, so every layout sums them the same way. */
+struct msocl__adjacency {
+  int n, max_degree;
+  int *off;   /* n + 1 */
+  int *other; /* 2 ns */
+  int *spring; /* 2 ns */
+};
+int msocl__adjacency_build(const msocl_model *m, struct msocl__adjacency *a);
+void msocl__adjacency_free(struct msocl__adjacency *a);
+
+/* ---------------------------------------------------------------- runtime */
+
+struct msocl__program; /* cache entry, program.c */
+
+struct msocl__device {
+  cl_platform_id platform;
+  cl_device_id id;
+  msocl_device_info info;
+  cl_context ctx;
+  cl_command_queue queue;
+  struct msocl__program *programs;
+};
+
+struct msocl_runtime {
+  int ndev;
+  struct msocl__device dev[MSOCL__MAX_DEVICES];
+};
+
+/* Queries the facts of one device into info (indices left as given). */
+int msocl__device_query(cl_platform_id p, cl_device_id d,
+                        msocl_device_info *info);
+
+/* Builds (or finds in the device's cache) the library's program with the
+ * given -D options. The returned program is owned by the cache. */
+int msocl__program_get(struct msocl__device *dev, const char *options,
+                       cl_program *out);
+void msocl__program_cache_free(struct msocl__device *dev);
+
+/* Embedded kernel sources (generated from the kernels folder at build time). */
+struct msocl__kernel_source {
+  const char *name;
+  const char *text;
+};
+extern const struct msocl__kernel_source msocl__kernel_sources[];
+extern const int msocl__kernel_source_count;
+
+#endif /* MSOCL_INTERNAL_H */

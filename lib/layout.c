@@ -1,0 +1,223 @@
+/* Turns a model's adjacency into device connectivity: the paper's tiled
+ * connectivity texture (IMAGE2D) or slot-major buffers (BUFFER). Both list a
+ * point's springs in the same slot order, so both sum forces identically. */
+#include "config.h"
+#include "layout.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+msocl_layout msocl__layout_auto(const msocl_device_info *info)
+{
+  /* BUFFER reads 12 bytes a slot against the texture's 16, and PoCL's
+   * image reads are about 3x slower than buffer reads on a CPU; no device
+   * measured so far prefers the texture. */
+  (void)info;
+  return MSOCL_LAYOUT_BUFFER;
+}
+
+int msocl__image_dims(int n, size_t max_w, size_t max_h, int *w, int *h)
+{
+  /* Near-square, no power-of-two padding: at most W - 1 unused texels. */
+  long long want = (long long)ceil(sqrt((double)n));
+  long long cap_w = (long long)(max_w / 4), cap_h = (long long)(max_h / 4);
+  long long W = want < cap_w ? want : cap_w;
+  if (W < 1)
+    W = 1;
+  long long H = (n + W - 1) / W;
+  if (H > cap_h || W > cap_w)
+    return msocl__fail(MSOCL_ERR_IMAGE_SIZE,
+                       "%d points need a %lldx%lld connectivity texture; the "
+                       "device allows %zux%zu (use MSOCL_LAYOUT_BUFFER)",
+                       n, 4 * W, 4 * H, max_w, max_h);
+  *w = (int)W;
+  *h = (int)H;
+  return MSOCL_OK;
+}
+
+static int has_damping(const msocl_model *m)
+{
+  for (int s = 0; m->damp && s < m->ns; s++)
+    if (m->damp[s] != 0.0f)
+      return 1;
+  return 0;
+}
+
+static cl_mem make_buffer(struct msocl__device *dev, size_t bytes,
+                          void *host, int *rc)
+{
+  cl_int e;
+  cl_mem b = clCreateBuffer(dev->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                            bytes, host, &e);
+  if (e != CL_SUCCESS)
+    *rc = msocl__fail(e, "clCreateBuffer(%zu bytes): %s", bytes,
+                      msocl_err_name(e));
+  return b;
+}
+
+static cl_mem make_image(struct msocl__device *dev, int w, int h, void *host,
+                         int *rc)
+{
+  cl_image_format fmt = {CL_RGBA, CL_FLOAT};
+  cl_image_desc desc;
+  memset(&desc, 0, sizeof desc);
+  desc.image_type = CL_MEM_OBJECT_IMAGE2D;
+  desc.image_width = (size_t)w;
+  desc.image_height = (size_t)h;
+  cl_int e;
+  cl_mem im = clCreateImage(dev->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                            &fmt, &desc, host, &e);
+  if (e != CL_SUCCESS)
+    *rc = msocl__fail(e, "clCreateImage(%dx%d RGBA float): %s", w, h,
+                      msocl_err_name(e));
+  return im;
+}
+
+/* The paper's texture: 16 tiles of W x H, slot s in tile (s % 4, s / 4);
+ * an entry is (x, y of the other end, rest length, stiffness), -1 = end.
+ * Dashpots go in a (4W) x H RGBA image, four slots a texel. */
+static int build_image(struct msocl__device *dev, const msocl_model *m,
+                       const struct msocl__adjacency *a, int damped,
+                       struct msocl__layout *l)
+{
+  int rc = msocl__image_dims(m->n, dev->info.image2d_max_width,
+                             dev->info.image2d_max_height, &l->tex_w,
+                             &l->tex_h);
+  if (rc != MSOCL_OK)
+    return rc;
+  const size_t W = (size_t)l->tex_w, H = (size_t)l->tex_h;
+  float *tex = malloc(16 * W * H * 4 * sizeof *tex);
+  float *dtex = damped ? calloc(4 * W * H * 4, sizeof *dtex) : NULL;
+  if (!tex || (damped && !dtex)) {
+    free(tex);
+    free(dtex);
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "connectivity texture");
+  }
+  for (size_t t = 0; t < 16 * W * H * 4; t++)
+    tex[t] = -1.0f;
+  for (int i = 0; i < m->n; i++) {
+    size_t x = (size_t)i % W, y = (size_t)i / W;
+    for (int s = 0; s < a->off[i + 1] - a->off[i]; s++) {
+      int j = a->other[a->off[i] + s], sp = a->spring[a->off[i] + s];
+      size_t tx = x + (size_t)(s & 3) * W, ty = y + (size_t)(s >> 2) * H;
+      float *e = tex + 4 * (ty * 4 * W + tx);
+      e[0] = (float)(j % (int)W);
+      e[1] = (float)(j / (int)W);
+      e[2] = m->rest[sp];
+      e[3] = m->k[sp];
+      if (damped)
+        dtex[4 * (y * 4 * W + x + (size_t)(s >> 2) * W) + (s & 3)] =
+            m->damp[sp];
+    }
+  }
+  l->con = make_image(dev, 4 * l->tex_w, 4 * l->tex_h, tex, &rc);
+  if (rc == MSOCL_OK) {
+    float dummy[4] = {0};
+    l->damp = damped ? make_image(dev, 4 * l->tex_w, l->tex_h, dtex, &rc)
+                     : make_image(dev, 1, 1, dummy, &rc);
+  }
+  free(tex);
+  free(dtex);
+  return rc;
+}
+
+/* Slot-major arrays: slot s of point i at s * n + i, so neighbouring work
+ * items read neighbouring words. */
+static int build_buffers(struct msocl__device *dev, const msocl_model *m,
+                         const struct msocl__adjacency *a, int damped,
+                         struct msocl__layout *l)
+{
+  const size_t n = (size_t)m->n, S = (size_t)(l->slots > 0 ? l->slots : 1);
+  int *nbr = malloc(S * n * sizeof *nbr);
+  float *rk = calloc(2 * S * n, sizeof *rk);
+  float *dmp = calloc(damped ? S * n : 1, sizeof *dmp);
+  int rc = MSOCL_OK;
+  if (!nbr || !rk || !dmp) {
+    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "connectivity buffers");
+    goto out;
+  }
+  for (size_t t = 0; t < S * n; t++)
+    nbr[t] = -1;
+  for (size_t i = 0; i < n; i++)
+    for (int s = 0; s < a->off[i + 1] - a->off[i]; s++) {
+      int sp = a->spring[a->off[i] + s];
+      size_t at = (size_t)s * n + i;
+      nbr[at] = a->other[a->off[i] + s];
+      rk[2 * at] = m->rest[sp];
+      rk[2 * at + 1] = m->k[sp];
+      if (damped)
+        dmp[at] = m->damp[sp];
+    }
+  l->con = make_buffer(dev, S * n * sizeof *nbr, nbr, &rc);
+  if (rc == MSOCL_OK)
+    l->rk = make_buffer(dev, 2 * S * n * sizeof *rk, rk, &rc);
+  if (rc == MSOCL_OK)
+    l->damp = make_buffer(dev, (damped ? S * n : 1) * sizeof *dmp, dmp, &rc);
+out:
+  free(nbr);
+  free(rk);
+  free(dmp);
+  return rc;
+}
+
+int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
+                         const struct msocl__adjacency *adj,
+                         msocl_layout kind, struct msocl__layout *out)
+{
+  memset(out, 0, sizeof *out);
+  out->kind = kind == MSOCL_LAYOUT_AUTO ? msocl__layout_auto(&dev->info)
+                                        : kind;
+  int rc;
+  if (out->kind == MSOCL_LAYOUT_IMAGE2D) {
+    if (!dev->info.image_support)
+      return msocl__fail(MSOCL_ERR_NO_IMAGES,
+                         "device '%s' has no image support: IMAGE2D layout "
+                         "impossible (use MSOCL_LAYOUT_BUFFER)",
+                         dev->info.name);
+    out->slots = MSOCL__IMAGE_SLOTS;
+    for (int i = 0; i < m->n; i++)
+      if (adj->off[i + 1] - adj->off[i] > MSOCL__IMAGE_SLOTS)
+        return msocl__fail(MSOCL_ERR_DEGREE,
+                           "point %d has %d springs; the IMAGE2D layout "
+                           "holds %d (use MSOCL_LAYOUT_BUFFER)",
+                           i, adj->off[i + 1] - adj->off[i],
+                           MSOCL__IMAGE_SLOTS);
+    rc = build_image(dev, m, adj, has_damping(m), out);
+  } else if (out->kind == MSOCL_LAYOUT_BUFFER) {
+    out->slots = adj->max_degree;
+    rc = build_buffers(dev, m, adj, has_damping(m), out);
+  } else {
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d", (int)kind);
+  }
+  if (rc != MSOCL_OK)
+    msocl__layout_release(out);
+  return rc;
+}
+
+void msocl__layout_release(struct msocl__layout *l)
+{
+  if (l->con)
+    clReleaseMemObject(l->con);
+  if (l->rk)
+    clReleaseMemObject(l->rk);
+  if (l->damp)
+    clReleaseMemObject(l->damp);
+  l->con = l->rk = l->damp = NULL;
+}
+
+int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,
+                           cl_uint *next)
+{
+  cl_uint a = 0;
+  MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->con));
+  if (l->kind == MSOCL_LAYOUT_IMAGE2D) {
+    MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->tex_w));
+    MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->tex_h));
+  } else {
+    MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->rk));
+  }
+  MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->damp));
+  *next = a;
+  return MSOCL_OK;
+}

@@ -1,0 +1,33 @@
+/* Device connectivity: where each point finds its springs (IMAGE2D, BUFFER). */
+#ifndef MSOCL_LAYOUT_H
+#define MSOCL_LAYOUT_H
+
+#include "internal.h"
+
+struct msocl__layout {
+  msocl_layout kind; /* IMAGE2D or BUFFER, never AUTO */
+  int slots;         /* springs a point can hold */
+  int tex_w, tex_h;  /* IMAGE2D: point i is texel (i % tex_w, i / tex_w) */
+  cl_mem con;        /* IMAGE2D: (4W)x(4H) RGBA image; BUFFER: int slots */
+  cl_mem rk;         /* BUFFER: float2 (rest, k) slots */
+  cl_mem damp;       /* dashpot coefficients per slot (or a 1-item dummy) */
+};
+
+/* The layout AUTO stands for on this device. */
+msocl_layout msocl__layout_auto(const msocl_device_info *info);
+
+/* Chooses W x H >= n for the connectivity texture within the device's
+ * image limits (the texture is 4W x 4H). */
+int msocl__image_dims(int n, size_t max_w, size_t max_h, int *w, int *h);
+
+int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
+                         const struct msocl__adjacency *adj,
+                         msocl_layout kind, struct msocl__layout *out);
+void msocl__layout_release(struct msocl__layout *l);
+
+/* Sets the velocity kernel's first arguments (its connectivity); *next
+ * receives the index of the first argument after them. */
+int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,
+                           cl_uint *next);
+
+#endif

@@ -1,0 +1,143 @@
+/* Builds the library's OpenCL program for a device with a set of -D options,
+ * once per (device, options), from the embedded kernels or MSOCL_KERNEL_PATH. */
+#include "config.h"
+#include "internal.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct msocl__program {
+  char *options;
+  cl_program program;
+  struct msocl__program *next;
+};
+
+/* Reads kernels/<name> from the folder in MSOCL_KERNEL_PATH: lets a kernel
+ * be edited and rerun without rebuilding the library. */
+static int read_kernel_file(const char *dir, const char *name, char **text)
+{
+  char path[4096];
+  int len = snprintf(path, sizeof path, "%s/%s", dir, name);
+  if (len < 0 || (size_t)len >= sizeof path)
+    return msocl__fail(MSOCL_ERR_KERNEL_SOURCE, "MSOCL_KERNEL_PATH too long");
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return msocl__fail(MSOCL_ERR_KERNEL_SOURCE,
+                       "cannot open kernel source %s (MSOCL_KERNEL_PATH)",
+                       path);
+  size_t cap = 1 << 14, used = 0;
+  char *buf = malloc(cap);
+  for (;;) {
+    if (!buf) {
+      fclose(f);
+      return msocl__fail(MSOCL_ERR_NO_MEMORY, "reading %s", path);
+    }
+    used += fread(buf + used, 1, cap - used - 1, f);
+    if (used < cap - 1)
+      break;
+    cap *= 2;
+    char *grown = realloc(buf, cap);
+    if (!grown)
+      free(buf);
+    buf = grown;
+  }
+  int bad = ferror(f);
+  fclose(f);
+  if (bad) {
+    free(buf);
+    return msocl__fail(MSOCL_ERR_IO, "error reading %s", path);
+  }
+  buf[used] = '\0';
+  *text = buf;
+  return MSOCL_OK;
+}
+
+static int build(struct msocl__device *dev, const char *options,
+                 cl_program *out)
+{
+  const int n = msocl__kernel_source_count;
+  const char *texts[8];
+  char *owned[8] = {0};
+  const char *dir = getenv("MSOCL_KERNEL_PATH");
+  int rc = MSOCL_OK;
+  if (n > 8)
+    return msocl__fail(MSOCL_ERR_TOO_MANY, "too many kernel files");
+  for (int i = 0; i < n && rc == MSOCL_OK; i++) {
+    texts[i] = msocl__kernel_sources[i].text;
+    if (dir && *dir) {
+      rc = read_kernel_file(dir, msocl__kernel_sources[i].name, &owned[i]);
+      texts[i] = owned[i];
+    }
+  }
+  cl_int e = CL_SUCCESS;
+  cl_program p = NULL;
+  if (rc == MSOCL_OK) {
+    p = clCreateProgramWithSource(dev->ctx, (cl_uint)n, texts, NULL, &e);
+    if (e != CL_SUCCESS)
+      rc = msocl__fail(e, "clCreateProgramWithSource: %s", msocl_err_name(e));
+  }
+  for (int i = 0; i < n; i++)
+    free(owned[i]);
+  if (rc != MSOCL_OK)
+    return rc;
+
+  e = clBuildProgram(p, 1, &dev->id, options, NULL, NULL);
+  if (e != CL_SUCCESS) {
+    /* Carry the compiler's own words to the user. */
+    size_t len = 0;
+    char *log = NULL;
+    clGetProgramBuildInfo(p, dev->id, CL_PROGRAM_BUILD_LOG, 0, NULL, &len);
+    if (len > 0 && (log = malloc(len + 1)) != NULL) {
+      clGetProgramBuildInfo(p, dev->id, CL_PROGRAM_BUILD_LOG, len, log, NULL);
+      log[len] = '\0';
+    }
+    rc = msocl__fail(MSOCL_ERR_BUILD,
+                     "kernel build failed on %s (%s) with options '%s':\n%s",
+                     dev->info.name, msocl_err_name(e), options,
+                     log ? log : "(no build log)");
+    free(log);
+    clReleaseProgram(p);
+    return rc;
+  }
+  *out = p;
+  return MSOCL_OK;
+}
+
+int msocl__program_get(struct msocl__device *dev, const char *options,
+                       cl_program *out)
+{
+  for (struct msocl__program *c = dev->programs; c; c = c->next)
+    if (strcmp(c->options, options) == 0) {
+      *out = c->program;
+      return MSOCL_OK;
+    }
+  struct msocl__program *c = calloc(1, sizeof *c);
+  if (!c || !(c->options = strdup(options))) {
+    free(c);
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "program cache");
+  }
+  int rc = build(dev, options, &c->program);
+  if (rc != MSOCL_OK) {
+    free(c->options);
+    free(c);
+    return rc;
+  }
+  c->next = dev->programs;
+  dev->programs = c;
+  *out = c->program;
+  return MSOCL_OK;
+}
+
+void msocl__program_cache_free(struct msocl__device *dev)
+{
+  struct msocl__program *c = dev->programs;
+  while (c) {
+    struct msocl__program *next = c->next;
+    clReleaseProgram(c->program);
+    free(c->options);
+    free(c);
+    c = next;
+  }
+  dev->programs = NULL;
+}

@@ -1,0 +1,26 @@
+/* Scenes and helpers shared by the device test programs. */
+#ifndef MSOCL_TEST_SCENES_H
+#define MSOCL_TEST_SCENES_H
+
+#include "msocl.h"
+
+/* The paper's scene: an n x n square tablecloth, 1 m a side, falling from
+ * 5 cm onto a round table of radius 0.35 m whose top is at y = 0. */
+msocl_model *scene_tablecloth(int n);
+/* Stable dt for scene_tablecloth(n) (half the symplectic Euler limit of its
+ * Gershgorin frequency bound). */
+float scene_tablecloth_dt(int n);
+/* An n x n cloth, 1 m a side, hanging in the x-y plane from its two top
+ * corners, with dashpots; no contact. */
+msocl_model *scene_hanging(int n);
+/* Signed distance-like value of the tablecloth's table (>= 0 outside). */
+double scene_table_gap(const float *p);
+
+/* Exits 77 (automake SKIP), saying why, when no OpenCL device exists;
+ * otherwise returns. Call in main() before srunner_run_all. */
+void scene_require_device(const char *program);
+
+/* max |a - b| over n floats. */
+double scene_max_diff(const float *a, const float *b, int n);
+
+#endif
