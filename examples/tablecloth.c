@@ -44,8 +44,9 @@ static msocl_model *build(int n, float *dt)
   msocl_cloth_desc d;
   msocl_cloth_desc_init(&d);
   d.nx = d.ny = n;
-  const float origin[3] = {-0.5f, 0.05f, -0.5f}, u[3] = {1, 0, 0},
-              v[3] = {0, 0, 1};
+  /* u = z, v = x, so the triangles' normals (u x v) point up. */
+  const float origin[3] = {-0.5f, 0.05f, -0.5f}, u[3] = {0, 0, 1},
+              v[3] = {1, 0, 0};
   memcpy(d.origin, origin, sizeof origin);
   memcpy(d.u, u, sizeof u);
   memcpy(d.v, v, sizeof v);

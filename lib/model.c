@@ -296,7 +296,7 @@ int msocl_model_add_springs(msocl_model *m, int n, const int *ij,
     m->ij[2 * t] = ij[2 * s];
     m->ij[2 * t + 1] = ij[2 * s + 1];
     m->k[t] = stiffness[s];
-    rest_length(m, s, ij[2 * s], ij[2 * s + 1], rest, &m->rest[t]);
+    (void)rest_length(m, s, ij[2 * s], ij[2 * s + 1], rest, &m->rest[t]);
     if (m->damp) m->damp[t] = damping ? damping[s] : 0.0f;
   }
   m->ns += n;

@@ -19,8 +19,9 @@ msocl_model *scene_tablecloth(int n)
   d.origin[0] = -0.5f;
   d.origin[1] = 0.05f;
   d.origin[2] = -0.5f;
-  d.u[0] = 1.0f; d.u[1] = 0.0f; d.u[2] = 0.0f;
-  d.v[0] = 0.0f; d.v[1] = 0.0f; d.v[2] = 1.0f;
+  /* u = z, v = x: the triangles' normals (u x v) point up. */
+  d.u[0] = 0.0f; d.u[1] = 0.0f; d.u[2] = 1.0f;
+  d.v[0] = 1.0f; d.v[1] = 0.0f; d.v[2] = 0.0f;
   d.point_mass = CLOTH_MASS / (float)(n * n);
   d.k_stretch = K_STRETCH;
   d.k_shear = K_SHEAR;
