@@ -57,6 +57,7 @@ struct msocl_model {
   int *tri;              /* 3 nt */
   float gravity[3];
   float viscous;
+  float air; /* velocity factor a step, (0, 1] */
   int ncol;
   struct msocl__collider col[MSOCL__MAX_COLLIDERS];
 };

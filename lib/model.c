@@ -233,6 +233,7 @@ int msocl_model_create(msocl_model **m) {
   if (!(*m = calloc(1, sizeof **m)))
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "cannot allocate a model");
   (*m)->gravity[1] = -9.81f;
+  (*m)->air = 1.0f;
   return MSOCL_OK;
 }
 
@@ -344,6 +345,26 @@ int msocl_model_set_gravity(msocl_model *m, float gx, float gy, float gz) {
   return MSOCL_OK;
 }
 
+static int check_air(float f) {
+  if (!isfinite(f))
+    return msocl__fail(MSOCL_ERR_NOT_FINITE, "air resistance %g is not finite",
+                       (double)f);
+  if (!(f > 0.0f && f <= 1.0f))
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "air resistance factor %g must be in (0, 1]", (double)f);
+  return MSOCL_OK;
+}
+
+int msocl_model_set_air_resistance(msocl_model *m, float factor) {
+  int rc;
+
+  msocl__clear_error();
+  if (!m) return msocl__fail(MSOCL_ERR_NULL_HANDLE, "model is NULL");
+  if ((rc = check_air(factor))) return rc;
+  m->air = factor;
+  return MSOCL_OK;
+}
+
 int msocl_model_set_viscous_damping(msocl_model *m, float c) {
   int rc;
 
@@ -431,7 +452,8 @@ int msocl_model_validate(const msocl_model *m) {
       return rc;
   for (i = 0; i < m->nt; i++)
     if ((rc = check_triangle(i, m->tri + 3 * i, m->n))) return rc;
-  if ((rc = check_gravity(m->gravity)) || (rc = check_viscous(m->viscous)))
+  if ((rc = check_gravity(m->gravity)) || (rc = check_viscous(m->viscous)) ||
+      (rc = check_air(m->air)))
     return rc;
   for (i = 0; i < m->ncol; i++) {
     const struct msocl__collider *c = &m->col[i];

@@ -141,6 +141,9 @@ MSOCL_EXTERN int msocl_model_set_gravity(msocl_model *m, float gx, float gy,
                                          float gz);
 /* Viscous damping force -c * v on every point, c >= 0. */
 MSOCL_EXTERN int msocl_model_set_viscous_damping(msocl_model *m, float c);
+/* Air resistance as the second seed does it: every step multiplies each
+ * velocity by `factor` in (0, 1] (1: none). */
+MSOCL_EXTERN int msocl_model_set_air_resistance(msocl_model *m, float factor);
 
 /* Colliders push points out by changing velocity (friction in [0, 1] scales
  * away that fraction of the tangential velocity on contact). */
@@ -177,6 +180,67 @@ MSOCL_EXTERN void msocl_cloth_desc_init(msocl_cloth_desc *d);
 MSOCL_EXTERN int msocl_model_cloth_grid(msocl_model **m,
                                         const msocl_cloth_desc *d);
 
+/* A 3D lattice ("jello cube") of nx * ny * nz points, index
+ * (k * ny + j) * nx + i at origin + spacing * (i, j, k). Spring sets, each
+ * left out when its stiffness is 0: structural (6 axis neighbours), face
+ * shear (12 face diagonals), body shear (8 body diagonals), bend (6 axis
+ * neighbours two apart). Structural + face shear + bend: degree 24. */
+typedef struct {
+  int nx, ny, nz;
+  float origin[3];
+  float spacing;
+  float point_mass;
+  float k_structural, k_shear_face, k_shear_body, k_bend;
+  float damping; /* dashpot coefficient on every spring, >= 0 */
+} msocl_lattice_desc;
+
+MSOCL_EXTERN void msocl_lattice_desc_init(msocl_lattice_desc *d);
+MSOCL_EXTERN int msocl_model_lattice(msocl_model **m,
+                                     const msocl_lattice_desc *d);
+
+/* A deformable solid (Vassilev & Spanlang): surface springs along the edges
+ * of a closed triangle mesh plus "support" springs from every surface point
+ * to a centre mass point (the last point of the model), which moves with
+ * the body. msocl_model_solid builds it on an icosphere of the given
+ * subdivision level (0: 12 points, 1: 42, 2: 162, ...) scaled to an
+ * ellipsoid of semi-axes `radii`. */
+typedef struct {
+  int subdivisions;
+  float centre[3];
+  float radii[3];
+  float surface_mass; /* spread evenly over the surface points */
+  float centre_mass;
+  float k_surface, k_support;
+  float damping;
+} msocl_solid_desc;
+
+MSOCL_EXTERN void msocl_solid_desc_init(msocl_solid_desc *d);
+MSOCL_EXTERN int msocl_model_solid(msocl_model **m, const msocl_solid_desc *d);
+/* The same from a user's closed mesh (centre = the points' centroid;
+ * subdivisions, centre and radii of d are ignored). */
+MSOCL_EXTERN int msocl_model_solid_from_mesh(msocl_model **m, int npoints,
+                                             const float *xyz, int ntri,
+                                             const int *ijk,
+                                             const msocl_solid_desc *d);
+
+/* Triangle meshes from Wavefront OBJ: springs along the edges, optional
+ * bending springs across each edge shared by two triangles (between the
+ * two opposite corners), point masses from area x density. */
+typedef struct {
+  float density;  /* kg per square metre of surface, > 0 */
+  float k_edge;   /* stiffness of edge springs, > 0 */
+  float k_bend;   /* 0: no bending springs */
+  float damping;
+} msocl_obj_desc;
+
+MSOCL_EXTERN void msocl_obj_desc_init(msocl_obj_desc *d);
+MSOCL_EXTERN int msocl_model_from_obj(msocl_model **m, const char *path,
+                                      const msocl_obj_desc *d);
+/* The same from text in memory (len bytes, need not be NUL-terminated). */
+MSOCL_EXTERN int msocl_model_from_obj_text(msocl_model **m, const char *text,
+                                           size_t len,
+                                           const msocl_obj_desc *d);
+
 /* ------------------------------------------------------------ simulation */
 
 typedef enum {
@@ -190,11 +254,37 @@ typedef enum {
   MSOCL_MATH_RELAXED      /* -cl-fast-relaxed-math, native functions */
 } msocl_math;
 
+typedef enum {
+  MSOCL_SYMPLECTIC_EULER = 0, /* the paper's eq. 3: v += dt a, p += dt v */
+  MSOCL_EXPLICIT_EULER,       /* forward Euler: p += dt v_old */
+  MSOCL_VERLET,               /* velocity Verlet (kick-drift-kick) */
+  MSOCL_RK4,                  /* classic Runge-Kutta, 4 force evaluations */
+  MSOCL_IMPLICIT_EULER        /* Baraff-Witkin backward Euler, CG on device */
+} msocl_integrator;
+
+typedef enum {
+  MSOCL_STRAIN_NONE = 0,
+  MSOCL_STRAIN_PROVOT,  /* Provot 1995: move end points back (positions) */
+  MSOCL_STRAIN_VELOCITY /* Vassilev et al. 2001: stop stretching velocity */
+} msocl_strain;
+
 typedef struct {
   float dt;           /* seconds, > 0 */
   msocl_layout layout;
   msocl_math math;
   int device;         /* index into the runtime's devices */
+  msocl_integrator integrator;
+  msocl_strain strain;
+  float strain_limit;    /* allowed elongation over rest length (0.1 = 10%) */
+  int strain_iterations; /* correction sweeps a step */
+  float cg_tolerance;    /* implicit Euler: relative residual to reach */
+  int cg_max_iterations;
+  /* Blow-up check every check_every steps (0: off, for benchmarks): a
+   * non-finite state, or total energy above its start by more than
+   * energy_factor times the scene's energy scale, returns
+   * MSOCL_ERR_UNSTABLE with the last good state restored. */
+  int check_every;
+  float energy_factor;
 } msocl_sim_options;
 
 MSOCL_EXTERN void msocl_sim_options_init(msocl_sim_options *o);
@@ -220,25 +310,54 @@ MSOCL_EXTERN int msocl_sim_write_velocities(msocl_sim *s, const float *xyz);
 /* Unit normals from the model's triangles, computed on the device. */
 MSOCL_EXTERN int msocl_sim_read_normals(msocl_sim *s, float *xyz);
 
+typedef struct {
+  double kinetic, spring, gravity; /* joules; gravity relative to y = 0 */
+  double total;
+} msocl_energy;
+
+/* Energy of the current state, summed on the device. */
+MSOCL_EXTERN int msocl_sim_energy(msocl_sim *s, msocl_energy *e);
+/* Implicit Euler: CG iterations and relative residual of the last step. */
+MSOCL_EXTERN int msocl_sim_solver_stats(const msocl_sim *s, int *iterations,
+                                        double *residual);
+/* Steps taken since creation. */
+MSOCL_EXTERN int msocl_sim_step_count(const msocl_sim *s, long long *steps);
+
+/* The largest stable time step of the model under an integrator, from a
+ * Gershgorin bound on the highest eigenfrequency (see lib/stable_dt.c):
+ * symplectic Euler and Verlet h w < 2, RK4 h w <= 2 sqrt 2, explicit Euler
+ * needs damping (MSOCL_ERR_UNSTABLE without), implicit Euler: +infinity. */
+MSOCL_EXTERN int msocl_stable_dt(const msocl_model *m,
+                                 msocl_integrator integrator, float *dt);
+
 /* ------------------------------------------------------------- reference */
 
 /* The same model and step on the host in double precision: the yardstick
  * for accuracy. */
 typedef struct msocl_reference msocl_reference;
 
+/* Uses o's dt, integrator, strain limiting and CG settings (NULL: the
+ * defaults of msocl_sim_options_init); the step runs in double. */
 MSOCL_EXTERN int msocl_reference_create(msocl_reference **r,
-                                        const msocl_model *m, double dt);
+                                        const msocl_model *m,
+                                        const msocl_sim_options *o);
 MSOCL_EXTERN void msocl_reference_destroy(msocl_reference *r);
 MSOCL_EXTERN int msocl_reference_step(msocl_reference *r, int n);
 MSOCL_EXTERN int msocl_reference_positions(const msocl_reference *r,
                                            double *xyz);
 MSOCL_EXTERN int msocl_reference_velocities(const msocl_reference *r,
                                             double *xyz);
+MSOCL_EXTERN int msocl_reference_energy(const msocl_reference *r,
+                                        msocl_energy *e);
 
 /* ---------------------------------------------------------------- export */
 
 /* Writes points and triangles as Wavefront OBJ (with normals when given). */
 MSOCL_EXTERN int msocl_write_obj(const char *path, int npoints,
+                                 const float *xyz, const float *normals,
+                                 int ntriangles, const int *ijk);
+/* Writes points and triangles as ASCII PLY (normals when given). */
+MSOCL_EXTERN int msocl_write_ply(const char *path, int npoints,
                                  const float *xyz, const float *normals,
                                  int ntriangles, const int *ijk);
 /* The model's triangles (count and 3n indices, owned by the model). */

@@ -57,11 +57,11 @@ static int build(struct msocl__device *dev, const char *options,
                  cl_program *out)
 {
   const int n = msocl__kernel_source_count;
-  const char *texts[8];
-  char *owned[8] = {0};
+  const char *texts[16];
+  char *owned[16] = {0};
   const char *dir = getenv("MSOCL_KERNEL_PATH");
   int rc = MSOCL_OK;
-  if (n > 8)
+  if (n > 16)
     return msocl__fail(MSOCL_ERR_TOO_MANY, "too many kernel files");
   for (int i = 0; i < n && rc == MSOCL_OK; i++) {
     texts[i] = msocl__kernel_sources[i].text;

@@ -1,216 +1,296 @@
-/* The device step, redone on the host in double precision: the yardstick
+/* The device's step, redone on the host in double precision: the yardstick
  * that tests and benchmarks measure the kernels' accuracy against. It
- * follows kernels/step.cl formula for formula. */
+ * follows the kernels formula for formula, integrator for integrator. */
 #include "config.h"
-#include "internal.h"
+#include "reference.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-struct msocl_reference {
-  int n;
-  double dt;
-  double *pos, *vel, *vnew, *inv_mass;
-  unsigned char *pinned;
-  double gravity[3], viscous;
-  int ncol;
-  struct msocl__collider col[MSOCL__MAX_COLLIDERS];
-  struct msocl__adjacency adj;
-  const double *k, *rest, *damp; /* per spring, owned below */
-  double *spring_data;
-};
-
-static double dot3(const double *a, const double *b)
+/* msocl_respond() and msocl_collider_gap() of common.cl. */
+static double gap(const struct msocl__collider *k, const double *p, double *n)
 {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-/* msocl_respond() of step.cl. */
-static void respond(double *v, double g, const double *n, double friction,
-                    double dt)
-{
-  double vn = dot3(v, n), lim = -g / dt;
-  if (vn < lim) {
-    for (int c = 0; c < 3; c++)
-      v[c] += (lim - vn) * n[c];
-    for (int c = 0; c < 3; c++)
-      v[c] -= friction * (v[c] - lim * n[c]);
+  n[0] = 0.0; n[1] = 1.0; n[2] = 0.0;
+  if (k->kind == MSOCL__PLANE) {
+    for (int d = 0; d < 3; d++)
+      n[d] = k->p[d];
+    return n[0] * p[0] + n[1] * p[1] + n[2] * p[2] - k->p[3];
   }
+  if (k->kind == MSOCL__SPHERE) {
+    double d[3] = {p[0] - k->p[0], p[1] - k->p[1], p[2] - k->p[2]};
+    double len = sqrt(msocl__dot3(d, d));
+    if (len > 0)
+      for (int e = 0; e < 3; e++)
+        n[e] = d[e] / len;
+    return len - k->p[3];
+  }
+  double dx = p[0] - k->p[0], dz = p[2] - k->p[2];
+  double rr = sqrt(dx * dx + dz * dz), gside = rr - k->p[3],
+         gtop = p[1] - k->p[1];
+  if (gtop >= gside || !(rr > 0))
+    return gtop;
+  n[0] = dx / rr;
+  n[1] = 0.0;
+  n[2] = dz / rr;
+  return gside;
 }
 
-static void collide(const msocl_reference *r, const double *p, double *v)
+void msocl__ref_collide(const msocl_reference *r, const double *p, double *v)
 {
   for (int c = 0; c < r->ncol; c++) {
-    const struct msocl__collider *k = &r->col[c];
-    double n[3] = {0, 1, 0}, g;
-    if (k->kind == MSOCL__PLANE) {
-      for (int d = 0; d < 3; d++)
-        n[d] = k->p[d];
-      g = dot3(n, p) - k->p[3];
-    } else if (k->kind == MSOCL__SPHERE) {
-      double d[3] = {p[0] - k->p[0], p[1] - k->p[1], p[2] - k->p[2]};
-      double len = sqrt(dot3(d, d));
-      if (len > 0)
+    double n[3], g = gap(&r->col[c], p, n), vn = msocl__dot3(v, n),
+                 lim = -g / r->dt, fr = r->col[c].friction;
+    if (vn < lim) {
+      for (int e = 0; e < 3; e++)
+        v[e] += (lim - vn) * n[e];
+      for (int e = 0; e < 3; e++)
+        v[e] -= fr * (v[e] - lim * n[e]);
+    }
+  }
+}
+
+/* msocl_project() of common.cl. */
+static void project(const msocl_reference *r, double *p, double *v)
+{
+  for (int c = 0; c < r->ncol; c++) {
+    double n[3], g = gap(&r->col[c], p, n);
+    if (g < 0) {
+      for (int e = 0; e < 3; e++)
+        p[e] -= g * n[e];
+      double vn = msocl__dot3(v, n);
+      if (vn < 0) {
         for (int e = 0; e < 3; e++)
-          n[e] = d[e] / len;
-      g = len - k->p[3];
-    } else {
-      double dx = p[0] - k->p[0], dz = p[2] - k->p[2];
-      double rr = sqrt(dx * dx + dz * dz);
-      double gside = rr - k->p[3], gtop = p[1] - k->p[1];
-      if (gtop >= gside || !(rr > 0)) {
-        g = gtop;
-      } else {
-        g = gside;
-        n[0] = dx / rr;
-        n[1] = 0;
-        n[2] = dz / rr;
+          v[e] -= vn * n[e];
+        for (int e = 0; e < 3; e++)
+          v[e] -= r->col[c].friction * v[e];
       }
     }
-    respond(v, g, n, k->friction, r->dt);
   }
 }
 
-static void velocity_pass(msocl_reference *r)
+/* Internal and viscous force on point i at state (pos, vel). */
+void msocl__ref_force(const msocl_reference *r, const double *pos,
+                      const double *vel, int i, double *f)
+{
+  const double *p = pos + 3 * i, *v = vel + 3 * i;
+  f[0] = f[1] = f[2] = 0.0;
+  for (int t = r->adj.off[i]; t < r->adj.off[i + 1]; t++) {
+    int j = r->adj.other[t], sp = r->adj.spring[t];
+    const double *q = pos + 3 * j, *vq = vel + 3 * j;
+    double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+    double len2 = msocl__dot3(d, d), len = sqrt(len2);
+    if (!(len > 0))
+      continue;
+    double s = r->k[sp] * (len - r->rest[sp]) / len;
+    double dv[3] = {vq[0] - v[0], vq[1] - v[1], vq[2] - v[2]};
+    double c = r->damp[sp] * msocl__dot3(dv, d) / len2;
+    for (int e = 0; e < 3; e++)
+      f[e] += (s + c) * d[e];
+  }
+  for (int e = 0; e < 3; e++)
+    f[e] -= r->viscous * v[e];
+}
+
+/* a = f / m + g at (pos, vel); 0 at pinned points. */
+static void accel(const msocl_reference *r, const double *pos,
+                  const double *vel, double *a)
 {
   for (int i = 0; i < r->n; i++) {
-    double *vo = r->vnew + 3 * i;
+    double *ai = a + 3 * i;
     if (r->pinned[i]) {
-      vo[0] = vo[1] = vo[2] = 0;
+      ai[0] = ai[1] = ai[2] = 0.0;
       continue;
     }
-    const double *p = r->pos + 3 * i, *v = r->vel + 3 * i;
-    double f[3] = {0, 0, 0};
-    for (int t = r->adj.off[i]; t < r->adj.off[i + 1]; t++) {
-      int j = r->adj.other[t], sp = r->adj.spring[t];
-      const double *q = r->pos + 3 * j, *vq = r->vel + 3 * j;
-      double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
-      double len2 = dot3(d, d), len = sqrt(len2);
-      if (!(len > 0))
-        continue;
-      double s = r->k[sp] * (len - r->rest[sp]) / len;
-      double dv[3] = {vq[0] - v[0], vq[1] - v[1], vq[2] - v[2]};
-      double c = r->damp ? r->damp[sp] * dot3(dv, d) / len2 : 0.0;
-      for (int e = 0; e < 3; e++)
-        f[e] += (s + c) * d[e];
-    }
+    msocl__ref_force(r, pos, vel, i, ai);
     for (int e = 0; e < 3; e++)
-      vo[e] = v[e] + r->dt * ((f[e] - r->viscous * v[e]) * r->inv_mass[i] +
-                              r->gravity[e]);
-    collide(r, p, vo);
+      ai[e] = ai[e] * r->inv_mass[i] + r->gravity[e];
   }
 }
 
+/* Strain sweeps of kernels/strain.cl: velocity (on r->vnew) or Provot's
+ * positions (on r->pnew), Jacobi style. */
+static void strain_velocity(msocl_reference *r)
+{
+  for (int it = 0; it < r->o.strain_iterations; it++) {
+    for (int i = 0; i < r->n; i++) {
+      double *out = r->tmp + 3 * i;
+      const double *p = r->pos + 3 * i, *v = r->vnew + 3 * i;
+      if (r->pinned[i]) {
+        out[0] = out[1] = out[2] = 0.0;
+        continue;
+      }
+      double dv[3] = {0, 0, 0};
+      for (int t = r->adj.off[i]; t < r->adj.off[i + 1]; t++) {
+        int j = r->adj.other[t], sp = r->adj.spring[t];
+        const double *q = r->pos + 3 * j, *vq = r->vnew + 3 * j;
+        double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+        double len = sqrt(msocl__dot3(d, d));
+        if (!(len > 0))
+          continue;
+        double allowed = ((1.0 + r->o.strain_limit) * r->rest[sp] - len) /
+                         r->dt;
+        double rel[3] = {vq[0] - v[0], vq[1] - v[1], vq[2] - v[2]};
+        double excess = msocl__dot3(rel, d) / len - allowed;
+        if (excess > 0)
+          for (int e = 0; e < 3; e++)
+            dv[e] += (r->pinned[j] ? 1.0 : 0.5) * excess * d[e] / len;
+      }
+      for (int e = 0; e < 3; e++)
+        out[e] = v[e] + dv[e];
+      msocl__ref_collide(r, p, out);
+    }
+    memcpy(r->vnew, r->tmp, 3 * (size_t)r->n * sizeof(double));
+  }
+}
+
+static void strain_position(msocl_reference *r)
+{
+  for (int it = 0; it < r->o.strain_iterations; it++) {
+    for (int i = 0; i < r->n; i++) {
+      const double *p = r->pnew + 3 * i;
+      double *out = r->tmp + 3 * i;
+      memcpy(out, p, 3 * sizeof(double));
+      if (r->pinned[i])
+        continue;
+      for (int t = r->adj.off[i]; t < r->adj.off[i + 1]; t++) {
+        int j = r->adj.other[t], sp = r->adj.spring[t];
+        const double *q = r->pnew + 3 * j;
+        double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+        double len = sqrt(msocl__dot3(d, d));
+        double over = len - (1.0 + r->o.strain_limit) * r->rest[sp];
+        if (over > 0)
+          for (int e = 0; e < 3; e++)
+            out[e] += (r->pinned[j] ? 1.0 : 0.5) * over / len * d[e];
+      }
+    }
+    memcpy(r->pnew, r->tmp, 3 * (size_t)r->n * sizeof(double));
+  }
+}
+
+/* Symplectic Euler's velocity pass into r->vnew. */
+static void symplectic_velocity(msocl_reference *r)
+{
+  accel(r, r->pos, r->vel, r->a);
+  for (int i = 0; i < r->n; i++) {
+    double *v = r->vnew + 3 * i;
+    for (int e = 0; e < 3; e++)
+      v[e] = r->pinned[i] ? 0.0
+                          : r->air * (r->vel[3 * i + e] + r->dt * r->a[3 * i + e]);
+    if (!r->pinned[i])
+      msocl__ref_collide(r, r->pos + 3 * i, v);
+  }
+}
+
+/* p' = p + dt v' into r->pnew (pinned points stay). */
 static void position_pass(msocl_reference *r)
 {
-  for (int i = 0; i < r->n; i++)
+  for (int i = 0; i < 3 * r->n; i++)
+    r->pnew[i] = r->pinned[i / 3] ? r->pos[i] : r->pos[i] + r->dt * r->vnew[i];
+}
+
+static void explicit_euler(msocl_reference *r)
+{
+  accel(r, r->pos, r->vel, r->a);
+  for (int i = 0; i < r->n; i++) {
+    double *p = r->pnew + 3 * i, *v = r->vnew + 3 * i;
+    for (int e = 0; e < 3; e++) {
+      p[e] = r->pos[3 * i + e] + (r->pinned[i] ? 0.0 : r->dt * r->vel[3 * i + e]);
+      v[e] = r->pinned[i] ? 0.0
+                          : r->air * (r->vel[3 * i + e] + r->dt * r->a[3 * i + e]);
+    }
     if (!r->pinned[i])
-      for (int e = 0; e < 3; e++)
-        r->pos[3 * i + e] += r->dt * r->vnew[3 * i + e];
-  double *t = r->vel;
-  r->vel = r->vnew;
-  r->vnew = t;
+      project(r, p, v);
+  }
 }
 
-int msocl_reference_create(msocl_reference **out, const msocl_model *m,
-                           double dt)
+static void verlet(msocl_reference *r)
 {
-  msocl__clear_error();
-  if (!out)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "reference out-pointer is NULL");
-  *out = NULL;
-  int rc = msocl_model_validate(m);
-  if (rc != MSOCL_OK)
-    return rc;
-  if (!isfinite(dt))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE, "time step dt is %g", dt);
-  if (!(dt > 0))
-    return msocl__fail(MSOCL_ERR_BAD_DT, "time step dt = %g must be > 0", dt);
-  msocl_reference *r = calloc(1, sizeof *r);
-  if (!r)
-    return msocl__fail(MSOCL_ERR_NO_MEMORY, "reference");
-  const size_t n = (size_t)m->n, ns = (size_t)m->ns;
-  r->n = m->n;
-  r->dt = dt;
-  r->pos = malloc(3 * n * sizeof(double));
-  r->vel = calloc(3 * n, sizeof(double));
-  r->vnew = calloc(3 * n, sizeof(double));
-  r->inv_mass = malloc(n * sizeof(double));
-  r->pinned = malloc(n);
-  r->spring_data = malloc((3 * ns + 1) * sizeof(double));
-  if (!r->pos || !r->vel || !r->vnew || !r->inv_mass || !r->pinned ||
-      !r->spring_data) {
-    msocl_reference_destroy(r);
-    return msocl__fail(MSOCL_ERR_NO_MEMORY, "reference state");
+  if (!r->acc_valid)
+    accel(r, r->pos, r->vel, r->acc);
+  double *vh = r->tmp;
+  for (int i = 0; i < r->n; i++) {
+    for (int e = 0; e < 3; e++)
+      vh[3 * i + e] = r->pinned[i] ? 0.0
+                                   : r->vel[3 * i + e] + 0.5 * r->dt * r->acc[3 * i + e];
+    if (!r->pinned[i])
+      msocl__ref_collide(r, r->pos + 3 * i, vh + 3 * i);
+    for (int e = 0; e < 3; e++)
+      r->pnew[3 * i + e] = r->pos[3 * i + e] + r->dt * vh[3 * i + e];
   }
-  rc = msocl__adjacency_build(m, &r->adj);
-  if (rc != MSOCL_OK) {
-    msocl_reference_destroy(r);
-    return rc;
-  }
-  for (size_t i = 0; i < 3 * n; i++)
-    r->pos[i] = m->pos[i];
-  for (size_t i = 0; i < n; i++)
-    r->inv_mass[i] = 1.0 / m->mass[i];
-  memcpy(r->pinned, m->pinned, n);
-  double *k = r->spring_data, *rest = k + ns, *damp = rest + ns;
-  for (size_t s = 0; s < ns; s++) {
-    k[s] = m->k[s];
-    rest[s] = m->rest[s];
-    damp[s] = m->damp ? m->damp[s] : 0.0;
-  }
-  r->k = k;
-  r->rest = rest;
-  r->damp = m->damp ? damp : NULL;
-  for (int e = 0; e < 3; e++)
-    r->gravity[e] = m->gravity[e];
-  r->viscous = m->viscous;
-  r->ncol = m->ncol;
-  memcpy(r->col, m->col, sizeof r->col);
-  *out = r;
-  return MSOCL_OK;
+  accel(r, r->pnew, vh, r->acc);
+  for (int i = 0; i < 3 * r->n; i++)
+    r->vnew[i] = r->air * (vh[i] + 0.5 * r->dt * r->acc[i]);
+  r->acc_valid = 1;
 }
 
-void msocl_reference_destroy(msocl_reference *r)
+static void rk4(msocl_reference *r)
 {
-  if (!r)
-    return;
-  msocl__adjacency_free(&r->adj);
-  free(r->pos);
-  free(r->vel);
-  free(r->vnew);
-  free(r->inv_mass);
-  free(r->pinned);
-  free(r->spring_data);
-  free(r);
+  const size_t n3 = 3 * (size_t)r->n;
+  double *sp = r->pos, *sv = r->vel;
+  const double c[3] = {0.5, 0.5, 1.0};
+  for (int q = 0; q < 4; q++) {
+    accel(r, sp, sv, r->a);
+    double w = (q == 0 || q == 3) ? 1.0 : 2.0;
+    for (size_t i = 0; i < n3; i++) {
+      r->sum_p[i] = (q == 0 ? 0.0 : r->sum_p[i]) + w * sv[i];
+      r->sum_v[i] = (q == 0 ? 0.0 : r->sum_v[i]) + w * r->a[i];
+    }
+    if (q == 3)
+      break;
+    double *np = r->stage_p[q & 1], *nv = r->stage_v[q & 1];
+    for (size_t i = 0; i < n3; i++) {
+      np[i] = r->pos[i] + c[q] * r->dt * sv[i];
+      nv[i] = r->pinned[i / 3] ? 0.0 : r->vel[i] + c[q] * r->dt * r->a[i];
+    }
+    sp = np;
+    sv = nv;
+  }
+  for (int i = 0; i < r->n; i++) {
+    double *p = r->pnew + 3 * i, *v = r->vnew + 3 * i;
+    for (int e = 0; e < 3; e++) {
+      p[e] = r->pos[3 * i + e] +
+             (r->pinned[i] ? 0.0 : r->dt / 6.0 * r->sum_p[3 * i + e]);
+      v[e] = r->pinned[i] ? 0.0
+                          : r->air * (r->vel[3 * i + e] +
+                                      r->dt / 6.0 * r->sum_v[3 * i + e]);
+    }
+    if (!r->pinned[i])
+      project(r, p, v);
+  }
 }
 
 int msocl_reference_step(msocl_reference *r, int n)
 {
+  msocl__clear_error();
   if (!r)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "reference is NULL");
   if (n < 0)
     return msocl__fail(MSOCL_ERR_BAD_COUNT, "step count %d is negative", n);
   for (int k = 0; k < n; k++) {
-    velocity_pass(r);
-    position_pass(r);
+    switch (r->o.integrator) {
+    case MSOCL_SYMPLECTIC_EULER:
+    case MSOCL_IMPLICIT_EULER:
+      if (r->o.integrator == MSOCL_SYMPLECTIC_EULER)
+        symplectic_velocity(r);
+      else
+        msocl__ref_implicit_velocity(r);
+      if (r->o.strain == MSOCL_STRAIN_VELOCITY)
+        strain_velocity(r);
+      position_pass(r);
+      break;
+    case MSOCL_EXPLICIT_EULER: explicit_euler(r); break;
+    case MSOCL_VERLET: verlet(r); break;
+    case MSOCL_RK4: rk4(r); break;
+    }
+    if (r->o.strain == MSOCL_STRAIN_PROVOT)
+      strain_position(r);
+    double *t = r->pos;
+    r->pos = r->pnew;
+    r->pnew = t;
+    t = r->vel;
+    r->vel = r->vnew;
+    r->vnew = t;
   }
-  return MSOCL_OK;
-}
-
-int msocl_reference_positions(const msocl_reference *r, double *xyz)
-{
-  if (!r || !xyz)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "reference or array is NULL");
-  memcpy(xyz, r->pos, 3 * (size_t)r->n * sizeof(double));
-  return MSOCL_OK;
-}
-
-int msocl_reference_velocities(const msocl_reference *r, double *xyz)
-{
-  if (!r || !xyz)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "reference or array is NULL");
-  memcpy(xyz, r->vel, 3 * (size_t)r->n * sizeof(double));
   return MSOCL_OK;
 }

@@ -18,11 +18,19 @@ void msocl_sim_options_init(msocl_sim_options *o)
   o->layout = MSOCL_LAYOUT_AUTO;
   o->math = MSOCL_MATH_PRECISE;
   o->device = 0;
+  o->integrator = MSOCL_SYMPLECTIC_EULER;
+  o->strain = MSOCL_STRAIN_NONE;
+  o->strain_limit = 0.1f;
+  o->strain_iterations = 4;
+  o->cg_tolerance = 1e-5f;
+  o->cg_max_iterations = 200;
+  o->check_every = 100;
+  o->energy_factor = 2.0f;
 }
 
 /* -D options for just the features this model uses. */
 static int build_options(const msocl_sim *s, const msocl_model *m,
-                         msocl_math math, char *buf, size_t cap)
+                         char *buf, size_t cap)
 {
   int any_pin = 0, damped = 0, kinds[4] = {0};
   for (int i = 0; i < m->n; i++)
@@ -35,16 +43,17 @@ static int build_options(const msocl_sim *s, const msocl_model *m,
   clGetDeviceInfo(s->dev->id, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp,
                   NULL);
   int len = snprintf(
-      buf, cap, "%s -DMSOCL_SLOTS=%d%s%s%s%s%s%s%s",
+      buf, cap, "%s -DMSOCL_SLOTS=%d%s%s%s%s%s%s%s%s",
       s->lay.kind == MSOCL_LAYOUT_IMAGE2D ? "-DMSOCL_LAYOUT_IMAGE2D"
                                           : "-DMSOCL_LAYOUT_BUFFER",
       s->lay.slots > 0 ? s->lay.slots : 1, damped ? " -DMSOCL_DAMPING" : "",
       m->viscous != 0.0f ? " -DMSOCL_VISCOUS" : "",
+      m->air != 1.0f ? " -DMSOCL_AIR" : "",
       any_pin ? " -DMSOCL_PINS" : "",
       kinds[MSOCL__PLANE] ? " -DMSOCL_PLANE" : "",
       kinds[MSOCL__SPHERE] ? " -DMSOCL_SPHERE" : "",
       kinds[MSOCL__TABLE] ? " -DMSOCL_TABLE" : "",
-      math == MSOCL_MATH_RELAXED
+      s->o.math == MSOCL_MATH_RELAXED
           ? " -DMSOCL_RELAXED -cl-fast-relaxed-math"
           /* GPUs may round single divide and sqrt loosely unless asked. */
           : (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
@@ -127,6 +136,27 @@ static int make_buffers(msocl_sim *s, const msocl_model *m)
   s->tri_off = buffer(s, CL_MEM_READ_ONLY, (n + 1) * sizeof *off, off, &rc);
   s->tri_ab = buffer(s, CL_MEM_READ_ONLY,
                      (size_t)(2 * 3 * m->nt + 2) * sizeof *ab, ab, &rc);
+  /* Scratch only where the integrator and options use it. */
+  const msocl_integrator in = s->o.integrator;
+  if (in == MSOCL_VERLET)
+    s->acc = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
+  if (in == MSOCL_RK4 || in == MSOCL_IMPLICIT_EULER ||
+      s->o.strain != MSOCL_STRAIN_NONE) {
+    for (int k = 0; k < 2; k++) {
+      s->stage_p[k] = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
+      s->stage_v[k] = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
+    }
+  }
+  if (in == MSOCL_RK4) {
+    s->sum_p = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
+    s->sum_v = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
+  }
+  if (s->o.check_every > 0) {
+    s->backup_p = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
+    s->backup_v = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
+  }
+  s->partial = buffer(s, CL_MEM_READ_WRITE, s->groups * sizeof(cl_float4),
+                      NULL, &rc);
   if (rc == MSOCL_OK) {
     /* Velocities start at zero: a pattern fill, no host transfer. */
     float zero = 0.0f;
@@ -144,46 +174,63 @@ out:
   return rc;
 }
 
-static int make_kernels(msocl_sim *s, const msocl_model *m, cl_program prog)
+/* Kernels by enum index; NULL: not a kernel of the library's program. */
+static const char *const kernel_names[MSOCL__K_COUNT] = {
+    "msocl_velocity",   "msocl_position",   "msocl_normals",
+    "msocl_euler",      "msocl_accel",      "msocl_verlet_drift",
+    "msocl_verlet_kick", "msocl_rk4_stage", "msocl_energy",
+    "msocl_ie_rhs",     "msocl_ie_apply",   "msocl_cg_step",
+    "msocl_cg_direction", "msocl_ie_finish", "msocl_strain_velocity",
+    "msocl_strain_position"};
+
+/* Kernels that read a point's springs take the connectivity first. */
+static const unsigned char gathers[MSOCL__K_COUNT] = {
+    [MSOCL__K_VELOCITY] = 1, [MSOCL__K_EULER] = 1,  [MSOCL__K_ACCEL] = 1,
+    [MSOCL__K_KICK] = 1,     [MSOCL__K_RK4] = 1,    [MSOCL__K_ENERGY] = 1,
+    [MSOCL__K_IE_RHS] = 1,   [MSOCL__K_IE_APPLY] = 1,
+    [MSOCL__K_STRAIN_VEL] = 1, [MSOCL__K_STRAIN_POS] = 1};
+
+/* Creates just the kernels the chosen integrator and options use. */
+static int make_kernels(msocl_sim *s, cl_program prog)
 {
-  const char *names[3] = {"msocl_velocity", "msocl_position",
-                          "msocl_normals"};
-  for (int r = 0; r < 2; r++) {
-    cl_kernel *k[3] = {&s->kvel[r], &s->kpos[r], &s->knorm[r]};
-    for (int q = 0; q < 3; q++) {
-      cl_int e;
-      *k[q] = clCreateKernel(prog, names[q], &e);
-      if (e != CL_SUCCESS)
-        return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
-                           msocl_err_name(e));
+  int want[MSOCL__K_COUNT] = {0};
+  want[MSOCL__K_NORMALS] = want[MSOCL__K_ENERGY] = 1;
+  switch (s->o.integrator) {
+  case MSOCL_SYMPLECTIC_EULER:
+    want[MSOCL__K_VELOCITY] = want[MSOCL__K_POSITION] = 1;
+    break;
+  case MSOCL_EXPLICIT_EULER:
+    want[MSOCL__K_EULER] = 1;
+    break;
+  case MSOCL_VERLET:
+    want[MSOCL__K_ACCEL] = want[MSOCL__K_DRIFT] = want[MSOCL__K_KICK] = 1;
+    break;
+  case MSOCL_RK4:
+    want[MSOCL__K_RK4] = 1;
+    break;
+  case MSOCL_IMPLICIT_EULER:
+    want[MSOCL__K_IE_RHS] = want[MSOCL__K_IE_APPLY] = 1;
+    want[MSOCL__K_CG_STEP] = want[MSOCL__K_CG_DIR] = 1;
+    want[MSOCL__K_IE_FINISH] = want[MSOCL__K_POSITION] = 1;
+    break;
+  }
+  if (s->o.strain == MSOCL_STRAIN_VELOCITY)
+    want[MSOCL__K_STRAIN_VEL] = 1;
+  if (s->o.strain == MSOCL_STRAIN_PROVOT)
+    want[MSOCL__K_STRAIN_POS] = 1;
+  for (int q = 0; q < MSOCL__K_COUNT; q++) {
+    if (!want[q])
+      continue;
+    cl_int e;
+    s->k[q] = clCreateKernel(prog, kernel_names[q], &e);
+    if (e != CL_SUCCESS)
+      return msocl__fail(e, "clCreateKernel(%s): %s", kernel_names[q],
+                         msocl_err_name(e));
+    if (gathers[q]) {
+      int rc = msocl__layout_set_args(&s->lay, s->k[q], &s->nconn);
+      if (rc != MSOCL_OK)
+        return rc;
     }
-    const int w = 1 - r;
-    cl_float4 g = {{m->gravity[0], m->gravity[1], m->gravity[2], 0.0f}};
-    cl_uint a;
-    int rc = msocl__layout_set_args(&s->lay, s->kvel[r], &a);
-    if (rc != MSOCL_OK)
-      return rc;
-    cl_kernel kv = s->kvel[r], kp = s->kpos[r], kn = s->knorm[r];
-    MSOCL__CL(clSetKernelArg(kv, a++, sizeof(cl_mem), &s->pos[r]));
-    MSOCL__CL(clSetKernelArg(kv, a++, sizeof(cl_mem), &s->vel[r]));
-    MSOCL__CL(clSetKernelArg(kv, a++, sizeof(cl_mem), &s->vel[w]));
-    MSOCL__CL(clSetKernelArg(kv, a++, sizeof(cl_mem), &s->inv_mass));
-    MSOCL__CL(clSetKernelArg(kv, a++, sizeof g, &g));
-    MSOCL__CL(clSetKernelArg(kv, a++, sizeof(float), &m->viscous));
-    MSOCL__CL(clSetKernelArg(kv, a++, sizeof(float), &s->dt));
-    MSOCL__CL(clSetKernelArg(kv, a++, sizeof(cl_mem), &s->col));
-    MSOCL__CL(clSetKernelArg(kv, a++, sizeof(int), &m->ncol));
-    MSOCL__CL(clSetKernelArg(kv, a++, sizeof(int), &s->n));
-    MSOCL__CL(clSetKernelArg(kp, 0, sizeof(cl_mem), &s->pos[r]));
-    MSOCL__CL(clSetKernelArg(kp, 1, sizeof(cl_mem), &s->vel[w]));
-    MSOCL__CL(clSetKernelArg(kp, 2, sizeof(cl_mem), &s->pos[w]));
-    MSOCL__CL(clSetKernelArg(kp, 3, sizeof(float), &s->dt));
-    MSOCL__CL(clSetKernelArg(kp, 4, sizeof(int), &s->n));
-    MSOCL__CL(clSetKernelArg(kn, 0, sizeof(cl_mem), &s->pos[r]));
-    MSOCL__CL(clSetKernelArg(kn, 1, sizeof(cl_mem), &s->tri_off));
-    MSOCL__CL(clSetKernelArg(kn, 2, sizeof(cl_mem), &s->tri_ab));
-    MSOCL__CL(clSetKernelArg(kn, 3, sizeof(cl_mem), &s->normal));
-    MSOCL__CL(clSetKernelArg(kn, 4, sizeof(int), &s->n));
   }
   return MSOCL_OK;
 }
@@ -205,7 +252,58 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
                        "device %d out of range: the runtime holds %d",
                        o->device, rt->ndev);
+  if (o->integrator < MSOCL_SYMPLECTIC_EULER ||
+      o->integrator > MSOCL_IMPLICIT_EULER)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown integrator %d",
+                       (int)o->integrator);
+  if (o->strain < MSOCL_STRAIN_NONE || o->strain > MSOCL_STRAIN_VELOCITY)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown strain limiting %d",
+                       (int)o->strain);
+  if (!(o->strain_limit >= 0.0f) || !isfinite(o->strain_limit) ||
+      o->strain_iterations < 1 || o->strain_iterations > 1000)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "strain limit %g must be >= 0 and iterations %d in "
+                       "[1, 1000]",
+                       o->strain_limit, o->strain_iterations);
+  if (!(o->cg_tolerance > 0.0f) || !isfinite(o->cg_tolerance) ||
+      o->cg_max_iterations < 1)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "CG tolerance %g must be > 0 and iterations %d >= 1",
+                       o->cg_tolerance, o->cg_max_iterations);
+  if (o->strain == MSOCL_STRAIN_VELOCITY &&
+      o->integrator != MSOCL_SYMPLECTIC_EULER &&
+      o->integrator != MSOCL_IMPLICIT_EULER)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "velocity strain limiting needs an integrator whose "
+                       "position update uses the new velocity (symplectic "
+                       "or implicit Euler)");
+  if (o->check_every < 0 || !(o->energy_factor > 0.0f) ||
+      !isfinite(o->energy_factor))
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "check_every %d must be >= 0 and energy_factor %g > 0",
+                       o->check_every, o->energy_factor);
   return MSOCL_OK;
+}
+
+/* Mass and size of the scene: the blow-up check's energy scale. */
+static void scene_scale(msocl_sim *s, const msocl_model *m)
+{
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY,
+                                                         -INFINITY,
+                                                         -INFINITY};
+  s->total_mass = 0.0;
+  for (int i = 0; i < m->n; i++) {
+    s->total_mass += m->mass[i];
+    for (int c = 0; c < 3; c++) {
+      double x = m->pos[3 * i + c];
+      lo[c] = x < lo[c] ? x : lo[c];
+      hi[c] = x > hi[c] ? x : hi[c];
+    }
+  }
+  double d2 = 0.0;
+  for (int c = 0; c < 3; c++)
+    d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
+  s->extent = sqrt(d2);
 }
 
 int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
@@ -234,12 +332,22 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
   if (!s)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
   s->dev = (struct msocl__device *)&rt->dev[o.device];
+  s->o = o;
   s->n = m->n;
-  s->dt = o.dt;
   s->global = ((size_t)m->n + 63) / 64 * 64;
+  s->groups = s->global / 64;
+  s->gravity.s[0] = m->gravity[0];
+  s->gravity.s[1] = m->gravity[1];
+  s->gravity.s[2] = m->gravity[2];
+  s->gravity.s[3] = 0.0f;
+  s->viscous = m->viscous;
+  s->air = m->air;
+  s->ncol = m->ncol;
+  scene_scale(s, m);
   s->pinned = malloc((size_t)m->n);
   s->stage = malloc(4 * (size_t)m->n * sizeof(float));
-  if (!s->pinned || !s->stage) {
+  s->partial_host = malloc(s->groups * sizeof *s->partial_host);
+  if (!s->pinned || !s->stage || !s->partial_host) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
     goto fail;
   }
@@ -252,11 +360,13 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
   char opt[512];
   cl_program prog = NULL;
   if (rc == MSOCL_OK)
-    rc = build_options(s, m, o.math, opt, sizeof opt);
+    rc = build_options(s, m, opt, sizeof opt);
   if (rc == MSOCL_OK)
     rc = msocl__program_get(s->dev, opt, &prog);
   if (rc == MSOCL_OK)
-    rc = make_kernels(s, m, prog);
+    rc = make_kernels(s, prog);
+  if (rc == MSOCL_OK)
+    rc = msocl__integrate_setup(s);
   if (rc == MSOCL_OK) {
     cl_int e = clFinish(s->dev->queue);
     if (e != CL_SUCCESS)
@@ -278,19 +388,20 @@ void msocl_sim_destroy(msocl_sim *s)
     return;
   if (s->dev && s->dev->queue)
     clFinish(s->dev->queue);
-  for (int r = 0; r < 2; r++) {
-    cl_kernel k[3] = {s->kvel[r], s->kpos[r], s->knorm[r]};
-    for (int q = 0; q < 3; q++)
-      if (k[q])
-        clReleaseKernel(k[q]);
-  }
-  cl_mem mems[] = {s->pos[0], s->pos[1], s->vel[0], s->vel[1], s->inv_mass,
-                   s->col, s->normal, s->tri_off, s->tri_ab};
+  for (int q = 0; q < MSOCL__K_COUNT; q++)
+    if (s->k[q])
+      clReleaseKernel(s->k[q]);
+  cl_mem mems[] = {s->pos[0],     s->pos[1],     s->vel[0],     s->vel[1],
+                   s->inv_mass,   s->col,        s->normal,     s->tri_off,
+                   s->tri_ab,     s->acc,        s->stage_p[0], s->stage_p[1],
+                   s->stage_v[0], s->stage_v[1], s->sum_p,      s->sum_v,
+                   s->backup_p,   s->backup_v,   s->partial};
   for (size_t q = 0; q < sizeof mems / sizeof mems[0]; q++)
     if (mems[q])
       clReleaseMemObject(mems[q]);
   msocl__layout_release(&s->lay);
   free(s->pinned);
   free(s->stage);
+  free(s->partial_host);
   free(s);
 }

@@ -5,9 +5,71 @@
 #include <math.h>
 #include <string.h>
 
-/* Steps per batch between flushes: enough to keep the device fed without
- * piling thousands of commands into the queue. */
-#define MSOCL__FLUSH_EVERY 64
+/* The blow-up check's baseline: energy at the start, and a scale for the
+ * scene - its kinetic and spring energy plus the work gravity could do
+ * across its extent - so a scene starting at rest has a finite bound. */
+static int baseline(msocl_sim *s)
+{
+  msocl_energy e;
+  int rc = msocl__energy(s, &e);
+  if (rc != MSOCL_OK)
+    return rc;
+  double g = sqrt((double)s->gravity.s[0] * s->gravity.s[0] +
+                  (double)s->gravity.s[1] * s->gravity.s[1] +
+                  (double)s->gravity.s[2] * s->gravity.s[2]);
+  s->e0 = e.total;
+  s->escale = e.kinetic + e.spring + s->total_mass * g * s->extent;
+  s->e0_valid = 1;
+  return MSOCL_OK;
+}
+
+static int copy_state(msocl_sim *s, cl_mem from_p, cl_mem from_v, cl_mem to_p,
+                      cl_mem to_v)
+{
+  const size_t bytes = 4 * (size_t)s->n * sizeof(float);
+  MSOCL__CL(clEnqueueCopyBuffer(s->dev->queue, from_p, to_p, 0, 0, bytes, 0,
+                                NULL, NULL));
+  MSOCL__CL(clEnqueueCopyBuffer(s->dev->queue, from_v, to_v, 0, 0, bytes, 0,
+                                NULL, NULL));
+  return MSOCL_OK;
+}
+
+/* Runs `n` steps in batches of check_every, each followed by the check;
+ * a failed check restores the state saved before its batch. */
+static int checked_steps(msocl_sim *s, int n)
+{
+  int rc = s->e0_valid ? MSOCL_OK : baseline(s);
+  for (int done = 0; rc == MSOCL_OK && done < n;) {
+    int batch = n - done < s->o.check_every ? n - done : s->o.check_every;
+    long long first = s->steps;
+    rc = copy_state(s, s->pos[s->r], s->vel[s->r], s->backup_p, s->backup_v);
+    if (rc == MSOCL_OK)
+      rc = msocl__integrate(s, batch);
+    msocl_energy e;
+    if (rc == MSOCL_OK)
+      rc = msocl__energy(s, &e);
+    if (rc != MSOCL_OK)
+      return rc;
+    double bound = s->e0 + s->o.energy_factor * s->escale;
+    if (!isfinite(e.total) || e.total > bound) {
+      rc = copy_state(s, s->backup_p, s->backup_v, s->pos[s->r],
+                      s->vel[s->r]);
+      s->steps = first;
+      s->acc_valid = 0;
+      if (rc == MSOCL_OK)
+        MSOCL__CL(clFinish(s->dev->queue));
+      return msocl__fail(
+          MSOCL_ERR_UNSTABLE,
+          "blew up between steps %lld and %lld (dt = %g): total energy %g J "
+          "against %g J at the start (bound %g J); state restored to step "
+          "%lld; msocl_stable_dt() gives a safe step",
+          first, first + batch, (double)s->o.dt, e.total, s->e0, bound,
+          first);
+    }
+    done += batch;
+  }
+  return rc;
+}
 
 int msocl_sim_step(msocl_sim *s, int n)
 {
@@ -16,17 +78,28 @@ int msocl_sim_step(msocl_sim *s, int n)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
   if (n < 0)
     return msocl__fail(MSOCL_ERR_BAD_COUNT, "step count %d is negative", n);
-  cl_command_queue q = s->dev->queue;
-  for (int k = 0; k < n; k++) {
-    MSOCL__CL(clEnqueueNDRangeKernel(q, s->kvel[s->r], 1, NULL, &s->global,
-                                     NULL, 0, NULL, NULL));
-    MSOCL__CL(clEnqueueNDRangeKernel(q, s->kpos[s->r], 1, NULL, &s->global,
-                                     NULL, 0, NULL, NULL));
-    s->r = 1 - s->r;
-    if ((k + 1) % MSOCL__FLUSH_EVERY == 0)
-      MSOCL__CL(clFlush(q));
-  }
-  MSOCL__CL(clFinish(q));
+  int rc = s->o.check_every > 0 ? checked_steps(s, n) : msocl__integrate(s, n);
+  if (rc != MSOCL_OK)
+    return rc;
+  MSOCL__CL(clFinish(s->dev->queue));
+  return MSOCL_OK;
+}
+
+int msocl_sim_step_count(const msocl_sim *s, long long *steps)
+{
+  if (!s || !steps)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
+  *steps = s->steps;
+  return MSOCL_OK;
+}
+
+int msocl_sim_solver_stats(const msocl_sim *s, int *iterations,
+                           double *residual)
+{
+  if (!s || !iterations || !residual)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
+  *iterations = s->cg_iterations;
+  *residual = s->cg_residual;
   return MSOCL_OK;
 }
 
@@ -64,6 +137,9 @@ static int write_xyz(msocl_sim *s, cl_mem b, const float *xyz, int is_pos)
   MSOCL__CL(clEnqueueWriteBuffer(s->dev->queue, b, CL_TRUE, 0,
                                  4 * (size_t)s->n * sizeof(float), s->stage,
                                  0, NULL, NULL));
+  /* A new state: new baseline energy, new Verlet acceleration. */
+  s->e0_valid = 0;
+  s->acc_valid = 0;
   return MSOCL_OK;
 }
 
@@ -93,9 +169,10 @@ int msocl_sim_read_normals(msocl_sim *s, float *xyz)
   if (!s || !xyz)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
                        s ? "output array" : "sim");
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->knorm[s->r], 1, NULL,
-                                   &s->global, NULL, 0, NULL, NULL));
-  return read_xyz(s, s->normal, xyz);
+  int rc = msocl__arg_mem(s->k[MSOCL__K_NORMALS], 0, s->pos[s->r]);
+  if (rc == MSOCL_OK)
+    rc = msocl__launch(s, MSOCL__K_NORMALS);
+  return rc == MSOCL_OK ? read_xyz(s, s->normal, xyz) : rc;
 }
 
 int msocl_sim_point_count(const msocl_sim *s, int *n)

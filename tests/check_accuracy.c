@@ -36,7 +36,7 @@ static double device_vs_reference(const msocl_model *m, float dt, int steps,
   int rc = msocl_sim_create(&s, rt, m, &o);
   ck_assert_msg(rc == MSOCL_OK, "sim_create: %s", msocl_last_error());
   msocl_reference *r = NULL;
-  ck_assert_int_eq(msocl_reference_create(&r, m, (double)dt), MSOCL_OK);
+  ck_assert_int_eq(msocl_reference_create(&r, m, &o), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_step(s, steps), MSOCL_OK);
   ck_assert_int_eq(msocl_reference_step(r, steps), MSOCL_OK);
   float *p = malloc(3 * (size_t)n * sizeof *p), *p0 = malloc(3 * (size_t)n * sizeof *p0);
@@ -110,11 +110,16 @@ START_TEST(reference_rejects_bad_input)
 {
   msocl_model *m = scene_hanging(4);
   msocl_reference *r = NULL;
-  ck_assert_int_eq(msocl_reference_create(NULL, m, 1e-3), MSOCL_ERR_NULL_HANDLE);
-  ck_assert_int_eq(msocl_reference_create(&r, NULL, 1e-3), MSOCL_ERR_NULL_HANDLE);
-  ck_assert_int_eq(msocl_reference_create(&r, m, 0.0), MSOCL_ERR_BAD_DT);
-  ck_assert_int_eq(msocl_reference_create(&r, m, -1.0), MSOCL_ERR_BAD_DT);
-  ck_assert_int_eq(msocl_reference_create(&r, m, INFINITY), MSOCL_ERR_NOT_FINITE);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  ck_assert_int_eq(msocl_reference_create(NULL, m, &o), MSOCL_ERR_NULL_HANDLE);
+  ck_assert_int_eq(msocl_reference_create(&r, NULL, &o), MSOCL_ERR_NULL_HANDLE);
+  o.dt = 0.0f;
+  ck_assert_int_eq(msocl_reference_create(&r, m, &o), MSOCL_ERR_BAD_DT);
+  o.dt = -1.0f;
+  ck_assert_int_eq(msocl_reference_create(&r, m, &o), MSOCL_ERR_BAD_DT);
+  o.dt = INFINITY;
+  ck_assert_int_eq(msocl_reference_create(&r, m, &o), MSOCL_ERR_NOT_FINITE);
   ck_assert_ptr_null(r);
   ck_assert_int_eq(msocl_reference_step(NULL, 1), MSOCL_ERR_NULL_HANDLE);
   msocl_model_destroy(m);

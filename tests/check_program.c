@@ -43,10 +43,22 @@ static int make_sim(void)
   return rc;
 }
 
+static const char *const files[] = {"common.cl",   "step.cl",
+                                    "integrators.cl", "implicit.cl",
+                                    "strain.cl",   "energy.cl",
+                                    "normals.cl"};
+#define NFILES (sizeof files / sizeof files[0])
+
+/* All kernel files into dir, with `extra` after the step file. */
+static void copy_all(const char *extra)
+{
+  for (size_t f = 0; f < NFILES; f++)
+    copy_kernel(files[f], strcmp(files[f], "step.cl") ? "\n" : extra);
+}
+
 START_TEST(kernel_path_loads_files)
 {
-  copy_kernel("step.cl", "\n");
-  copy_kernel("normals.cl", "\n");
+  copy_all("\n");
   setenv("MSOCL_KERNEL_PATH", dir, 1);
   ck_assert_int_eq(make_sim(), MSOCL_OK);
   unsetenv("MSOCL_KERNEL_PATH");
@@ -55,8 +67,7 @@ END_TEST
 
 START_TEST(build_error_carries_log)
 {
-  copy_kernel("step.cl", "\n__kernel void broken(void) { this_is_not_c; }\n");
-  copy_kernel("normals.cl", "\n");
+  copy_all("\n__kernel void broken(void) { this_is_not_c; }\n");
   setenv("MSOCL_KERNEL_PATH", dir, 1);
   ck_assert_int_eq(make_sim(), MSOCL_ERR_BUILD);
   ck_assert_ptr_nonnull(strstr(msocl_last_error(), "this_is_not_c"));
@@ -93,11 +104,11 @@ int main(void)
   srunner_run_all(sr, CK_NORMAL);
   int failed = srunner_ntests_failed(sr);
   srunner_free(sr);
-  char path[4096];
-  snprintf(path, sizeof path, "%s/step.cl", dir);
-  unlink(path);
-  snprintf(path, sizeof path, "%s/normals.cl", dir);
-  unlink(path);
+  for (size_t f = 0; f < NFILES; f++) {
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, files[f]);
+    unlink(path);
+  }
   rmdir(dir);
   return failed ? EXIT_FAILURE : EXIT_SUCCESS;
 }

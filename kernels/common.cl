@@ -1,0 +1,226 @@
+/* What every kernel file shares: math mode, access to a point's springs
+ * (whichever layout holds them), spring forces and collision response.
+ * The library compiles it first, followed by the other kernel files, as one
+ * program; its -D options name only what the model uses:
+ *   MSOCL_LAYOUT_IMAGE2D | MSOCL_LAYOUT_BUFFER   where the springs live
+ *   MSOCL_SLOTS=n          slots per point (BUFFER)
+ *   MSOCL_DAMPING          per-spring dashpots (a slot table of coefficients)
+ *   MSOCL_VISCOUS          viscous damping -c v
+ *   MSOCL_AIR              air resistance: velocity times a factor a step
+ *   MSOCL_PINS             pinned points (pos.w != 0)
+ *   MSOCL_PLANE, MSOCL_SPHERE, MSOCL_TABLE   collider kinds present
+ *   MSOCL_RELAXED          native functions (with -cl-fast-relaxed-math)
+ * State is float4 (xyz, w): pos.w = 1 marks a pinned point. */
+
+/* Precise mode forbids fused multiply-add so every layout, and every device
+ * split, sums in exactly the same arithmetic (bitwise-equal results). */
+#ifndef MSOCL_RELAXED
+#pragma OPENCL FP_CONTRACT OFF
+#define MSOCL_SQRT(x) sqrt(x)
+#define MSOCL_DIV(a, b) ((a) / (b))
+#else
+#define MSOCL_SQRT(x) native_sqrt(x)
+#define MSOCL_DIV(a, b) native_divide((a), (b))
+#endif
+
+#define MSOCL_PLANE_KIND 1
+#define MSOCL_SPHERE_KIND 2
+#define MSOCL_TABLE_KIND 3
+
+#ifdef MSOCL_PINS
+#define MSOCL_PINNED(p4) ((p4).w != 0.0f)
+#else
+#define MSOCL_PINNED(p4) 0
+#endif
+
+/* Connectivity parameters of every gathering kernel, and the same names to
+ * pass them on. */
+#ifdef MSOCL_LAYOUT_IMAGE2D
+#define MSOCL_MAX_SLOTS 16
+#define MSOCL_CONN                                                            \
+  __read_only image2d_t con, int tex_w, int tex_h, __read_only image2d_t dmp
+#define MSOCL_CONN_ARGS con, tex_w, tex_h, dmp
+#else
+#define MSOCL_MAX_SLOTS MSOCL_SLOTS
+#define MSOCL_CONN                                                            \
+  __global const int *nbr, __global const float2 *rk, __global const float *dmp
+#define MSOCL_CONN_ARGS nbr, rk, dmp
+#endif
+
+/* Slot s of point i: the other end *j, rest length, stiffness and dashpot
+ * coefficient; returns 0 past the last spring. The texture is the paper's:
+ * 16 tiles of W x H, slot s in tile (s % 4, s / 4), entry (x, y of the
+ * other end, rest, k), -1 = end; dashpots in a (4W) x H image, four slots a
+ * texel. BUFFER is slot-major: slot s of point i at s * n + i. */
+static int msocl_slot(MSOCL_CONN, int i, int s, int n, int *j, float *rest,
+                      float *k, float *c)
+{
+#ifdef MSOCL_LAYOUT_IMAGE2D
+  const sampler_t smp =
+      CLK_NORMALIZED_COORDS_FALSE | CLK_ADDRESS_NONE | CLK_FILTER_NEAREST;
+  int x = i % tex_w, y = i / tex_w;
+  float4 e = read_imagef(con, smp, (int2)(x + (s & 3) * tex_w,
+                                          y + (s >> 2) * tex_h));
+  if (e.x < 0.0f)
+    return 0;
+  *j = (int)e.y * tex_w + (int)e.x;
+  *rest = e.z;
+  *k = e.w;
+#ifdef MSOCL_DAMPING
+  float4 c4 = read_imagef(dmp, smp, (int2)(x + (s >> 2) * tex_w, y));
+  int q = s & 3;
+  *c = q == 0 ? c4.x : q == 1 ? c4.y : q == 2 ? c4.z : c4.w;
+#else
+  *c = 0.0f;
+#endif
+#else
+  int jj = nbr[s * n + i];
+  if (jj < 0)
+    return 0;
+  float2 e = rk[s * n + i];
+  *j = jj;
+  *rest = e.x;
+  *k = e.y;
+#ifdef MSOCL_DAMPING
+  *c = dmp[s * n + i];
+#else
+  *c = 0.0f;
+#endif
+#endif
+  return 1;
+}
+
+/* Force on point p from a spring to q of rest length r and stiffness k
+ * (Hooke, eq. 2 of the paper with the sign that pulls a stretched spring
+ * together). A zero-length spring exerts nothing rather than NaN. */
+static float3 msocl_spring(float3 p, float3 q, float rest, float k)
+{
+  float3 d = q - p;
+  float len = MSOCL_SQRT(dot(d, d));
+  if (len > 0.0f)
+    return (k * MSOCL_DIV(len - rest, len)) * d;
+  return (float3)(0.0f);
+}
+
+/* Dashpot along the spring: c times the closing speed, along the spring. */
+static float3 msocl_dashpot(float3 p, float3 q, float3 vp, float3 vq, float c)
+{
+  float3 d = q - p;
+  float len2 = dot(d, d);
+  if (len2 > 0.0f)
+    return (c * MSOCL_DIV(dot(vq - vp, d), len2)) * d;
+  return (float3)(0.0f);
+}
+
+/* Internal and viscous force on point i (not gravity): the gather over its
+ * springs, in slot order. */
+static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
+                          __global const float4 *vel, int i, int n,
+                          float viscous)
+{
+  float3 p = pos[i].xyz, v = vel[i].xyz, f = (float3)(0.0f);
+  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
+    int j;
+    float rest, k, c;
+    if (!msocl_slot(MSOCL_CONN_ARGS, i, s, n, &j, &rest, &k, &c))
+      break;
+    float3 q = pos[j].xyz;
+    f += msocl_spring(p, q, rest, k);
+#ifdef MSOCL_DAMPING
+    f += msocl_dashpot(p, q, v, vel[j].xyz, c);
+#endif
+  }
+#ifdef MSOCL_VISCOUS
+  f -= viscous * v;
+#endif
+  (void)v; (void)viscous;
+  return f;
+}
+
+/* Collision response by changing velocity (the paper's way). g is a convex
+ * function that is >= 0 outside the collider, n its unit gradient. Because
+ * g is convex, g(p + dt v) >= g(p) + dt n.v, so raising n.v to at least
+ * -g/dt keeps the new position outside. Friction scales away that fraction
+ * of the tangential velocity on contact. */
+static float3 msocl_respond(float3 v, float g, float3 n, float friction,
+                            float dt)
+{
+  float vn = dot(v, n);
+  float lim = MSOCL_DIV(-g, dt);
+  if (vn < lim) {
+    v = v + (lim - vn) * n;
+    v = v - friction * (v - lim * n);
+  }
+  return v;
+}
+
+/* The collider's g (>= 0 outside) and unit gradient n at p. */
+static float msocl_collider_gap(float3 p, float4 head, float4 prm, float3 *n)
+{
+  int kind = (int)head.x;
+#ifdef MSOCL_PLANE
+  if (kind == MSOCL_PLANE_KIND) {
+    *n = prm.xyz;
+    return dot(prm.xyz, p) - prm.w;
+  }
+#endif
+#ifdef MSOCL_SPHERE
+  if (kind == MSOCL_SPHERE_KIND) {
+    float3 d = p - prm.xyz;
+    float len = MSOCL_SQRT(dot(d, d));
+    *n = len > 0.0f ? d / len : (float3)(0.0f, 1.0f, 0.0f);
+    return len - prm.w;
+  }
+#endif
+#ifdef MSOCL_TABLE
+  if (kind == MSOCL_TABLE_KIND) {
+    /* max(radial distance - R, height above top): convex, zero on the
+     * table's surface. */
+    float dx = p.x - prm.x, dz = p.z - prm.z;
+    float rr = MSOCL_SQRT(dx * dx + dz * dz);
+    float gside = rr - prm.w, gtop = p.y - prm.y;
+    if (gtop >= gside || !(rr > 0.0f)) {
+      *n = (float3)(0.0f, 1.0f, 0.0f);
+      return gtop;
+    }
+    *n = (float3)(dx / rr, 0.0f, dz / rr);
+    return gside;
+  }
+#endif
+  (void)kind; (void)p; (void)prm;
+  *n = (float3)(0.0f, 1.0f, 0.0f);
+  return INFINITY;
+}
+
+/* Velocity response for a point at p about to move by dt * v. */
+static float3 msocl_collide(float3 p, float3 v, float dt,
+                            __constant float4 *col, int ncol)
+{
+  for (int c = 0; c < ncol; c++) {
+    float3 n;
+    float g = msocl_collider_gap(p, col[2 * c], col[2 * c + 1], &n);
+    v = msocl_respond(v, g, n, col[2 * c].y, dt);
+  }
+  return v;
+}
+
+/* For integrators whose position update does not use the velocity the
+ * response sees (explicit Euler, RK4): a point found inside a collider
+ * after the step is put back on its surface and loses its inward normal
+ * velocity (friction as above). */
+static void msocl_project(float3 *p, float3 *v, __constant float4 *col,
+                          int ncol)
+{
+  for (int c = 0; c < ncol; c++) {
+    float3 n;
+    float g = msocl_collider_gap(*p, col[2 * c], col[2 * c + 1], &n);
+    if (g < 0.0f) {
+      *p = *p - g * n;
+      float vn = dot(*v, n);
+      if (vn < 0.0f) {
+        *v = *v - vn * n;
+        *v = *v - col[2 * c].y * *v;
+      }
+    }
+  }
+}

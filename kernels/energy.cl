@@ -1,0 +1,41 @@
+/* Energy of the state, summed on the device: each work-group of 64 points
+ * writes one partial (kinetic, spring, gravitational, 0); the host adds the
+ * partials in double. A spring's energy k (l - r)^2 / 2 is split between
+ * its two ends, as each end's gather sees it. */
+
+#define MSOCL_ENERGY_GROUP 64
+
+__kernel __attribute__((reqd_work_group_size(MSOCL_ENERGY_GROUP, 1, 1)))
+void msocl_energy(MSOCL_CONN, __global const float4 *pos,
+                  __global const float4 *vel,
+                  __global const float *inv_mass, float4 gravity,
+                  __global float4 *partial, int n)
+{
+  __local float4 part[MSOCL_ENERGY_GROUP];
+  int i = get_global_id(0), l = get_local_id(0);
+  float4 e = (float4)(0.0f);
+  if (i < n) {
+    float3 p = pos[i].xyz, v = vel[i].xyz;
+    float m = 1.0f / inv_mass[i];
+    e.x = 0.5f * m * dot(v, v);
+    for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
+      int j;
+      float rest, k, c;
+      if (!msocl_slot(MSOCL_CONN_ARGS, i, s, n, &j, &rest, &k, &c))
+        break;
+      float3 d = pos[j].xyz - p;
+      float stretch = MSOCL_SQRT(dot(d, d)) - rest;
+      e.y += 0.25f * k * stretch * stretch;
+    }
+    e.z = -m * dot(gravity.xyz, p);
+  }
+  part[l] = e;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int w = MSOCL_ENERGY_GROUP / 2; w > 0; w >>= 1) {
+    if (l < w)
+      part[l] += part[l + w];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (l == 0)
+    partial[get_group_id(0)] = part[0];
+}

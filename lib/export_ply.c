@@ -1,0 +1,75 @@
+/* Writes frames to files: ASCII PLY 1.0 with optional vertex normals. */
+#include "config.h"
+#include "internal.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+
+/* Shared by the frame writers (msocl_write_obj could use them too; their
+ * prototypes would then move to internal.h). */
+int msocl__frame_check(const char *path, int npoints, const float *xyz,
+                       int ntriangles, const int *ijk);
+int msocl__frame_close(FILE *f, const char *path);
+
+/* The argument checks of every frame writer: handles, counts, indices. */
+int msocl__frame_check(const char *path, int npoints, const float *xyz,
+                       int ntriangles, const int *ijk)
+{
+  if (!path || !xyz || (ntriangles > 0 && !ijk))
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "path or array is NULL");
+  if (npoints <= 0 || ntriangles < 0)
+    return msocl__fail(MSOCL_ERR_BAD_COUNT, "%d points, %d triangles",
+                       npoints, ntriangles);
+  for (int t = 0; t < 3 * ntriangles; t++)
+    if (ijk[t] < 0 || ijk[t] >= npoints)
+      return msocl__fail(MSOCL_ERR_BAD_INDEX,
+                         "triangle %d: index %d out of range [0, %d)", t / 3,
+                         ijk[t], npoints);
+  return MSOCL_OK;
+}
+
+/* Closes f, reporting a write error seen at any point (stdio buffers, so
+ * it may only surface here) with the system's reason. */
+int msocl__frame_close(FILE *f, const char *path)
+{
+  int bad = ferror(f), err = errno;
+  if (fclose(f) != 0 && !bad) {
+    bad = 1;
+    err = errno;
+  }
+  if (bad)
+    return msocl__fail(MSOCL_ERR_IO, "error writing %s: %s", path,
+                       strerror(err));
+  return MSOCL_OK;
+}
+
+int msocl_write_ply(const char *path, int npoints, const float *xyz,
+                    const float *normals, int ntriangles, const int *ijk)
+{
+  msocl__clear_error();
+  int rc = msocl__frame_check(path, npoints, xyz, ntriangles, ijk);
+  if (rc != MSOCL_OK)
+    return rc;
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return msocl__fail(MSOCL_ERR_IO, "cannot create %s: %s", path,
+                       strerror(errno));
+  fprintf(f, "ply\nformat ascii 1.0\ncomment libmsocl frame\n");
+  fprintf(f, "element vertex %d\n", npoints);
+  fprintf(f, "property float x\nproperty float y\nproperty float z\n");
+  if (normals)
+    fprintf(f, "property float nx\nproperty float ny\nproperty float nz\n");
+  fprintf(f, "element face %d\n", ntriangles);
+  fprintf(f, "property list uchar int vertex_indices\nend_header\n");
+  for (int i = 0; i < npoints; i++) {
+    fprintf(f, "%.9g %.9g %.9g", xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    if (normals)
+      fprintf(f, " %.6g %.6g %.6g", normals[3 * i], normals[3 * i + 1],
+              normals[3 * i + 2]);
+    fputc('\n', f);
+  }
+  for (int t = 0; t < ntriangles; t++)
+    fprintf(f, "3 %d %d %d\n", ijk[3 * t], ijk[3 * t + 1], ijk[3 * t + 2]);
+  return msocl__frame_close(f, path);
+}

@@ -1,0 +1,244 @@
+/* The schedule of kernels each explicit integrator runs per step, over the
+ * state buffers of a simulation (implicit Euler: integrate_implicit.c). */
+#include "config.h"
+#include "sim.h"
+
+int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m)
+{
+  MSOCL__CL(clSetKernelArg(k, i, sizeof m, &m));
+  return MSOCL_OK;
+}
+
+int msocl__arg_float(cl_kernel k, cl_uint i, float f)
+{
+  MSOCL__CL(clSetKernelArg(k, i, sizeof f, &f));
+  return MSOCL_OK;
+}
+
+int msocl__arg_int(cl_kernel k, cl_uint i, int v)
+{
+  MSOCL__CL(clSetKernelArg(k, i, sizeof v, &v));
+  return MSOCL_OK;
+}
+
+static int arg_vec(cl_kernel k, cl_uint i, const cl_float4 *v)
+{
+  MSOCL__CL(clSetKernelArg(k, i, sizeof *v, v));
+  return MSOCL_OK;
+}
+
+int msocl__launch(msocl_sim *s, int k)
+{
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[k], 1, NULL,
+                                   &s->global, NULL, 0, NULL, NULL));
+  return MSOCL_OK;
+}
+
+/* Sets buffers args[0..n) from argument `first` on. */
+static int mems(cl_kernel k, cl_uint first, int n, const cl_mem *args)
+{
+  for (int q = 0; q < n; q++) {
+    int rc = msocl__arg_mem(k, first + (cl_uint)q, args[q]);
+    if (rc != MSOCL_OK)
+      return rc;
+  }
+  return MSOCL_OK;
+}
+
+#define TRY(call)                                                             \
+  do {                                                                        \
+    int msocl__rc = (call);                                                   \
+    if (msocl__rc != MSOCL_OK)                                                \
+      return msocl__rc;                                                       \
+  } while (0)
+
+/* Fixed arguments: everything but the state buffers that ping-pong. The
+ * argument orders are those of the kernels in kernels/. */
+int msocl__integrate_setup(msocl_sim *s)
+{
+  const cl_uint c = s->nconn;
+  const float dt = s->o.dt;
+  cl_kernel k;
+  if ((k = s->k[MSOCL__K_VELOCITY])) {
+    TRY(msocl__arg_mem(k, c + 3, s->inv_mass));
+    TRY(arg_vec(k, c + 4, &s->gravity));
+    TRY(msocl__arg_float(k, c + 5, s->viscous));
+    TRY(msocl__arg_float(k, c + 6, s->air));
+    TRY(msocl__arg_float(k, c + 7, dt));
+    TRY(msocl__arg_mem(k, c + 8, s->col));
+    TRY(msocl__arg_int(k, c + 9, s->ncol));
+    TRY(msocl__arg_int(k, c + 10, s->n));
+  }
+  if ((k = s->k[MSOCL__K_POSITION])) {
+    TRY(msocl__arg_float(k, 3, dt));
+    TRY(msocl__arg_int(k, 4, s->n));
+  }
+  if ((k = s->k[MSOCL__K_NORMALS])) {
+    TRY(msocl__arg_mem(k, 1, s->tri_off));
+    TRY(msocl__arg_mem(k, 2, s->tri_ab));
+    TRY(msocl__arg_mem(k, 3, s->normal));
+    TRY(msocl__arg_int(k, 4, s->n));
+  }
+  if ((k = s->k[MSOCL__K_EULER])) {
+    TRY(msocl__arg_mem(k, c + 4, s->inv_mass));
+    TRY(arg_vec(k, c + 5, &s->gravity));
+    TRY(msocl__arg_float(k, c + 6, s->viscous));
+    TRY(msocl__arg_float(k, c + 7, s->air));
+    TRY(msocl__arg_float(k, c + 8, dt));
+    TRY(msocl__arg_mem(k, c + 9, s->col));
+    TRY(msocl__arg_int(k, c + 10, s->ncol));
+    TRY(msocl__arg_int(k, c + 11, s->n));
+  }
+  if ((k = s->k[MSOCL__K_ACCEL])) {
+    TRY(msocl__arg_mem(k, c + 2, s->acc));
+    TRY(msocl__arg_mem(k, c + 3, s->inv_mass));
+    TRY(arg_vec(k, c + 4, &s->gravity));
+    TRY(msocl__arg_float(k, c + 5, s->viscous));
+    TRY(msocl__arg_int(k, c + 6, s->n));
+  }
+  if ((k = s->k[MSOCL__K_DRIFT])) {
+    TRY(msocl__arg_mem(k, 2, s->acc));
+    TRY(msocl__arg_float(k, 4, dt));
+    TRY(msocl__arg_mem(k, 5, s->col));
+    TRY(msocl__arg_int(k, 6, s->ncol));
+    TRY(msocl__arg_int(k, 7, s->n));
+  }
+  if ((k = s->k[MSOCL__K_KICK])) {
+    TRY(msocl__arg_mem(k, c + 3, s->acc));
+    TRY(msocl__arg_mem(k, c + 4, s->inv_mass));
+    TRY(arg_vec(k, c + 5, &s->gravity));
+    TRY(msocl__arg_float(k, c + 6, s->viscous));
+    TRY(msocl__arg_float(k, c + 7, s->air));
+    TRY(msocl__arg_float(k, c + 8, dt));
+    TRY(msocl__arg_int(k, c + 9, s->n));
+  }
+  if ((k = s->k[MSOCL__K_RK4])) {
+    TRY(msocl__arg_mem(k, c + 4, s->sum_p));
+    TRY(msocl__arg_mem(k, c + 5, s->sum_v));
+    TRY(msocl__arg_mem(k, c + 8, s->inv_mass));
+    TRY(arg_vec(k, c + 9, &s->gravity));
+    TRY(msocl__arg_float(k, c + 10, s->viscous));
+    TRY(msocl__arg_float(k, c + 11, s->air));
+    TRY(msocl__arg_float(k, c + 13, dt));
+    TRY(msocl__arg_mem(k, c + 15, s->col));
+    TRY(msocl__arg_int(k, c + 16, s->ncol));
+    TRY(msocl__arg_int(k, c + 17, s->n));
+  }
+  if ((k = s->k[MSOCL__K_ENERGY])) {
+    TRY(msocl__arg_mem(k, c + 2, s->inv_mass));
+    TRY(arg_vec(k, c + 3, &s->gravity));
+    TRY(msocl__arg_mem(k, c + 4, s->partial));
+    TRY(msocl__arg_int(k, c + 5, s->n));
+  }
+  if (s->o.integrator == MSOCL_IMPLICIT_EULER)
+    TRY(msocl__implicit_setup(s));
+  return msocl__strain_setup(s);
+}
+
+/* The position pass of the symplectic and implicit steps: pos[w] from
+ * pos[r] and the new velocity vel[w]. */
+static int position_pass(msocl_sim *s)
+{
+  const int r = s->r, w = 1 - r;
+  cl_mem p[3] = {s->pos[r], s->vel[w], s->pos[w]};
+  TRY(mems(s->k[MSOCL__K_POSITION], 0, 3, p));
+  return msocl__launch(s, MSOCL__K_POSITION);
+}
+
+/* The paper's two passes (velocity, then position), with the velocity
+ * strain correction between them when asked for. */
+static int symplectic(msocl_sim *s)
+{
+  const int r = s->r, w = 1 - r;
+  cl_mem v[3] = {s->pos[r], s->vel[r], s->vel[w]};
+  TRY(mems(s->k[MSOCL__K_VELOCITY], s->nconn, 3, v));
+  TRY(msocl__launch(s, MSOCL__K_VELOCITY));
+  if (s->o.strain == MSOCL_STRAIN_VELOCITY)
+    TRY(msocl__strain_velocity(s));
+  return position_pass(s);
+}
+
+static int implicit_euler(msocl_sim *s)
+{
+  TRY(msocl__implicit_velocity(s));
+  if (s->o.strain == MSOCL_STRAIN_VELOCITY)
+    TRY(msocl__strain_velocity(s));
+  return position_pass(s);
+}
+
+static int explicit_euler(msocl_sim *s)
+{
+  const int r = s->r, w = 1 - r;
+  cl_mem a[4] = {s->pos[r], s->vel[r], s->pos[w], s->vel[w]};
+  TRY(mems(s->k[MSOCL__K_EULER], s->nconn, 4, a));
+  return msocl__launch(s, MSOCL__K_EULER);
+}
+
+/* Kick-drift-kick: the drift turns vel[r] into the half-step velocity in
+ * place and writes pos[w]; the kick gathers at (pos[w], v+) and writes
+ * vel[w] and the acceleration the next step starts from. */
+static int verlet(msocl_sim *s)
+{
+  const cl_uint c = s->nconn;
+  const int r = s->r, w = 1 - r;
+  if (!s->acc_valid) {
+    cl_mem a[2] = {s->pos[r], s->vel[r]};
+    TRY(mems(s->k[MSOCL__K_ACCEL], c, 2, a));
+    TRY(msocl__launch(s, MSOCL__K_ACCEL));
+    s->acc_valid = 1;
+  }
+  cl_mem d[2] = {s->pos[r], s->vel[r]};
+  TRY(mems(s->k[MSOCL__K_DRIFT], 0, 2, d));
+  TRY(msocl__arg_mem(s->k[MSOCL__K_DRIFT], 3, s->pos[w]));
+  TRY(msocl__launch(s, MSOCL__K_DRIFT));
+  cl_mem k[3] = {s->pos[w], s->vel[r], s->vel[w]};
+  TRY(mems(s->k[MSOCL__K_KICK], c, 3, k));
+  return msocl__launch(s, MSOCL__K_KICK);
+}
+
+/* Four stages; the stage states alternate between two buffer pairs so no
+ * kernel writes what its neighbours read. */
+static int rk4(msocl_sim *s)
+{
+  const cl_uint c = s->nconn;
+  const int r = s->r, w = 1 - r;
+  cl_kernel k = s->k[MSOCL__K_RK4];
+  const float cs[4] = {0.5f, 0.5f, 1.0f, 0.0f};
+  const int modes[4] = {0, 1, 1, 2};
+  cl_mem sp = s->pos[r], sv = s->vel[r];
+  TRY(msocl__arg_mem(k, c, s->pos[r]));
+  TRY(msocl__arg_mem(k, c + 1, s->vel[r]));
+  for (int q = 0; q < 4; q++) {
+    cl_mem np = q == 3 ? s->pos[w] : s->stage_p[q & 1];
+    cl_mem nv = q == 3 ? s->vel[w] : s->stage_v[q & 1];
+    cl_mem a[2] = {sp, sv}, b[2] = {np, nv};
+    TRY(mems(k, c + 2, 2, a));
+    TRY(mems(k, c + 6, 2, b));
+    TRY(msocl__arg_float(k, c + 12, cs[q]));
+    TRY(msocl__arg_int(k, c + 14, modes[q]));
+    TRY(msocl__launch(s, MSOCL__K_RK4));
+    sp = np;
+    sv = nv;
+  }
+  return MSOCL_OK;
+}
+
+int msocl__integrate(msocl_sim *s, int n)
+{
+  for (int q = 0; q < n; q++) {
+    switch (s->o.integrator) {
+    case MSOCL_SYMPLECTIC_EULER: TRY(symplectic(s)); break;
+    case MSOCL_EXPLICIT_EULER: TRY(explicit_euler(s)); break;
+    case MSOCL_VERLET: TRY(verlet(s)); break;
+    case MSOCL_RK4: TRY(rk4(s)); break;
+    case MSOCL_IMPLICIT_EULER: TRY(implicit_euler(s)); break;
+    }
+    if (s->o.strain == MSOCL_STRAIN_PROVOT)
+      TRY(msocl__strain_position(s));
+    s->r = 1 - s->r;
+    s->steps++;
+    if ((q + 1) % 64 == 0)
+      MSOCL__CL(clFlush(s->dev->queue));
+  }
+  return MSOCL_OK;
+}

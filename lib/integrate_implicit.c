@@ -1,0 +1,113 @@
+/* Implicit (backward) Euler, Baraff-Witkin form: builds the right-hand
+ * side, runs conjugate gradients on the device (matrix-free products,
+ * work-group reductions added up here in double), then moves the points.
+ * The kernels and the system are described in kernels/implicit.cl. */
+#include "config.h"
+#include "sim.h"
+
+#include <math.h>
+
+static const size_t group = 64;
+
+/* Runs kernel k with work-groups of 64 and returns the sum of the
+ * partials' first components. */
+static int reduce(msocl_sim *s, int k, double *sum)
+{
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[k], 1, NULL,
+                                   &s->global, &group, 0, NULL, NULL));
+  MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->partial, CL_TRUE, 0,
+                                s->groups * sizeof(cl_float4),
+                                s->partial_host, 0, NULL, NULL));
+  double t = 0.0;
+  for (size_t g = 0; g < s->groups; g++)
+    t += s->partial_host[g].s[0];
+  *sum = t;
+  return MSOCL_OK;
+}
+
+#define TRY(call)                                                             \
+  do {                                                                        \
+    int msocl__rc = (call);                                                   \
+    if (msocl__rc != MSOCL_OK)                                                \
+      return msocl__rc;                                                       \
+  } while (0)
+
+int msocl__implicit_setup(msocl_sim *s)
+{
+  const cl_uint c = s->nconn;
+  const float dt = s->o.dt;
+  cl_mem x = s->stage_p[0], r = s->stage_p[1], p = s->stage_v[0],
+         ap = s->stage_v[1];
+  cl_kernel k = s->k[MSOCL__K_IE_RHS];
+  TRY(msocl__arg_mem(k, c + 2, x));
+  TRY(msocl__arg_mem(k, c + 3, r));
+  TRY(msocl__arg_mem(k, c + 4, p));
+  TRY(msocl__arg_mem(k, c + 5, s->inv_mass));
+  MSOCL__CL(clSetKernelArg(k, c + 6, sizeof s->gravity, &s->gravity));
+  TRY(msocl__arg_float(k, c + 7, s->viscous));
+  TRY(msocl__arg_float(k, c + 8, dt));
+  TRY(msocl__arg_mem(k, c + 9, s->partial));
+  TRY(msocl__arg_int(k, c + 10, s->n));
+  k = s->k[MSOCL__K_IE_APPLY];
+  TRY(msocl__arg_mem(k, c + 1, p));
+  TRY(msocl__arg_mem(k, c + 2, ap));
+  TRY(msocl__arg_mem(k, c + 3, s->inv_mass));
+  TRY(msocl__arg_float(k, c + 4, s->viscous));
+  TRY(msocl__arg_float(k, c + 5, dt));
+  TRY(msocl__arg_mem(k, c + 6, s->partial));
+  TRY(msocl__arg_int(k, c + 7, s->n));
+  k = s->k[MSOCL__K_CG_STEP];
+  TRY(msocl__arg_mem(k, 0, x));
+  TRY(msocl__arg_mem(k, 1, r));
+  TRY(msocl__arg_mem(k, 2, p));
+  TRY(msocl__arg_mem(k, 3, ap));
+  TRY(msocl__arg_mem(k, 5, s->partial));
+  TRY(msocl__arg_int(k, 6, s->n));
+  k = s->k[MSOCL__K_CG_DIR];
+  TRY(msocl__arg_mem(k, 0, p));
+  TRY(msocl__arg_mem(k, 1, r));
+  TRY(msocl__arg_int(k, 3, s->n));
+  k = s->k[MSOCL__K_IE_FINISH];
+  TRY(msocl__arg_mem(k, 2, x));
+  TRY(msocl__arg_float(k, 4, s->air));
+  TRY(msocl__arg_float(k, 5, dt));
+  TRY(msocl__arg_mem(k, 6, s->col));
+  TRY(msocl__arg_int(k, 7, s->ncol));
+  TRY(msocl__arg_int(k, 8, s->n));
+  return MSOCL_OK;
+}
+
+/* Writes the new velocity to vel[1 - r]; the caller's position pass moves
+ * the points. */
+int msocl__implicit_velocity(msocl_sim *s)
+{
+  const cl_uint c = s->nconn;
+  const int r = s->r, w = 1 - r;
+  TRY(msocl__arg_mem(s->k[MSOCL__K_IE_RHS], c, s->pos[r]));
+  TRY(msocl__arg_mem(s->k[MSOCL__K_IE_RHS], c + 1, s->vel[r]));
+  TRY(msocl__arg_mem(s->k[MSOCL__K_IE_APPLY], c, s->pos[r]));
+  double bb, rr, pap, rr_new;
+  TRY(reduce(s, MSOCL__K_IE_RHS, &bb));
+  rr = bb;
+  const double goal = (double)s->o.cg_tolerance * (double)s->o.cg_tolerance *
+                      bb;
+  int it = 0;
+  while (rr > goal && it < s->o.cg_max_iterations) {
+    TRY(reduce(s, MSOCL__K_IE_APPLY, &pap));
+    if (!(pap > 0.0))
+      break; /* p = 0 or a non-SPD round-off: x is as good as it gets */
+    TRY(msocl__arg_float(s->k[MSOCL__K_CG_STEP], 4, (float)(rr / pap)));
+    TRY(reduce(s, MSOCL__K_CG_STEP, &rr_new));
+    TRY(msocl__arg_float(s->k[MSOCL__K_CG_DIR], 2, (float)(rr_new / rr)));
+    TRY(msocl__launch(s, MSOCL__K_CG_DIR));
+    rr = rr_new;
+    it++;
+  }
+  s->cg_iterations = it;
+  s->cg_residual = bb > 0.0 ? sqrt(rr / bb) : 0.0;
+  cl_kernel k = s->k[MSOCL__K_IE_FINISH];
+  TRY(msocl__arg_mem(k, 0, s->pos[r]));
+  TRY(msocl__arg_mem(k, 1, s->vel[r]));
+  TRY(msocl__arg_mem(k, 3, s->vel[w]));
+  return msocl__launch(s, MSOCL__K_IE_FINISH);
+}

@@ -1,0 +1,37 @@
+/* The host reference's state, shared by its files (reference*.c). */
+#ifndef MSOCL_REFERENCE_H
+#define MSOCL_REFERENCE_H
+
+#include "internal.h"
+
+struct msocl_reference {
+  msocl_sim_options o;
+  int n;
+  double dt;
+  double *pos, *vel, *pnew, *vnew; /* 3n each; swapped every step */
+  double *a, *acc, *tmp;           /* scratch; acc: Verlet's a */
+  double *sum_p, *sum_v, *stage_p[2], *stage_v[2]; /* RK4; CG vectors */
+  double *inv_mass, *mass;
+  unsigned char *pinned;
+  double gravity[3], viscous, air;
+  int ncol;
+  struct msocl__collider col[MSOCL__MAX_COLLIDERS];
+  struct msocl__adjacency adj;
+  double *k, *rest, *damp; /* per spring */
+  int acc_valid;
+  int cg_iterations;
+  double cg_residual;
+};
+
+static inline double msocl__dot3(const double *a, const double *b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+void msocl__ref_force(const msocl_reference *r, const double *pos,
+                      const double *vel, int i, double *f);
+void msocl__ref_collide(const msocl_reference *r, const double *p, double *v);
+/* Backward Euler's new velocities into r->vnew (reference_implicit.c). */
+void msocl__ref_implicit_velocity(msocl_reference *r);
+
+#endif

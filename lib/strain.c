@@ -1,0 +1,68 @@
+/* Strain limiting sweeps (kernels/strain.c): Vassilev et al.'s velocity
+ * correction between the velocity and position passes, Provot's position
+ * correction after the step. Each sweep is a Jacobi pass from one buffer
+ * into another; an odd count ends with a copy back. */
+#include "config.h"
+#include "sim.h"
+
+#define TRY(call)                                                             \
+  do {                                                                        \
+    int msocl__rc = (call);                                                   \
+    if (msocl__rc != MSOCL_OK)                                                \
+      return msocl__rc;                                                       \
+  } while (0)
+
+int msocl__strain_setup(msocl_sim *s)
+{
+  const cl_uint c = s->nconn;
+  cl_kernel k;
+  if ((k = s->k[MSOCL__K_STRAIN_VEL])) {
+    TRY(msocl__arg_float(k, c + 3, s->o.strain_limit));
+    TRY(msocl__arg_float(k, c + 4, s->o.dt));
+    TRY(msocl__arg_mem(k, c + 5, s->col));
+    TRY(msocl__arg_int(k, c + 6, s->ncol));
+    TRY(msocl__arg_int(k, c + 7, s->n));
+  }
+  if ((k = s->k[MSOCL__K_STRAIN_POS])) {
+    TRY(msocl__arg_float(k, c + 2, s->o.strain_limit));
+    TRY(msocl__arg_int(k, c + 3, s->n));
+  }
+  return MSOCL_OK;
+}
+
+/* Sweeps kernel `kind` over `target` (read from arg c+in, written to arg
+ * c+out), ping-ponging with `scratch`; the result ends in `target`. */
+static int sweeps(msocl_sim *s, int kind, cl_uint in, cl_uint out,
+                  cl_mem target, cl_mem scratch)
+{
+  cl_kernel k = s->k[kind];
+  cl_mem from = target, to = scratch;
+  for (int it = 0; it < s->o.strain_iterations; it++) {
+    TRY(msocl__arg_mem(k, s->nconn + in, from));
+    TRY(msocl__arg_mem(k, s->nconn + out, to));
+    TRY(msocl__launch(s, kind));
+    cl_mem t = from;
+    from = to;
+    to = t;
+  }
+  if (from != target)
+    MSOCL__CL(clEnqueueCopyBuffer(s->dev->queue, from, target, 0, 0,
+                                  4 * (size_t)s->n * sizeof(float), 0, NULL,
+                                  NULL));
+  return MSOCL_OK;
+}
+
+/* On the new velocities vel[1 - r], before the position pass. */
+int msocl__strain_velocity(msocl_sim *s)
+{
+  TRY(msocl__arg_mem(s->k[MSOCL__K_STRAIN_VEL], s->nconn, s->pos[s->r]));
+  return sweeps(s, MSOCL__K_STRAIN_VEL, 1, 2, s->vel[1 - s->r],
+                s->stage_v[0]);
+}
+
+/* On the new positions pos[1 - r], after the step. */
+int msocl__strain_position(msocl_sim *s)
+{
+  return sweeps(s, MSOCL__K_STRAIN_POS, 0, 1, s->pos[1 - s->r],
+                s->stage_p[0]);
+}
