@@ -192,14 +192,16 @@ static float msocl_collider_gap(float3 p, float4 head, float4 prm, float3 *n)
   return INFINITY;
 }
 
-/* Velocity response for a point at p about to move by dt * v. */
+/* Velocity response for a point at p about to move by dt * v; friction
+ * scaled by fscale (0 when a velocity is corrected again within a step:
+ * friction acts once a step). */
 static float3 msocl_collide(float3 p, float3 v, float dt,
-                            __constant float4 *col, int ncol)
+                            __constant float4 *col, int ncol, float fscale)
 {
   for (int c = 0; c < ncol; c++) {
     float3 n;
     float g = msocl_collider_gap(p, col[2 * c], col[2 * c + 1], &n);
-    v = msocl_respond(v, g, n, col[2 * c].y, dt);
+    v = msocl_respond(v, g, n, fscale * col[2 * c].y, dt);
   }
   return v;
 }

@@ -172,6 +172,6 @@ __kernel void msocl_ie_finish(__global const float4 *pos,
   v = air * v;
 #endif
   (void)air;
-  v = msocl_collide(p4.xyz, v, dt, col, ncol);
+  v = msocl_collide(p4.xyz, v, dt, col, ncol, 1.0f);
   vel_out[i] = (float4)(v, 0.0f);
 }

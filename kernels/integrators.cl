@@ -79,7 +79,7 @@ __kernel void msocl_verlet_drift(__global const float4 *pos,
     return;
   }
   float3 v = vel[i].xyz + (0.5f * dt) * acc[i].xyz;
-  v = msocl_collide(p4.xyz, v, dt, col, ncol);
+  v = msocl_collide(p4.xyz, v, dt, col, ncol, 1.0f);
   pos_out[i] = (float4)(p4.xyz + dt * v, p4.w);
   vel[i] = (float4)(v, 0.0f);
 }

@@ -7,8 +7,9 @@
 /* Vassilev, Spanlang & Chrysanthou 2001: between the velocity and the
  * position pass, limit the rate at which each spring grows so that after
  * the step it is no longer than the limit: the relative velocity along the
- * spring may be at most ((1 + limit) r - l) / dt. The collision response is
- * applied again to the corrected velocity. */
+ * spring may be at most ((1 + limit) r - l) / dt. The collision response
+ * (without friction, which the velocity pass applied) is applied again to
+ * the corrected velocity. */
 __kernel void msocl_strain_velocity(MSOCL_CONN, __global const float4 *pos,
                                     __global const float4 *vel,
                                     __global float4 *vel_out, float limit,
@@ -40,11 +41,12 @@ __kernel void msocl_strain_velocity(MSOCL_CONN, __global const float4 *pos,
     if (excess > 0.0f)
       dv += (MSOCL_PINNED(q4) ? 1.0f : 0.5f) * excess * u;
   }
-  vel_out[i] = (float4)(msocl_collide(p, v + dv, dt, col, ncol), 0.0f);
+  vel_out[i] = (float4)(msocl_collide(p, v + dv, dt, col, ncol, 0.0f), 0.0f);
 }
 
 /* Provot 1995: after the step, move the end points of every spring longer
- * than the limit towards each other until it is at the limit. */
+ * than the limit towards each other until it is at the limit (then
+ * msocl_strain_commit). */
 __kernel void msocl_strain_position(MSOCL_CONN, __global const float4 *pos,
                                     __global float4 *pos_out, float limit,
                                     int n)
@@ -71,4 +73,19 @@ __kernel void msocl_strain_position(MSOCL_CONN, __global const float4 *pos,
       dp += (MSOCL_PINNED(q4) ? 1.0f : 0.5f) * MSOCL_DIV(over, len) * d;
   }
   pos_out[i] = (float4)(p + dp, p4.w);
+}
+
+/* Ends Provot's correction: the velocity takes up the distance the
+ * correction moved the point (v += dp / dt), or else it would keep the
+ * stretching speed the positions no longer show and grow without bound. */
+__kernel void msocl_strain_commit(__global float4 *pos,
+                                  __global const float4 *corrected,
+                                  __global float4 *vel, float dt, int n)
+{
+  int i = get_global_id(0);
+  if (i >= n)
+    return;
+  float4 c = corrected[i];
+  vel[i] = (float4)(vel[i].xyz + MSOCL_DIV(c.xyz - pos[i].xyz, dt), 0.0f);
+  pos[i] = c;
 }

@@ -36,11 +36,12 @@ static double gap(const struct msocl__collider *k, const double *p, double *n)
   return gside;
 }
 
-void msocl__ref_collide(const msocl_reference *r, const double *p, double *v)
+void msocl__ref_collide(const msocl_reference *r, const double *p, double *v,
+                        double fscale)
 {
   for (int c = 0; c < r->ncol; c++) {
     double n[3], g = gap(&r->col[c], p, n), vn = msocl__dot3(v, n),
-                 lim = -g / r->dt, fr = r->col[c].friction;
+                 lim = -g / r->dt, fr = fscale * r->col[c].friction;
     if (vn < lim) {
       for (int e = 0; e < 3; e++)
         v[e] += (lim - vn) * n[e];
@@ -138,7 +139,7 @@ static void strain_velocity(msocl_reference *r)
       }
       for (int e = 0; e < 3; e++)
         out[e] = v[e] + dv[e];
-      msocl__ref_collide(r, p, out);
+      msocl__ref_collide(r, p, out, 0.0);
     }
     memcpy(r->vnew, r->tmp, 3 * (size_t)r->n * sizeof(double));
   }
@@ -146,6 +147,7 @@ static void strain_velocity(msocl_reference *r)
 
 static void strain_position(msocl_reference *r)
 {
+  memcpy(r->a, r->pnew, 3 * (size_t)r->n * sizeof(double)); /* before */
   for (int it = 0; it < r->o.strain_iterations; it++) {
     for (int i = 0; i < r->n; i++) {
       const double *p = r->pnew + 3 * i;
@@ -166,6 +168,9 @@ static void strain_position(msocl_reference *r)
     }
     memcpy(r->pnew, r->tmp, 3 * (size_t)r->n * sizeof(double));
   }
+  /* msocl_strain_commit: velocities take up the correction */
+  for (int i = 0; i < 3 * r->n; i++)
+    r->vnew[i] += (r->pnew[i] - r->a[i]) / r->dt;
 }
 
 /* Symplectic Euler's velocity pass into r->vnew. */
@@ -178,7 +183,7 @@ static void symplectic_velocity(msocl_reference *r)
       v[e] = r->pinned[i] ? 0.0
                           : r->air * (r->vel[3 * i + e] + r->dt * r->a[3 * i + e]);
     if (!r->pinned[i])
-      msocl__ref_collide(r, r->pos + 3 * i, v);
+      msocl__ref_collide(r, r->pos + 3 * i, v, 1.0);
   }
 }
 
@@ -214,7 +219,7 @@ static void verlet(msocl_reference *r)
       vh[3 * i + e] = r->pinned[i] ? 0.0
                                    : r->vel[3 * i + e] + 0.5 * r->dt * r->acc[3 * i + e];
     if (!r->pinned[i])
-      msocl__ref_collide(r, r->pos + 3 * i, vh + 3 * i);
+      msocl__ref_collide(r, r->pos + 3 * i, vh + 3 * i, 1.0);
     for (int e = 0; e < 3; e++)
       r->pnew[3 * i + e] = r->pos[3 * i + e] + r->dt * vh[3 * i + e];
   }

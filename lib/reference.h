@@ -30,7 +30,8 @@ static inline double msocl__dot3(const double *a, const double *b)
 
 void msocl__ref_force(const msocl_reference *r, const double *pos,
                       const double *vel, int i, double *f);
-void msocl__ref_collide(const msocl_reference *r, const double *p, double *v);
+void msocl__ref_collide(const msocl_reference *r, const double *p, double *v,
+                        double fscale);
 /* Backward Euler's new velocities into r->vnew (reference_implicit.c). */
 void msocl__ref_implicit_velocity(msocl_reference *r);
 

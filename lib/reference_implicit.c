@@ -118,6 +118,6 @@ void msocl__ref_implicit_velocity(msocl_reference *r)
     }
     for (int e = 0; e < 3; e++)
       v[e] = r->air * (r->vel[3 * i + e] + x[3 * i + e]);
-    msocl__ref_collide(r, r->pos + 3 * i, v);
+    msocl__ref_collide(r, r->pos + 3 * i, v, 1.0);
   }
 }

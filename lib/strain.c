@@ -1,7 +1,7 @@
-/* Strain limiting sweeps (kernels/strain.c): Vassilev et al.'s velocity
+/* Strain limiting sweeps (kernels/strain.cl): Vassilev et al.'s velocity
  * correction between the velocity and position passes, Provot's position
  * correction after the step. Each sweep is a Jacobi pass from one buffer
- * into another; an odd count ends with a copy back. */
+ * into another. */
 #include "config.h"
 #include "sim.h"
 
@@ -27,16 +27,19 @@ int msocl__strain_setup(msocl_sim *s)
     TRY(msocl__arg_float(k, c + 2, s->o.strain_limit));
     TRY(msocl__arg_int(k, c + 3, s->n));
   }
+  if ((k = s->k[MSOCL__K_STRAIN_COMMIT])) {
+    TRY(msocl__arg_float(k, 3, s->o.dt));
+    TRY(msocl__arg_int(k, 4, s->n));
+  }
   return MSOCL_OK;
 }
 
-/* Sweeps kernel `kind` over `target` (read from arg c+in, written to arg
- * c+out), ping-ponging with `scratch`; the result ends in `target`. */
+/* Sweeps kernel `kind` from `from` (read from arg c+in, written to arg
+ * c+out), ping-ponging with `to`; returns the buffer holding the result. */
 static int sweeps(msocl_sim *s, int kind, cl_uint in, cl_uint out,
-                  cl_mem target, cl_mem scratch)
+                  cl_mem from, cl_mem to, cl_mem *result)
 {
   cl_kernel k = s->k[kind];
-  cl_mem from = target, to = scratch;
   for (int it = 0; it < s->o.strain_iterations; it++) {
     TRY(msocl__arg_mem(k, s->nconn + in, from));
     TRY(msocl__arg_mem(k, s->nconn + out, to));
@@ -45,24 +48,37 @@ static int sweeps(msocl_sim *s, int kind, cl_uint in, cl_uint out,
     from = to;
     to = t;
   }
-  if (from != target)
-    MSOCL__CL(clEnqueueCopyBuffer(s->dev->queue, from, target, 0, 0,
-                                  4 * (size_t)s->n * sizeof(float), 0, NULL,
-                                  NULL));
+  *result = from;
   return MSOCL_OK;
 }
 
 /* On the new velocities vel[1 - r], before the position pass. */
 int msocl__strain_velocity(msocl_sim *s)
 {
+  cl_mem target = s->vel[1 - s->r], result;
   TRY(msocl__arg_mem(s->k[MSOCL__K_STRAIN_VEL], s->nconn, s->pos[s->r]));
-  return sweeps(s, MSOCL__K_STRAIN_VEL, 1, 2, s->vel[1 - s->r],
-                s->stage_v[0]);
+  TRY(sweeps(s, MSOCL__K_STRAIN_VEL, 1, 2, target, s->stage_v[0], &result));
+  if (result != target)
+    MSOCL__CL(clEnqueueCopyBuffer(s->dev->queue, result, target, 0, 0,
+                                  4 * (size_t)s->n * sizeof(float), 0, NULL,
+                                  NULL));
+  return MSOCL_OK;
 }
 
-/* On the new positions pos[1 - r], after the step. */
+/* On the new state pos[1 - r], vel[1 - r], after the step: the sweeps run
+ * on a copy, then the commit moves points and velocities together. */
 int msocl__strain_position(msocl_sim *s)
 {
-  return sweeps(s, MSOCL__K_STRAIN_POS, 0, 1, s->pos[1 - s->r],
-                s->stage_p[0]);
+  const int w = 1 - s->r;
+  cl_mem result;
+  MSOCL__CL(clEnqueueCopyBuffer(s->dev->queue, s->pos[w], s->stage_p[1], 0,
+                                0, 4 * (size_t)s->n * sizeof(float), 0, NULL,
+                                NULL));
+  TRY(sweeps(s, MSOCL__K_STRAIN_POS, 0, 1, s->stage_p[1], s->stage_p[0],
+             &result));
+  cl_kernel k = s->k[MSOCL__K_STRAIN_COMMIT];
+  TRY(msocl__arg_mem(k, 0, s->pos[w]));
+  TRY(msocl__arg_mem(k, 1, result));
+  TRY(msocl__arg_mem(k, 2, s->vel[w]));
+  return msocl__launch(s, MSOCL__K_STRAIN_COMMIT);
 }

@@ -1,0 +1,331 @@
+/* Stability where methods fail: the predicted step limit against the
+ * blow-up detector on a chain and a cloth grid, energy behaviour over long
+ * runs, and the rollback a user gets for an unstable step. */
+#include "scenes.h"
+
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static msocl_runtime *rt;
+static const char *const names[] = {"symplectic Euler", "explicit Euler",
+                                    "Verlet", "RK4", "implicit Euler"};
+
+static void setup(void)
+{
+  ck_assert_int_eq(msocl_runtime_create(&rt, "cpu"), MSOCL_OK);
+}
+
+static void teardown(void)
+{
+  msocl_runtime_destroy(rt);
+  rt = NULL;
+}
+
+/* 20 masses of 10 g on springs of 10 N/m, 0.1 m apart along x, pinned at
+ * one end; no gravity, no damping. */
+static msocl_model *chain(void)
+{
+  msocl_model *m = NULL;
+  msocl_model_create(&m);
+  float xyz[60] = {0}, mass[20], k[19];
+  int ij[38];
+  for (int i = 0; i < 20; i++) {
+    xyz[3 * i] = 0.1f * (float)i;
+    mass[i] = 0.01f;
+  }
+  for (int s = 0; s < 19; s++) {
+    ij[2 * s] = s;
+    ij[2 * s + 1] = s + 1;
+    k[s] = 10.0f;
+  }
+  msocl_model_add_points(m, 20, xyz, mass, NULL);
+  msocl_model_add_springs(m, 19, ij, k, NULL, NULL);
+  msocl_model_pin(m, 0, 1);
+  msocl_model_set_gravity(m, 0, 0, 0);
+  return m;
+}
+
+/* The paper's 12 x 12 cloth grid (stretch, shear, bend), free, no
+ * gravity, no damping. */
+static msocl_model *grid(void)
+{
+  msocl_model *m = scene_tablecloth(12);
+  msocl_model_set_gravity(m, 0, 0, 0);
+  msocl_model_set_viscous_damping(m, 0.0f);
+  return m;
+}
+
+/* Sim at dt with the state perturbed by +-1 mm (deterministic), so the
+ * highest modes are excited from the start rather than by round-off. */
+static msocl_sim *perturbed(const msocl_model *m, msocl_integrator in,
+                            float dt)
+{
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = dt;
+  o.integrator = in;
+  o.check_every = 50;
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, rt, m, &o);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  int n;
+  msocl_model_point_count(m, &n);
+  float *p = malloc(3 * (size_t)n * sizeof *p);
+  msocl_model_get_positions(m, p);
+  unsigned x = 12345u;
+  for (int i = 3; i < 3 * n; i++) { /* point 0 of the chain is pinned */
+    x = x * 1103515245u + 12345u;
+    p[i] += 1e-3f * ((float)((x >> 8) & 0xffff) / 32768.0f - 1.0f);
+  }
+  ck_assert_int_eq(msocl_sim_write_positions(s, p), MSOCL_OK);
+  free(p);
+  return s;
+}
+
+/* 0.9 x the predicted limit runs 3000 steps; 1.2 x is caught as unstable
+ * (the error code, with a finite rolled-back state). */
+static void edges(msocl_model *m, const char *what, msocl_integrator in)
+{
+  float limit;
+  ck_assert_int_eq(msocl_stable_dt(m, in, &limit), MSOCL_OK);
+  msocl_sim *s = perturbed(m, in, 0.9f * limit);
+  int rc = msocl_sim_step(s, 3000);
+  ck_assert_msg(rc == MSOCL_OK, "%s, %s at 0.9 x %g: %s", what, names[in],
+                limit, msocl_last_error());
+  msocl_sim_destroy(s);
+  s = perturbed(m, in, 1.2f * limit);
+  rc = msocl_sim_step(s, 3000);
+  printf("%s, %s: limit %.4g s; at 1.2x: %s\n", what, names[in], limit,
+         rc == MSOCL_ERR_UNSTABLE ? msocl_last_error() : "no blow-up");
+  ck_assert_int_eq(rc, MSOCL_ERR_UNSTABLE);
+  int n;
+  msocl_sim_point_count(s, &n);
+  float *p = malloc(3 * (size_t)n * sizeof *p);
+  msocl_sim_read_positions(s, p);
+  for (int i = 0; i < 3 * n; i++)
+    ck_assert(isfinite(p[i]));
+  free(p);
+  msocl_sim_destroy(s);
+}
+
+static const msocl_integrator explicit_methods[3] = {
+    MSOCL_SYMPLECTIC_EULER, MSOCL_VERLET, MSOCL_RK4};
+
+START_TEST(chain_edges)
+{
+  msocl_model *m = chain();
+  edges(m, "chain", explicit_methods[_i]);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+START_TEST(grid_edges)
+{
+  msocl_model *m = grid();
+  edges(m, "cloth grid", explicit_methods[_i]);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Backward Euler at 50 x the symplectic limit: no blow-up, and its
+ * artificial damping takes energy out (never adds it). */
+START_TEST(implicit_at_50x)
+{
+  msocl_model *m = grid();
+  float limit;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit),
+                   MSOCL_OK);
+  float inf;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_IMPLICIT_EULER, &inf), MSOCL_OK);
+  ck_assert(isinf(inf));
+  msocl_sim *s = perturbed(m, MSOCL_IMPLICIT_EULER, 50.0f * limit);
+  msocl_energy e0, e1;
+  ck_assert_int_eq(msocl_sim_energy(s, &e0), MSOCL_OK);
+  int rc = msocl_sim_step(s, 200);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  ck_assert_int_eq(msocl_sim_energy(s, &e1), MSOCL_OK);
+  int it;
+  double res;
+  msocl_sim_solver_stats(s, &it, &res);
+  printf("implicit Euler at 50x (dt %.3g s): energy %.3g -> %.3g J; CG %d "
+         "iterations, residual %.2g\n",
+         50.0 * limit, e0.total, e1.total, it, res);
+  ck_assert(isfinite(e1.total));
+  ck_assert_double_le(e1.total, e0.total);
+  ck_assert_double_le(res, 1e-5);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* A single undamped oscillator: mass 0.1 kg on 10 N/m from a pinned point,
+ * no gravity, 0.1 m amplitude along the spring (so exactly linear). */
+static msocl_model *oscillator(void)
+{
+  msocl_model *m = NULL;
+  msocl_model_create(&m);
+  const float xyz[6] = {0, 0, 0, 1.1f, 0, 0}, mass[2] = {1.0f, 0.1f};
+  const int ij[2] = {0, 1};
+  const float k = 10.0f, rest = 1.0f;
+  msocl_model_add_points(m, 2, xyz, mass, NULL);
+  msocl_model_add_springs(m, 1, ij, &k, &rest, NULL);
+  msocl_model_pin(m, 0, 1);
+  msocl_model_set_gravity(m, 0, 0, 0);
+  return m;
+}
+
+/* Worst |E - E0| / E0 over `steps`, sampled every 10 steps. */
+static double energy_drift(msocl_integrator in, float dt, int steps)
+{
+  msocl_model *m = oscillator();
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = dt;
+  o.integrator = in;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  msocl_energy e0, e;
+  msocl_sim_energy(s, &e0);
+  double worst = 0.0;
+  for (int k = 0; k < steps / 10; k++) {
+    ck_assert_int_eq(msocl_sim_step(s, 10), MSOCL_OK);
+    msocl_sim_energy(s, &e);
+    double d = fabs(e.total - e0.total) / e0.total;
+    worst = d > worst ? d : worst;
+  }
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+  return worst;
+}
+
+/* Symplectic methods conserve a modified quadratic form Q instead of the
+ * energy H, so H oscillates and never drifts. Starting at rest at full
+ * amplitude, H / H0 stays within 1 + (h w / 2) / (1 - h w / 2) for
+ * symplectic Euler (Q = v^2 + w^2 x^2 - h w^2 x v) and 1 + (h w)^2 / 4 for
+ * Verlet; the stated bounds add 5% to these, over 10^4 steps. */
+START_TEST(symplectic_energy_bounded)
+{
+  const double w = 10.0, hw = 0.1;
+  double se = energy_drift(MSOCL_SYMPLECTIC_EULER, (float)(hw / w), 10000);
+  double vv = energy_drift(MSOCL_VERLET, (float)(hw / w), 10000);
+  printf("energy over 10^4 steps at h w = 0.1: symplectic Euler %.3g, "
+         "Verlet %.3g (relative)\n", se, vv);
+  ck_assert_double_le(se, 1.05 * (hw / 2) / (1 - hw / 2));
+  ck_assert_double_le(vv, 1.05 * hw * hw / 4);
+}
+END_TEST
+
+/* Forward Euler on x'' = -w^2 x multiplies w^2 x^2 + v^2, hence the
+ * energy, by exactly 1 + (h w)^2 each step. */
+START_TEST(explicit_euler_energy_growth)
+{
+  msocl_model *m = oscillator();
+  const double w = 10.0, hw = 0.05;
+  const int steps = 1000;
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = (float)(hw / w);
+  o.integrator = MSOCL_EXPLICIT_EULER;
+  o.check_every = 0;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  msocl_energy e0, e;
+  msocl_sim_energy(s, &e0);
+  ck_assert_int_eq(msocl_sim_step(s, steps), MSOCL_OK);
+  msocl_sim_energy(s, &e);
+  double expect = pow(1.0 + hw * hw, steps);
+  printf("explicit Euler: energy grew %.4f x in %d steps, theory %.4f x\n",
+         e.total / e0.total, steps, expect);
+  ck_assert_double_eq_tol(e.total / e0.total, expect, 0.01 * expect);
+  float dt;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_EXPLICIT_EULER, &dt),
+                   MSOCL_ERR_UNSTABLE);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* The Gershgorin bound against analytic values: a pinned chain's interior
+ * row gives w^2 <= 4 k / m, an oscillator w^2 = k / m exactly. */
+START_TEST(stable_dt_values)
+{
+  msocl_model *m = chain();
+  float dt;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  ck_assert_float_eq_tol(dt, 2.0f / sqrtf(4.0f * 10.0f / 0.01f), 1e-6f);
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_RK4, &dt), MSOCL_OK);
+  ck_assert_float_eq_tol(dt, 2.0f * sqrtf(2.0f) / sqrtf(4.0f * 10.0f / 0.01f),
+                         1e-6f);
+  msocl_model_set_viscous_damping(m, 0.01f); /* rate c/m = 1/s */
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_EXPLICIT_EULER, &dt), MSOCL_OK);
+  ck_assert_float_eq_tol(dt, 1.0f / 4000.0f, 1e-8f);
+  ck_assert_int_eq(msocl_stable_dt(NULL, MSOCL_RK4, &dt),
+                   MSOCL_ERR_NULL_HANDLE);
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_RK4, NULL), MSOCL_ERR_NULL_HANDLE);
+  ck_assert_int_eq(msocl_stable_dt(m, (msocl_integrator)9, &dt),
+                   MSOCL_ERR_BAD_VALUE);
+  msocl_model_destroy(m);
+  m = oscillator();
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_VERLET, &dt), MSOCL_OK);
+  ck_assert_float_eq_tol(dt, 2.0f / 10.0f, 1e-6f);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* A user who asks for an unstable step gets MSOCL_ERR_UNSTABLE naming the
+ * steps, and the state of the last good check, bit for bit. */
+START_TEST(unstable_rolls_back)
+{
+  msocl_model *m = grid();
+  float limit;
+  msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
+  msocl_sim *s = perturbed(m, MSOCL_SYMPLECTIC_EULER, 3.0f * limit);
+  int n;
+  msocl_sim_point_count(s, &n);
+  float *before = malloc(3 * (size_t)n * sizeof *before),
+        *after = malloc(3 * (size_t)n * sizeof *after),
+        *vb = malloc(3 * (size_t)n * sizeof *vb),
+        *va = malloc(3 * (size_t)n * sizeof *va);
+  msocl_sim_read_positions(s, before);
+  msocl_sim_read_velocities(s, vb);
+  ck_assert_int_eq(msocl_sim_step(s, 1000), MSOCL_ERR_UNSTABLE);
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "blew up between steps 0 and 50"));
+  msocl_sim_read_positions(s, after);
+  msocl_sim_read_velocities(s, va);
+  ck_assert(memcmp(before, after, 3 * (size_t)n * sizeof *after) == 0);
+  ck_assert(memcmp(vb, va, 3 * (size_t)n * sizeof *va) == 0);
+  long long steps;
+  msocl_sim_step_count(s, &steps);
+  ck_assert_int_eq(steps, 0);
+  free(before); free(after); free(vb); free(va);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+int main(void)
+{
+  scene_require_device("check_stability");
+  Suite *su = suite_create("stability");
+  TCase *tc = tcase_create("stability");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_set_timeout(tc, 300);
+  tcase_add_loop_test(tc, chain_edges, 0, 3);
+  tcase_add_loop_test(tc, grid_edges, 0, 3);
+  tcase_add_test(tc, implicit_at_50x);
+  tcase_add_test(tc, symplectic_energy_bounded);
+  tcase_add_test(tc, explicit_euler_energy_growth);
+  tcase_add_test(tc, stable_dt_values);
+  tcase_add_test(tc, unstable_rolls_back);
+  suite_add_tcase(su, tc);
+  SRunner *sr = srunner_create(su);
+  /* PoCL hangs in fork()ed children once the parent has used OpenCL. */
+  srunner_set_fork_status(sr, CK_NOFORK);
+  srunner_run_all(sr, CK_NORMAL);
+  int failed = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}
