@@ -2,7 +2,8 @@
  * steps per second and writes the final mesh as OBJ.
  *
  *   tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l auto|image2d|buffer]
- *              [-m precise|relaxed] [-o OUT.obj]
+ *              [-m precise|relaxed] [-i symplectic|explicit|verlet|rk4|implicit]
+ *              [-S none|provot|velocity] [-o OUT.obj]
  */
 #include <msocl.h>
 
@@ -24,10 +25,25 @@ static int usage(const char *argv0)
 {
   fprintf(stderr,
           "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
-          "[-l auto|image2d|buffer] [-m precise|relaxed] [-o OUT.obj]\n",
+          "[-l auto|image2d|buffer] [-m precise|relaxed]\n"
+          "  [-i symplectic|explicit|verlet|rk4|implicit] "
+          "[-S none|provot|velocity] [-o OUT.obj]\n",
           argv0);
   return 2;
 }
+
+/* Index of `word` in `names` (count n), or -1. */
+static int pick(const char *word, const char *const *names, int n)
+{
+  for (int i = 0; i < n; i++)
+    if (!strcmp(word, names[i]))
+      return i;
+  return -1;
+}
+
+static const char *const integrators[] = {"symplectic", "explicit", "verlet",
+                                          "rk4", "implicit"};
+static const char *const strains[] = {"none", "provot", "velocity"};
 
 static int fail(const char *what, int rc)
 {
@@ -63,9 +79,14 @@ static msocl_model *build(int n, float *dt)
   const float top[3] = {0, 0, 0};
   msocl_model_add_table(m, top, 0.35f, 0.3f);
   msocl_model_set_viscous_damping(m, 0.5f * d.point_mass);
-  /* Half the symplectic Euler limit h w < 2, with w bounded by Gershgorin
-   * over an inner point's 12 springs: w^2 <= sum 4k/m. */
-  *dt = (float)(1.0 / sqrt(16.0 * (ks + kh + kb) / d.point_mass));
+  /* Half the largest stable step of symplectic Euler: the step is also
+   * what collisions resolve, so the same dt serves every integrator. */
+  if ((rc = msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, dt)) != MSOCL_OK) {
+    fail("stable step", rc);
+    msocl_model_destroy(m);
+    return NULL;
+  }
+  *dt *= 0.5f;
   return m;
 }
 
@@ -75,7 +96,8 @@ int main(int argc, char **argv)
   const char *spec = NULL, *out = "tablecloth.obj";
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:h")) != -1) {
+  int in = 0, strain = 0;
+  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:h")) != -1) {
     switch (opt) {
     case 'n': n = atoi(optarg); break;
     case 's': steps = atoi(optarg); break;
@@ -91,6 +113,14 @@ int main(int argc, char **argv)
       if (!strcmp(optarg, "relaxed")) o.math = MSOCL_MATH_RELAXED;
       else if (!strcmp(optarg, "precise")) o.math = MSOCL_MATH_PRECISE;
       else return usage(argv[0]);
+      break;
+    case 'i':
+      if ((in = pick(optarg, integrators, 5)) < 0) return usage(argv[0]);
+      o.integrator = (msocl_integrator)in;
+      break;
+    case 'S':
+      if ((strain = pick(optarg, strains, 3)) < 0) return usage(argv[0]);
+      o.strain = (msocl_strain)strain;
       break;
     default: return usage(argv[0]);
     }
@@ -120,10 +150,12 @@ int main(int argc, char **argv)
   msocl_layout layout;
   msocl_sim_device_info(s, &info);
   msocl_sim_layout(s, &layout);
-  printf("device: %s [%s]\nlayout: %s, math: %s\n", info.name,
-         info.platform_name,
+  printf("device: %s [%s]\nlayout: %s, math: %s, integrator: %s, strain "
+         "limiting: %s\n",
+         info.name, info.platform_name,
          layout == MSOCL_LAYOUT_IMAGE2D ? "image2d" : "buffer",
-         o.math == MSOCL_MATH_RELAXED ? "relaxed" : "precise");
+         o.math == MSOCL_MATH_RELAXED ? "relaxed" : "precise",
+         integrators[in], strains[strain]);
   printf("grid %dx%d, %d steps of %.3g s (setup %.3f s)\n", n, n, steps,
          (double)o.dt, t1 - t0);
 

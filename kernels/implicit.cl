@@ -63,7 +63,10 @@ void msocl_ie_rhs(MSOCL_CONN, __global const float4 *pos,
   __local float part[MSOCL_CG_GROUP];
   int i = get_global_id(0);
   float3 b = (float3)(0.0f);
-  if (i < n && !MSOCL_PINNED(pos[i])) {
+  bool live = i < n;
+  if (live)
+    live = !MSOCL_PINNED(pos[i]);
+  if (live) {
     float3 pi = pos[i].xyz, vi = vel[i].xyz, kv = (float3)(0.0f);
     float m = 1.0f / inv_mass[i];
     float3 f = msocl_force(MSOCL_CONN_ARGS, pos, vel, i, n, viscous);

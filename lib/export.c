@@ -1,4 +1,4 @@
-/* Writes frames to files: Wavefront OBJ with optional vertex normals. */
+/* Writes frames as Wavefront OBJ with optional vertex normals. */
 #include "config.h"
 #include "internal.h"
 
@@ -10,16 +10,9 @@ int msocl_write_obj(const char *path, int npoints, const float *xyz,
                     const float *normals, int ntriangles, const int *ijk)
 {
   msocl__clear_error();
-  if (!path || !xyz || (ntriangles > 0 && !ijk))
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "path or array is NULL");
-  if (npoints <= 0 || ntriangles < 0)
-    return msocl__fail(MSOCL_ERR_BAD_COUNT, "%d points, %d triangles",
-                       npoints, ntriangles);
-  for (int t = 0; t < 3 * ntriangles; t++)
-    if (ijk[t] < 0 || ijk[t] >= npoints)
-      return msocl__fail(MSOCL_ERR_BAD_INDEX,
-                         "triangle %d: index %d out of range [0, %d)", t / 3,
-                         ijk[t], npoints);
+  int rc = msocl__frame_check(path, npoints, xyz, ntriangles, ijk);
+  if (rc != MSOCL_OK)
+    return rc;
   FILE *f = fopen(path, "w");
   if (!f)
     return msocl__fail(MSOCL_ERR_IO, "cannot create %s: %s", path,
@@ -40,8 +33,5 @@ int msocl_write_obj(const char *path, int npoints, const float *xyz,
     else
       fprintf(f, "f %d %d %d\n", a, b, c);
   }
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad)
-    return msocl__fail(MSOCL_ERR_IO, "error writing %s", path);
-  return MSOCL_OK;
+  return msocl__frame_close(f, path);
 }

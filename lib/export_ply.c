@@ -6,12 +6,6 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Shared by the frame writers (msocl_write_obj could use them too; their
- * prototypes would then move to internal.h). */
-int msocl__frame_check(const char *path, int npoints, const float *xyz,
-                       int ntriangles, const int *ijk);
-int msocl__frame_close(FILE *f, const char *path);
-
 /* The argument checks of every frame writer: handles, counts, indices. */
 int msocl__frame_check(const char *path, int npoints, const float *xyz,
                        int ntriangles, const int *ijk)

@@ -102,6 +102,13 @@ int msocl__program_get(struct msocl__device *dev, const char *options,
                        cl_program *out);
 void msocl__program_cache_free(struct msocl__device *dev);
 
+/* Frame writers (export*.c): the argument checks they share, and closing
+ * a written file with the system's reason for any write error. */
+int msocl__frame_check(const char *path, int npoints, const float *xyz,
+                       int ntriangles, const int *ijk);
+#include <stdio.h>
+int msocl__frame_close(FILE *f, const char *path);
+
 /* Embedded kernel sources (generated from the kernels folder at build time). */
 struct msocl__kernel_source {
   const char *name;

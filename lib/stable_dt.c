@@ -107,7 +107,7 @@ int msocl_stable_dt(const msocl_model *m, msocl_integrator integrator,
     *dt = INFINITY;
     return MSOCL_OK;
   }
-  double w2, d, gmin;
+  double w2 = 0.0, d = 0.0, gmin = 0.0;
   rc = bounds(m, &w2, &d, &gmin);
   if (rc != MSOCL_OK)
     return rc;

@@ -40,6 +40,13 @@ static double vs_reference(const msocl_model *m, const msocl_sim_options *o,
   double *q = malloc(3 * (size_t)n * sizeof *q);
   msocl_sim_read_positions(s, p);
   msocl_reference_positions(r, q);
+  /* the energies, summed on the device and on the host, agree too */
+  msocl_energy es, er;
+  ck_assert_int_eq(msocl_sim_energy(s, &es), MSOCL_OK);
+  ck_assert_int_eq(msocl_reference_energy(r, &er), MSOCL_OK);
+  ck_assert_double_eq_tol(es.kinetic, er.kinetic, 1e-4 * fabs(er.total) + 1e-9);
+  ck_assert_double_eq_tol(es.spring, er.spring, 1e-4 * fabs(er.total) + 1e-9);
+  ck_assert_double_eq_tol(es.gravity, er.gravity, 1e-4 * fabs(er.total));
   double worst = 0.0;
   for (int i = 0; i < 3 * n; i++) {
     double d = fabs(p[i] - q[i]);

@@ -241,6 +241,32 @@ START_TEST(normals_of_flat_cloth)
 }
 END_TEST
 
+/* Air resistance as the second seed applies it: each step multiplies the
+ * velocity by the factor, so a free point coasting without gravity has
+ * v_n = v_0 f^n. */
+START_TEST(air_resistance)
+{
+  msocl_model *m = NULL;
+  msocl_model_create(&m);
+  const float xyz[3] = {0, 0, 0}, mass = 1.0f;
+  msocl_model_add_points(m, 1, xyz, &mass, NULL);
+  msocl_model_set_gravity(m, 0, 0, 0);
+  ck_assert_int_eq(msocl_model_set_air_resistance(m, 0.99f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_set_air_resistance(m, 0.0f), MSOCL_ERR_BAD_VALUE);
+  ck_assert_int_eq(msocl_model_set_air_resistance(m, 1.5f), MSOCL_ERR_BAD_VALUE);
+  ck_assert_int_eq(msocl_model_set_air_resistance(m, NAN), MSOCL_ERR_NOT_FINITE);
+  msocl_sim *s = make_sim(m, 1e-3f);
+  const float v0[3] = {1.0f, 0.0f, 0.0f};
+  ck_assert_int_eq(msocl_sim_write_velocities(s, v0), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
+  float v[3];
+  msocl_sim_read_velocities(s, v);
+  ck_assert_float_eq_tol(v[0], powf(0.99f, 100.0f), 1e-5f);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 int main(void)
 {
   scene_require_device("check_physics");
@@ -254,6 +280,7 @@ int main(void)
   tcase_add_test(tc, fast_cloth_sphere_and_plane);
   tcase_add_test(tc, bad_input);
   tcase_add_test(tc, normals_of_flat_cloth);
+  tcase_add_test(tc, air_resistance);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   /* PoCL hangs in fork()ed children once the parent has used OpenCL. */
