@@ -1,7 +1,7 @@
 /* The paper's scene: a square tablecloth falls onto a round table. Prints
  * steps per second and writes the final mesh as OBJ.
  *
- *   tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l auto|image2d|buffer]
+ *   tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l auto|image2d|buffer|edges]
  *              [-m precise|relaxed] [-i symplectic|explicit|verlet|rk4|implicit]
  *              [-S none|provot|velocity] [-o OUT.obj]
  */
@@ -25,7 +25,7 @@ static int usage(const char *argv0)
 {
   fprintf(stderr,
           "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
-          "[-l auto|image2d|buffer] [-m precise|relaxed]\n"
+          "[-l auto|image2d|buffer|edges] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
           "[-S none|provot|velocity] [-o OUT.obj]\n",
           argv0);
@@ -106,6 +106,7 @@ int main(int argc, char **argv)
     case 'l':
       if (!strcmp(optarg, "image2d")) o.layout = MSOCL_LAYOUT_IMAGE2D;
       else if (!strcmp(optarg, "buffer")) o.layout = MSOCL_LAYOUT_BUFFER;
+      else if (!strcmp(optarg, "edges")) o.layout = MSOCL_LAYOUT_EDGES;
       else if (!strcmp(optarg, "auto")) o.layout = MSOCL_LAYOUT_AUTO;
       else return usage(argv[0]);
       break;
@@ -153,7 +154,9 @@ int main(int argc, char **argv)
   printf("device: %s [%s]\nlayout: %s, math: %s, integrator: %s, strain "
          "limiting: %s\n",
          info.name, info.platform_name,
-         layout == MSOCL_LAYOUT_IMAGE2D ? "image2d" : "buffer",
+         layout == MSOCL_LAYOUT_IMAGE2D  ? "image2d"
+         : layout == MSOCL_LAYOUT_EDGES ? "edges"
+                                        : "buffer",
          o.math == MSOCL_MATH_RELAXED ? "relaxed" : "precise",
          integrators[in], strains[strain]);
   printf("grid %dx%d, %d steps of %.3g s (setup %.3f s)\n", n, n, steps,

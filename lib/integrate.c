@@ -130,6 +130,30 @@ int msocl__integrate_setup(msocl_sim *s)
     TRY(msocl__arg_mem(k, c + 4, s->partial));
     TRY(msocl__arg_int(k, c + 5, s->n));
   }
+  if ((k = s->k[MSOCL__K_EDGES_FORCE])) {
+    TRY(msocl__arg_mem(k, 0, s->lay.con));
+    TRY(msocl__arg_mem(k, 1, s->lay.rk));
+    TRY(msocl__arg_mem(k, 2, s->lay.damp));
+    TRY(msocl__arg_mem(k, 5, s->force));
+    TRY(msocl__arg_int(k, 6, s->lay.nsprings));
+  }
+  if ((k = s->k[MSOCL__K_EDGES_VEL])) {
+    TRY(msocl__arg_mem(k, 3, s->force));
+    TRY(msocl__arg_mem(k, 4, s->inv_mass));
+    TRY(arg_vec(k, 5, &s->gravity));
+    TRY(msocl__arg_float(k, 6, s->viscous));
+    TRY(msocl__arg_float(k, 7, s->air));
+    TRY(msocl__arg_float(k, 8, dt));
+    TRY(msocl__arg_mem(k, 9, s->col));
+    TRY(msocl__arg_int(k, 10, s->ncol));
+    TRY(msocl__arg_int(k, 11, s->n));
+  }
+  if ((k = s->k[MSOCL__K_EDGES_ENERGY])) {
+    TRY(msocl__arg_mem(k, 0, s->lay.con));
+    TRY(msocl__arg_mem(k, 1, s->lay.rk));
+    TRY(msocl__arg_mem(k, 3, s->partial));
+    TRY(msocl__arg_int(k, 4, s->lay.nsprings));
+  }
   if (s->o.integrator == MSOCL_IMPLICIT_EULER)
     TRY(msocl__implicit_setup(s));
   return msocl__strain_setup(s);
@@ -147,9 +171,28 @@ static int position_pass(msocl_sim *s)
 
 /* The paper's two passes (velocity, then position), with the velocity
  * strain correction between them when asked for. */
+/* EDGES: the per-spring pass scatters forces, then the per-point pass
+ * integrates and clears them. */
+static int edges_velocity(msocl_sim *s)
+{
+  const int r = s->r, w = 1 - r;
+  cl_kernel f = s->k[MSOCL__K_EDGES_FORCE];
+  TRY(msocl__arg_mem(f, 3, s->pos[r]));
+  TRY(msocl__arg_mem(f, 4, s->vel[r]));
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, f, 1, NULL,
+                                   &s->edge_global, NULL, 0, NULL, NULL));
+  cl_mem v[3] = {s->pos[r], s->vel[r], s->vel[w]};
+  TRY(mems(s->k[MSOCL__K_EDGES_VEL], 0, 3, v));
+  return msocl__launch(s, MSOCL__K_EDGES_VEL);
+}
+
 static int symplectic(msocl_sim *s)
 {
   const int r = s->r, w = 1 - r;
+  if (s->lay.kind == MSOCL_LAYOUT_EDGES) {
+    TRY(edges_velocity(s));
+    return position_pass(s);
+  }
   cl_mem v[3] = {s->pos[r], s->vel[r], s->vel[w]};
   TRY(mems(s->k[MSOCL__K_VELOCITY], s->nconn, 3, v));
   TRY(msocl__launch(s, MSOCL__K_VELOCITY));

@@ -1,6 +1,7 @@
 /* Turns a model's adjacency into device connectivity: the paper's tiled
- * connectivity texture (IMAGE2D) or slot-major buffers (BUFFER). Both list a
- * point's springs in the same slot order, so both sum forces identically. */
+ * connectivity texture (IMAGE2D) or slot-major buffers (BUFFER) - both list
+ * a point's springs in the same slot order, so both sum forces identically -
+ * or the second seed's per-spring list (EDGES). */
 #include "config.h"
 #include "layout.h"
 
@@ -161,6 +162,40 @@ out:
   return rc;
 }
 
+/* One entry per spring, in the model's order: the second seed's list. */
+static int build_edges(struct msocl__device *dev, const msocl_model *m,
+                       int damped, struct msocl__layout *l)
+{
+  const size_t ns = (size_t)(m->ns > 0 ? m->ns : 1);
+  int *ij = calloc(2 * ns, sizeof *ij);
+  float *rk = calloc(2 * ns, sizeof *rk);
+  float *dmp = calloc(damped ? ns : 1, sizeof *dmp);
+  int rc = MSOCL_OK;
+  if (!ij || !rk || !dmp) {
+    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "spring list");
+    goto out;
+  }
+  for (int s = 0; s < m->ns; s++) {
+    ij[2 * s] = m->ij[2 * s];
+    ij[2 * s + 1] = m->ij[2 * s + 1];
+    rk[2 * s] = m->rest[s];
+    rk[2 * s + 1] = m->k[s];
+    if (damped)
+      dmp[s] = m->damp[s];
+  }
+  l->nsprings = m->ns;
+  l->con = make_buffer(dev, 2 * ns * sizeof *ij, ij, &rc);
+  if (rc == MSOCL_OK)
+    l->rk = make_buffer(dev, 2 * ns * sizeof *rk, rk, &rc);
+  if (rc == MSOCL_OK)
+    l->damp = make_buffer(dev, (damped ? ns : 1) * sizeof *dmp, dmp, &rc);
+out:
+  free(ij);
+  free(rk);
+  free(dmp);
+  return rc;
+}
+
 int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *adj,
                          msocl_layout kind, struct msocl__layout *out)
@@ -187,6 +222,9 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
   } else if (out->kind == MSOCL_LAYOUT_BUFFER) {
     out->slots = adj->max_degree;
     rc = build_buffers(dev, m, adj, has_damping(m), out);
+  } else if (out->kind == MSOCL_LAYOUT_EDGES) {
+    out->slots = 0;
+    rc = build_edges(dev, m, has_damping(m), out);
   } else {
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d", (int)kind);
   }

@@ -5,11 +5,13 @@
 #include "internal.h"
 
 struct msocl__layout {
-  msocl_layout kind; /* IMAGE2D or BUFFER, never AUTO */
-  int slots;         /* springs a point can hold */
+  msocl_layout kind; /* IMAGE2D, BUFFER or EDGES, never AUTO */
+  int slots;         /* springs a point can hold (EDGES: 0) */
+  int nsprings;      /* EDGES */
   int tex_w, tex_h;  /* IMAGE2D: point i is texel (i % tex_w, i / tex_w) */
-  cl_mem con;        /* IMAGE2D: (4W)x(4H) RGBA image; BUFFER: int slots */
-  cl_mem rk;         /* BUFFER: float2 (rest, k) slots */
+  cl_mem con;        /* IMAGE2D: (4W)x(4H) RGBA image; BUFFER: int slots;
+                        EDGES: int2 end points per spring */
+  cl_mem rk;         /* BUFFER, EDGES: float2 (rest, k) per slot/spring */
   cl_mem damp;       /* dashpot coefficients per slot (or a 1-item dummy) */
 };
 

@@ -45,11 +45,15 @@ static int build_options(const msocl_sim *s, const msocl_model *m,
   cl_device_fp_config fp = 0;
   clGetDeviceInfo(s->dev->id, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp,
                   NULL);
+  /* EDGES shares the BUFFER macros with no slots: the gathering kernels
+   * it does not use still compile, to nothing. */
   int len = snprintf(
       buf, cap, "%s -DMSOCL_SLOTS=%d%s%s%s%s%s%s%s%s",
       s->lay.kind == MSOCL_LAYOUT_IMAGE2D ? "-DMSOCL_LAYOUT_IMAGE2D"
                                           : "-DMSOCL_LAYOUT_BUFFER",
-      s->lay.slots > 0 ? s->lay.slots : 1, damped ? " -DMSOCL_DAMPING" : "",
+      s->lay.kind == MSOCL_LAYOUT_EDGES ? 0
+                                        : s->lay.slots > 0 ? s->lay.slots : 1,
+      damped ? " -DMSOCL_DAMPING" : "",
       m->viscous != 0.0f ? " -DMSOCL_VISCOUS" : "",
       m->air != 1.0f ? " -DMSOCL_AIR" : "",
       any_pin ? " -DMSOCL_PINS" : "",
@@ -158,8 +162,23 @@ static int make_buffers(msocl_sim *s, const msocl_model *m)
     s->backup_p = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
     s->backup_v = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
   }
-  s->partial = buffer(s, CL_MEM_READ_WRITE, s->groups * sizeof(cl_float4),
-                      NULL, &rc);
+  if (s->lay.kind == MSOCL_LAYOUT_EDGES) {
+    s->edge_global = ((size_t)s->lay.nsprings + 63) / 64 * 64;
+    if (s->edge_global == 0)
+      s->edge_global = 64;
+    s->edge_groups = s->edge_global / 64;
+    s->force = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
+    if (rc == MSOCL_OK) {
+      float zero = 0.0f;
+      cl_int e = clEnqueueFillBuffer(s->dev->queue, s->force, &zero,
+                                     sizeof zero, 0, state, 0, NULL, NULL);
+      if (e != CL_SUCCESS)
+        rc = msocl__fail(e, "clEnqueueFillBuffer: %s", msocl_err_name(e));
+    }
+  }
+  size_t parts = s->groups > s->edge_groups ? s->groups : s->edge_groups;
+  s->partial = buffer(s, CL_MEM_READ_WRITE, parts * sizeof(cl_float4), NULL,
+                      &rc);
   if (rc == MSOCL_OK) {
     /* Velocities start at zero: a pattern fill, no host transfer. */
     float zero = 0.0f;
@@ -184,7 +203,8 @@ static const char *const kernel_names[MSOCL__K_COUNT] = {
     "msocl_verlet_kick", "msocl_rk4_stage", "msocl_energy",
     "msocl_ie_rhs",     "msocl_ie_apply",   "msocl_cg_step",
     "msocl_cg_direction", "msocl_ie_finish", "msocl_strain_velocity",
-    "msocl_strain_position", "msocl_strain_commit"};
+    "msocl_strain_position", "msocl_strain_commit", "msocl_edges_force",
+    "msocl_edges_velocity", "msocl_edges_energy"};
 
 /* Kernels that read a point's springs take the connectivity first. */
 static const unsigned char gathers[MSOCL__K_COUNT] = {
@@ -200,7 +220,13 @@ static int make_kernels(msocl_sim *s, cl_program prog)
   want[MSOCL__K_NORMALS] = want[MSOCL__K_ENERGY] = 1;
   switch (s->o.integrator) {
   case MSOCL_SYMPLECTIC_EULER:
-    want[MSOCL__K_VELOCITY] = want[MSOCL__K_POSITION] = 1;
+    if (s->lay.kind == MSOCL_LAYOUT_EDGES) {
+      want[MSOCL__K_EDGES_FORCE] = want[MSOCL__K_EDGES_VEL] = 1;
+      want[MSOCL__K_EDGES_ENERGY] = 1;
+    } else {
+      want[MSOCL__K_VELOCITY] = 1;
+    }
+    want[MSOCL__K_POSITION] = 1;
     break;
   case MSOCL_EXPLICIT_EULER:
     want[MSOCL__K_EULER] = 1;
@@ -245,7 +271,7 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
   if (!(o->dt > 0.0f))
     return msocl__fail(MSOCL_ERR_BAD_DT, "time step dt = %g must be > 0",
                        o->dt);
-  if (o->layout < MSOCL_LAYOUT_AUTO || o->layout > MSOCL_LAYOUT_BUFFER)
+  if (o->layout < MSOCL_LAYOUT_AUTO || o->layout > MSOCL_LAYOUT_EDGES)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d",
                        (int)o->layout);
   if (o->math != MSOCL_MATH_PRECISE && o->math != MSOCL_MATH_RELAXED)
@@ -280,6 +306,13 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
                        "velocity strain limiting needs an integrator whose "
                        "position update uses the new velocity (symplectic "
                        "or implicit Euler)");
+  if (o->layout == MSOCL_LAYOUT_EDGES &&
+      (o->integrator != MSOCL_SYMPLECTIC_EULER ||
+       o->strain != MSOCL_STRAIN_NONE))
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "the EDGES layout runs symplectic Euler without strain "
+                       "limiting (its per-spring pass feeds one velocity "
+                       "update); use BUFFER for other methods");
   if (o->check_every < 0 || !(o->energy_factor > 0.0f) ||
       !isfinite(o->energy_factor))
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
@@ -349,7 +382,9 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
   scene_scale(s, m);
   s->pinned = malloc((size_t)m->n);
   s->stage = malloc(4 * (size_t)m->n * sizeof(float));
-  s->partial_host = malloc(s->groups * sizeof *s->partial_host);
+  /* room for the larger of the point and (EDGES) spring reductions */
+  s->partial_host = malloc((s->groups + (size_t)m->ns / 64 + 1) *
+                           sizeof *s->partial_host);
   if (!s->pinned || !s->stage || !s->partial_host) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
     goto fail;
@@ -398,7 +433,7 @@ void msocl_sim_destroy(msocl_sim *s)
                    s->inv_mass,   s->col,        s->normal,     s->tri_off,
                    s->tri_ab,     s->acc,        s->stage_p[0], s->stage_p[1],
                    s->stage_v[0], s->stage_v[1], s->sum_p,      s->sum_v,
-                   s->backup_p,   s->backup_v,   s->partial};
+                   s->backup_p,   s->backup_v,   s->partial,    s->force};
   for (size_t q = 0; q < sizeof mems / sizeof mems[0]; q++)
     if (mems[q])
       clReleaseMemObject(mems[q]);

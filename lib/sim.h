@@ -11,7 +11,8 @@ enum {
   MSOCL__K_ACCEL, MSOCL__K_DRIFT, MSOCL__K_KICK, MSOCL__K_RK4,
   MSOCL__K_ENERGY, MSOCL__K_IE_RHS, MSOCL__K_IE_APPLY, MSOCL__K_CG_STEP,
   MSOCL__K_CG_DIR, MSOCL__K_IE_FINISH, MSOCL__K_STRAIN_VEL,
-  MSOCL__K_STRAIN_POS, MSOCL__K_STRAIN_COMMIT, MSOCL__K_COUNT
+  MSOCL__K_STRAIN_POS, MSOCL__K_STRAIN_COMMIT, MSOCL__K_EDGES_FORCE,
+  MSOCL__K_EDGES_VEL, MSOCL__K_EDGES_ENERGY, MSOCL__K_COUNT
 };
 
 struct msocl_sim {
@@ -26,6 +27,8 @@ struct msocl_sim {
   cl_mem stage_p[2], stage_v[2], sum_p, sum_v; /* RK4 stages; CG vectors */
   cl_mem backup_p, backup_v; /* last state that passed the blow-up check */
   cl_mem partial;         /* one float4 per work-group of reductions */
+  cl_mem force;           /* EDGES: float4 force accumulators */
+  size_t edge_global, edge_groups; /* EDGES: springs rounded up to 64 */
   cl_kernel k[MSOCL__K_COUNT];
   int r;
   int acc_valid;          /* acc matches the current state */

@@ -1,0 +1,309 @@
+/* A body dropped onto the ground: the options, simulation loop and report
+ * that the jello and solid examples share. */
+#include "drop.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <time.h>
+#include <unistd.h>
+
+/* In msocl_integrator order. */
+static const char *const integrators[] = {"symplectic", "explicit", "verlet",
+                                          "rk4", "implicit"};
+static const char *const layouts[] = {"auto", "image2d", "buffer"};
+
+/* At rest: kinetic energy below that of the whole mass moving at 1 cm/s,
+ * over the last REST_SECONDS (sampled every tenth of it), so one sample
+ * caught at the still point of a wobble does not count as rest. */
+#define REST_SPEED 0.01
+#define REST_SECONDS 0.1
+
+static double now(void)
+{
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int usage(const drop_options *d)
+{
+  fprintf(stderr,
+          "usage: %s [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR]\n"
+          "  [-i symplectic|verlet|rk4|implicit|explicit] "
+          "[-l auto|buffer|image2d] [-o OUT.obj|OUT.ply]\n"
+          "  -n  %s (%d to %d, default %d)\n"
+          "  -t  simulated seconds (default %g)\n"
+          "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that variable)\n"
+          "  -a  air resistance: every velocity times AIR a step, (0, 1] "
+          "(default %g)\n"
+          "  -i  integrator (default symplectic)\n"
+          "  -l  spring layout (default auto)\n"
+          "  -o  final mesh, OBJ or PLY by extension (default %s)\n",
+          d->prog, d->size_help, d->size_min, d->size_max, d->size,
+          d->seconds, (double)d->air, d->out);
+  return 2;
+}
+
+/* Index of `word` in `names` (count n), or -1. */
+static int pick(const char *word, const char *const *names, int n)
+{
+  for (int i = 0; i < n; i++)
+    if (!strcmp(word, names[i]))
+      return i;
+  return -1;
+}
+
+/* A whole finite number, nothing after it. */
+static int number(const char *s, double *x)
+{
+  char *end;
+  errno = 0;
+  *x = strtod(s, &end);
+  return end != s && !*end && !errno && isfinite(*x);
+}
+
+static const char *extension(const char *path)
+{
+  const char *dot = strrchr(path, '.');
+  return dot && !strchr(dot, '/') ? dot + 1 : "";
+}
+
+int drop_parse(drop_options *d, int argc, char **argv)
+{
+  int opt, k;
+  double x;
+  while ((opt = getopt(argc, argv, "n:t:d:a:i:l:o:h")) != -1) {
+    switch (opt) {
+    case 'n':
+      if (!number(optarg, &x) || x != floor(x) || x < d->size_min ||
+          x > d->size_max)
+        return usage(d);
+      d->size = (int)x;
+      break;
+    case 't':
+      if (!number(optarg, &x) || !(x > 0) || x > 1e6)
+        return usage(d);
+      d->seconds = x;
+      break;
+    case 'a':
+      if (!number(optarg, &x) || !(x > 0) || x > 1)
+        return usage(d);
+      d->air = (float)x;
+      break;
+    case 'd': d->spec = optarg; break;
+    case 'o': d->out = optarg; break;
+    case 'i':
+      if ((k = pick(optarg, integrators, 5)) < 0)
+        return usage(d);
+      d->integrator = (msocl_integrator)k;
+      break;
+    case 'l':
+      if ((k = pick(optarg, layouts, 3)) < 0)
+        return usage(d);
+      d->layout = (msocl_layout)k;
+      break;
+    default: return usage(d);
+    }
+  }
+  if (optind != argc)
+    return usage(d);
+  if (strcasecmp(extension(d->out), "obj") &&
+      strcasecmp(extension(d->out), "ply")) {
+    fprintf(stderr, "%s: -o %s: the name must end in .obj or .ply\n",
+            d->prog, d->out);
+    return 2;
+  }
+  return 0;
+}
+
+int drop_fail(const char *prog, const char *what, int rc)
+{
+  fprintf(stderr, "%s: %s: %s (%s)\n%s\n", prog, what, msocl_strerror(rc),
+          msocl_err_name(rc), msocl_last_error());
+  return 1;
+}
+
+/* Half the largest stable step of symplectic Euler, for every integrator:
+ * collisions are resolved once a step, so a larger step (RK4's, implicit
+ * Euler's unbounded one) would let the body sink further into the ground
+ * each step. Explicit Euler takes half its own, far smaller, step, which
+ * needs viscous damping on the model. */
+static int choose_dt(const msocl_model *m, msocl_integrator in, float *dt)
+{
+  float h = 0.0f, own = 0.0f;
+  int rc = msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &h);
+  if (rc == MSOCL_OK && in == MSOCL_EXPLICIT_EULER &&
+      (rc = msocl_stable_dt(m, in, &own)) == MSOCL_OK && own < h)
+    h = own;
+  *dt = 0.5f * h;
+  return rc;
+}
+
+/* Steps n (possibly more than an int holds), adding the time taken. */
+static int step(msocl_sim *s, long long n, double *secs)
+{
+  int rc = MSOCL_OK;
+  while (n > 0 && rc == MSOCL_OK) {
+    int k = n > 1000000 ? 1000000 : (int)n;
+    double t0 = now();
+    rc = msocl_sim_step(s, k);
+    *secs += now() - t0;
+    n -= k;
+  }
+  return rc;
+}
+
+/* Writes the points on the model's triangles (inner points of a lattice,
+ * the centre of a solid are left out), renumbered, with their normals. */
+static int write_mesh(const char *path, const msocl_model *m, int n,
+                      const float *xyz, const float *nrm)
+{
+  int ntri = 0, used = 0;
+  const int *tri = NULL;
+  int rc = msocl_model_triangles(m, &ntri, &tri);
+  if (rc != MSOCL_OK)
+    return rc;
+  int *map = malloc((size_t)n * sizeof *map);
+  int *ijk = malloc(3 * (size_t)ntri * sizeof *ijk + 1);
+  float *p = malloc(6 * (size_t)n * sizeof *p), *q = p + 3 * (size_t)n;
+  if (!map || !ijk || !p) {
+    rc = MSOCL_ERR_NO_MEMORY;
+  } else {
+    for (int i = 0; i < n; i++)
+      map[i] = -1;
+    for (int t = 0; t < 3 * ntri; t++) {
+      int i = tri[t];
+      if (map[i] < 0) {
+        memcpy(p + 3 * used, xyz + 3 * i, 3 * sizeof *p);
+        memcpy(q + 3 * used, nrm + 3 * i, 3 * sizeof *q);
+        map[i] = used++;
+      }
+      ijk[t] = map[i];
+    }
+    rc = strcasecmp(extension(path), "ply")
+             ? msocl_write_obj(path, used, p, q, ntri, ijk)
+             : msocl_write_ply(path, used, p, q, ntri, ijk);
+  }
+  free(map);
+  free(ijk);
+  free(p);
+  return rc;
+}
+
+/* The simulation proper; reports and fills xyz (3 n floats). */
+static int simulate(const drop_options *d, msocl_runtime *rt,
+                    const msocl_model *m, double mass, int n, float *xyz, float *nrm)
+{
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.integrator = d->integrator;
+  o.layout = d->layout;
+  int rc = choose_dt(m, d->integrator, &o.dt);
+  if (rc != MSOCL_OK)
+    return drop_fail(d->prog, "choosing the step", rc);
+  long long total = llround(d->seconds / o.dt);
+  long long tail = llround(REST_SECONDS / o.dt), chunk;
+  if (total < 1)
+    total = 1;
+  if (tail > total - 1)
+    tail = total - 1;
+  chunk = tail >= 10 ? tail / 10 : 1;
+
+  msocl_sim *s = NULL;
+  double t0 = now();
+  rc = msocl_sim_create(&s, rt, m, &o);
+  double setup = now() - t0;
+  if (rc != MSOCL_OK)
+    return drop_fail(d->prog, "setting up the simulation", rc);
+  msocl_device_info info;
+  msocl_layout layout;
+  if ((rc = msocl_sim_device_info(s, &info)) != MSOCL_OK ||
+      (rc = msocl_sim_layout(s, &layout)) != MSOCL_OK) {
+    msocl_sim_destroy(s);
+    return drop_fail(d->prog, "asking the simulation", rc);
+  }
+  printf("device: %s [%s]\nlayout: %s, integrator: %s\n", info.name,
+         info.platform_name,
+         (int)layout >= 0 && (int)layout < 3 ? layouts[layout] : "other",
+         integrators[d->integrator]);
+  printf("dt %.3g s (half the stable step), air resistance %g a step "
+         "(%.3g/s)\n%.3g s simulated: %lld steps (setup %.3f s)\n",
+         (double)o.dt, (double)d->air, -log((double)d->air) / o.dt,
+         total * (double)o.dt, total, setup);
+
+  /* The first step is left out of the timing: it pays the first kernel
+   * launches. The last `tail` steps go in chunks to watch the energy. */
+  double secs = 0.0, kmax = 0.0;
+  msocl_energy e = {0, 0, 0, 0};
+  rc = msocl_sim_step(s, 1);
+  if (rc == MSOCL_OK)
+    rc = step(s, total - 1 - tail, &secs);
+  for (long long done = 0; rc == MSOCL_OK && done < tail; done += chunk) {
+    long long k = tail - done < chunk ? tail - done : chunk;
+    if ((rc = step(s, k, &secs)) == MSOCL_OK &&
+        (rc = msocl_sim_energy(s, &e)) == MSOCL_OK && e.kinetic > kmax)
+      kmax = e.kinetic;
+  }
+  if (rc == MSOCL_OK && tail == 0 &&
+      (rc = msocl_sim_energy(s, &e)) == MSOCL_OK)
+    kmax = e.kinetic;
+  if (rc == MSOCL_OK)
+    rc = msocl_sim_read_positions(s, xyz);
+  if (rc == MSOCL_OK)
+    rc = msocl_sim_read_normals(s, nrm);
+  msocl_sim_destroy(s);
+  if (rc != MSOCL_OK)
+    return drop_fail(d->prog, "simulating", rc);
+
+  double rest = 0.5 * mass * REST_SPEED * REST_SPEED, low = INFINITY;
+  for (int i = 0; i < n; i++)
+    if (xyz[3 * i + 1] < low)
+      low = xyz[3 * i + 1];
+  printf("%.3f s: %.1f steps/s, %.3g point-steps/s\n", secs,
+         secs > 0 ? (total - 1) / secs : 0.0,
+         secs > 0 ? (double)(total - 1) * n / secs : 0.0);
+  printf("final kinetic energy %.3g J (at most %.3g J over the last %.3g s)"
+         "\nat rest: %s (threshold %.3g J: the whole %.3g kg at %g cm/s)\n",
+         e.kinetic, kmax, tail * (double)o.dt, kmax < rest ? "yes" : "no",
+         rest, mass, 100 * REST_SPEED);
+  printf("lowest point %.3g m above the plane\n", low);
+
+  if ((rc = write_mesh(d->out, m, n, xyz, nrm)) != MSOCL_OK)
+    return drop_fail(d->prog, d->out, rc);
+  printf("wrote %s\n", d->out);
+  return 0;
+}
+
+int drop_run(const drop_options *d, msocl_model *m, double mass,
+             float **xyz)
+{
+  const float up[3] = {0.0f, 1.0f, 0.0f};
+  int n = 0, rc;
+  *xyz = NULL;
+  if ((rc = msocl_model_add_plane(m, up, 0.0f, 0.5f)) != MSOCL_OK)
+    return drop_fail(d->prog, "adding the ground", rc);
+  if ((rc = msocl_model_set_air_resistance(m, d->air)) != MSOCL_OK)
+    return drop_fail(d->prog, "air resistance", rc);
+  if ((rc = msocl_model_point_count(m, &n)) != MSOCL_OK)
+    return drop_fail(d->prog, "counting points", rc);
+
+  msocl_runtime *rt = NULL;
+  if ((rc = msocl_runtime_create(&rt, d->spec)) != MSOCL_OK)
+    return drop_fail(d->prog, "choosing a device", rc);
+  float *p = malloc(3 * (size_t)n * sizeof *p);
+  float *nrm = malloc(3 * (size_t)n * sizeof *nrm);
+  int status = p && nrm ? simulate(d, rt, m, mass, n, p, nrm)
+                        : drop_fail(d->prog, "positions",
+                                    MSOCL_ERR_NO_MEMORY);
+  free(nrm);
+  msocl_runtime_destroy(rt);
+  if (status)
+    free(p);
+  else
+    *xyz = p;
+  return status;
+}

@@ -1,0 +1,37 @@
+/* The shared part of the jello and solid examples: a body dropped onto the
+ * ground (the plane y = 0) - options, run, report, output mesh. */
+#ifndef DROP_H
+#define DROP_H
+
+#include <msocl.h>
+
+typedef struct {
+  const char *prog;            /* program name, for messages */
+  const char *size_help;       /* what -n means, for the usage text */
+  int size, size_min, size_max; /* -n */
+  double seconds;              /* -t: simulated time */
+  const char *spec;            /* -d: device spec (NULL: MSOCL_DEVICE) */
+  const char *out;             /* -o: .obj or .ply */
+  float air;                   /* -a: velocity factor a step, (0, 1] */
+  msocl_integrator integrator; /* -i */
+  msocl_layout layout;         /* -l */
+} drop_options;
+
+/* Reads argv over the defaults already in *d. Returns 0, or 2 after
+ * printing the usage (bad option, or -h). */
+int drop_parse(drop_options *d, int argc, char **argv);
+
+/* Prints what failed, the status and the library's detailed message;
+ * returns 1 (the exit status). */
+int drop_fail(const char *prog, const char *what, int rc);
+
+/* Adds the ground and air resistance to m, simulates d->seconds with half
+ * the stable step, prints steps per second, the final kinetic energy,
+ * whether the body (total mass `mass`, kg) came to rest and its lowest
+ * point's height, and writes the model's triangles and the points on
+ * them to d->out. *xyz receives the final positions of all points (free()
+ * it). Returns 0, or 1 after printing the error. */
+int drop_run(const drop_options *d, msocl_model *m, double mass,
+             float **xyz);
+
+#endif /* DROP_H */
