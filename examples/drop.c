@@ -14,11 +14,14 @@
 /* In msocl_integrator order. */
 static const char *const integrators[] = {"symplectic", "explicit", "verlet",
                                           "rk4", "implicit"};
-static const char *const layouts[] = {"auto", "image2d", "buffer"};
+/* In msocl_layout order. */
+static const char *const layouts[] = {"auto", "image2d", "buffer", "edges"};
 
-/* At rest: kinetic energy below that of the whole mass moving at 1 cm/s,
- * over the last REST_SECONDS (sampled every tenth of it), so one sample
- * caught at the still point of a wobble does not count as rest. */
+/* At rest: no point moved faster than REST_SPEED (m/s) on average between
+ * samples a tenth of REST_SECONDS apart over the last REST_SECONDS. From
+ * positions, not velocities: velocity Verlet's end-of-step velocity holds
+ * half a step of the force that the ground then cancels, so a body at rest
+ * on the ground still shows kinetic energy under it. */
 #define REST_SPEED 0.01
 #define REST_SECONDS 0.1
 
@@ -32,14 +35,18 @@ static double now(void)
 static int usage(const drop_options *d)
 {
   fprintf(stderr,
-          "usage: %s [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR]\n"
+          "usage: %s [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] "
+          "[-T DT]\n"
           "  [-i symplectic|verlet|rk4|implicit|explicit] "
-          "[-l auto|buffer|image2d] [-o OUT.obj|OUT.ply]\n"
+          "[-l auto|buffer|image2d|edges] [-o OUT.obj|OUT.ply]\n"
           "  -n  %s (%d to %d, default %d)\n"
           "  -t  simulated seconds (default %g)\n"
-          "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that variable)\n"
+          "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that "
+          "variable)\n"
           "  -a  air resistance: every velocity times AIR a step, (0, 1] "
           "(default %g)\n"
+          "  -T  time step in seconds, 1e-7 to 0.1 (default: half the stable "
+          "step)\n"
           "  -i  integrator (default symplectic)\n"
           "  -l  spring layout (default auto)\n"
           "  -o  final mesh, OBJ or PLY by extension (default %s)\n",
@@ -76,7 +83,7 @@ int drop_parse(drop_options *d, int argc, char **argv)
 {
   int opt, k;
   double x;
-  while ((opt = getopt(argc, argv, "n:t:d:a:i:l:o:h")) != -1) {
+  while ((opt = getopt(argc, argv, "n:t:d:a:T:i:l:o:h")) != -1) {
     switch (opt) {
     case 'n':
       if (!number(optarg, &x) || x != floor(x) || x < d->size_min ||
@@ -85,7 +92,7 @@ int drop_parse(drop_options *d, int argc, char **argv)
       d->size = (int)x;
       break;
     case 't':
-      if (!number(optarg, &x) || !(x > 0) || x > 1e6)
+      if (!number(optarg, &x) || !(x > 0) || x > 1e5)
         return usage(d);
       d->seconds = x;
       break;
@@ -93,6 +100,11 @@ int drop_parse(drop_options *d, int argc, char **argv)
       if (!number(optarg, &x) || !(x > 0) || x > 1)
         return usage(d);
       d->air = (float)x;
+      break;
+    case 'T':
+      if (!number(optarg, &x) || x < 1e-7 || x > 0.1)
+        return usage(d);
+      d->dt = (float)x;
       break;
     case 'd': d->spec = optarg; break;
     case 'o': d->out = optarg; break;
@@ -102,7 +114,7 @@ int drop_parse(drop_options *d, int argc, char **argv)
       d->integrator = (msocl_integrator)k;
       break;
     case 'l':
-      if ((k = pick(optarg, layouts, 3)) < 0)
+      if ((k = pick(optarg, layouts, 4)) < 0)
         return usage(d);
       d->layout = (msocl_layout)k;
       break;
@@ -130,15 +142,32 @@ int drop_fail(const char *prog, const char *what, int rc)
 /* Half the largest stable step of symplectic Euler, for every integrator:
  * collisions are resolved once a step, so a larger step (RK4's, implicit
  * Euler's unbounded one) would let the body sink further into the ground
- * each step. Explicit Euler takes half its own, far smaller, step, which
- * needs viscous damping on the model. */
-static int choose_dt(const msocl_model *m, msocl_integrator in, float *dt)
+ * each step. Explicit Euler needs a far smaller one. msocl_stable_dt finds
+ * none for it without viscous damping, but the springs' dashpots damp
+ * every deformation mode: with dashpots c = beta k, a mode of frequency w
+ * has lambda^2 + beta w^2 lambda + w^2 = 0, and |1 + h lambda|^2 =
+ * 1 - h beta w^2 + h^2 w^2 <= 1 for h <= beta at any w (while underdamped;
+ * the symplectic bound already holds h d <= 2 for the overdamped ones).
+ * So explicit Euler takes half of d->dashpot_ratio. *why says which. */
+static int choose_dt(const drop_options *d, const msocl_model *m, float *dt,
+                     const char **why)
 {
-  float h = 0.0f, own = 0.0f;
+  float h = 0.0f;
   int rc = msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &h);
-  if (rc == MSOCL_OK && in == MSOCL_EXPLICIT_EULER &&
-      (rc = msocl_stable_dt(m, in, &own)) == MSOCL_OK && own < h)
-    h = own;
+  *why = "half the stable step";
+  if (rc == MSOCL_OK && d->integrator == MSOCL_EXPLICIT_EULER) {
+    if (d->dashpot_ratio > 0.0f) {
+      if (d->dashpot_ratio < h) {
+        h = d->dashpot_ratio;
+        *why = "half the dashpots' c/k";
+      }
+    } else {
+      float own = 0.0f;
+      if ((rc = msocl_stable_dt(m, d->integrator, &own)) == MSOCL_OK &&
+          own < h)
+        h = own;
+    }
+  }
   *dt = 0.5f * h;
   return rc;
 }
@@ -169,10 +198,11 @@ static int write_mesh(const char *path, const msocl_model *m, int n,
     return rc;
   int *map = malloc((size_t)n * sizeof *map);
   int *ijk = malloc(3 * (size_t)ntri * sizeof *ijk + 1);
-  float *p = malloc(6 * (size_t)n * sizeof *p), *q = p + 3 * (size_t)n;
+  float *p = malloc(6 * (size_t)n * sizeof *p);
   if (!map || !ijk || !p) {
     rc = MSOCL_ERR_NO_MEMORY;
   } else {
+    float *q = p + 3 * (size_t)n; /* the normals */
     for (int i = 0; i < n; i++)
       map[i] = -1;
     for (int t = 0; t < 3 * ntri; t++) {
@@ -194,24 +224,70 @@ static int write_mesh(const char *path, const msocl_model *m, int n,
   return rc;
 }
 
-/* The simulation proper; reports and fills xyz (3 n floats). */
+/* The fastest point's speed, m/s, from its move since `prev` over `secs`;
+ * copies xyz into prev. */
+static double fastest(float *prev, const float *xyz, int n, double secs)
+{
+  double top = 0.0;
+  for (int i = 0; i < 3 * n; i += 3) {
+    double dx = xyz[i] - prev[i], dy = xyz[i + 1] - prev[i + 1],
+           dz = xyz[i + 2] - prev[i + 2];
+    double v = sqrt(dx * dx + dy * dy + dz * dz);
+    if (v > top)
+      top = v;
+  }
+  memcpy(prev, xyz, 3 * (size_t)n * sizeof *prev);
+  return top / secs;
+}
+
+/* Steps `total` steps of o->dt: all but the first are timed (the first
+ * pays the first kernel launches), the last `tail` in ten chunks, each
+ * followed by a look at the positions. Fills *secs and *vmax (the fastest
+ * point's speed over the tail). */
+static int run(msocl_sim *s, const msocl_sim_options *o, long long total,
+               long long tail, int n, float *xyz, float *prev, double *secs,
+               double *vmax)
+{
+  long long chunk = tail >= 10 ? tail / 10 : 1;
+  *secs = *vmax = 0.0;
+  int rc = msocl_sim_step(s, 1);
+  if (rc == MSOCL_OK)
+    rc = step(s, total - 1 - tail, secs);
+  if (rc == MSOCL_OK)
+    rc = msocl_sim_read_positions(s, prev);
+  for (long long done = 0; rc == MSOCL_OK && done < tail; done += chunk) {
+    long long k = tail - done < chunk ? tail - done : chunk;
+    if ((rc = step(s, k, secs)) == MSOCL_OK &&
+        (rc = msocl_sim_read_positions(s, xyz)) == MSOCL_OK) {
+      double v = fastest(prev, xyz, n, k * (double)o->dt);
+      if (v > *vmax)
+        *vmax = v;
+    }
+  }
+  return rc;
+}
+
+/* The simulation proper: reports, fills xyz (3 n floats; prev and nrm are
+ * scratch of the same size) and writes the mesh. */
 static int simulate(const drop_options *d, msocl_runtime *rt,
-                    const msocl_model *m, double mass, int n, float *xyz, float *nrm)
+                    const msocl_model *m, double mass, int n, float *xyz,
+                    float *prev, float *nrm)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.integrator = d->integrator;
   o.layout = d->layout;
-  int rc = choose_dt(m, d->integrator, &o.dt);
+  o.dt = d->dt;
+  const char *why = "-T";
+  int rc = d->dt > 0 ? MSOCL_OK : choose_dt(d, m, &o.dt, &why);
   if (rc != MSOCL_OK)
     return drop_fail(d->prog, "choosing the step", rc);
   long long total = llround(d->seconds / o.dt);
-  long long tail = llround(REST_SECONDS / o.dt), chunk;
-  if (total < 1)
-    total = 1;
+  if (total < 2)
+    total = 2;
+  long long tail = llround(REST_SECONDS / o.dt);
   if (tail > total - 1)
     tail = total - 1;
-  chunk = tail >= 10 ? tail / 10 : 1;
 
   msocl_sim *s = NULL;
   double t0 = now();
@@ -228,49 +304,39 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
   }
   printf("device: %s [%s]\nlayout: %s, integrator: %s\n", info.name,
          info.platform_name,
-         (int)layout >= 0 && (int)layout < 3 ? layouts[layout] : "other",
+         (int)layout >= 0 && (int)layout < 4 ? layouts[layout] : "other",
          integrators[d->integrator]);
-  printf("dt %.3g s (half the stable step), air resistance %g a step "
-         "(%.3g/s)\n%.3g s simulated: %lld steps (setup %.3f s)\n",
-         (double)o.dt, (double)d->air, -log((double)d->air) / o.dt,
-         total * (double)o.dt, total, setup);
+  printf("dt %.3g s (%s), air resistance %g a step (%.3g/s)\n"
+         "%.3g s simulated: %lld steps (setup %.3f s)\n",
+         (double)o.dt, why, (double)d->air,
+         0.0 - log((double)d->air) / o.dt, total * (double)o.dt,
+         total, setup);
 
-  /* The first step is left out of the timing: it pays the first kernel
-   * launches. The last `tail` steps go in chunks to watch the energy. */
-  double secs = 0.0, kmax = 0.0;
-  msocl_energy e = {0, 0, 0, 0};
-  rc = msocl_sim_step(s, 1);
+  double secs = 0.0, vmax = 0.0;
+  msocl_energy e;
+  rc = run(s, &o, total, tail, n, xyz, prev, &secs, &vmax);
   if (rc == MSOCL_OK)
-    rc = step(s, total - 1 - tail, &secs);
-  for (long long done = 0; rc == MSOCL_OK && done < tail; done += chunk) {
-    long long k = tail - done < chunk ? tail - done : chunk;
-    if ((rc = step(s, k, &secs)) == MSOCL_OK &&
-        (rc = msocl_sim_energy(s, &e)) == MSOCL_OK && e.kinetic > kmax)
-      kmax = e.kinetic;
-  }
-  if (rc == MSOCL_OK && tail == 0 &&
-      (rc = msocl_sim_energy(s, &e)) == MSOCL_OK)
-    kmax = e.kinetic;
-  if (rc == MSOCL_OK)
-    rc = msocl_sim_read_positions(s, xyz);
+    rc = msocl_sim_energy(s, &e);
   if (rc == MSOCL_OK)
     rc = msocl_sim_read_normals(s, nrm);
   msocl_sim_destroy(s);
   if (rc != MSOCL_OK)
     return drop_fail(d->prog, "simulating", rc);
 
-  double rest = 0.5 * mass * REST_SPEED * REST_SPEED, low = INFINITY;
+  double low = INFINITY;
   for (int i = 0; i < n; i++)
     if (xyz[3 * i + 1] < low)
       low = xyz[3 * i + 1];
   printf("%.3f s: %.1f steps/s, %.3g point-steps/s\n", secs,
          secs > 0 ? (total - 1) / secs : 0.0,
          secs > 0 ? (double)(total - 1) * n / secs : 0.0);
-  printf("final kinetic energy %.3g J (at most %.3g J over the last %.3g s)"
-         "\nat rest: %s (threshold %.3g J: the whole %.3g kg at %g cm/s)\n",
-         e.kinetic, kmax, tail * (double)o.dt, kmax < rest ? "yes" : "no",
-         rest, mass, 100 * REST_SPEED);
-  printf("lowest point %.3g m above the plane\n", low);
+  printf("final kinetic energy %.3g J (the whole %.3g kg at %.3g cm/s)\n",
+         e.kinetic, mass, 100 * sqrt(2 * e.kinetic / mass));
+  printf("at rest: %s (fastest point %.3g cm/s over the last %.3g s; "
+         "threshold %g cm/s)\n",
+         vmax < REST_SPEED ? "yes" : "no", 100 * vmax, tail * (double)o.dt,
+         100 * REST_SPEED);
+  printf("lowest point %.3g mm above the plane\n", 1e3 * low);
 
   if ((rc = write_mesh(d->out, m, n, xyz, nrm)) != MSOCL_OK)
     return drop_fail(d->prog, d->out, rc);
@@ -295,10 +361,12 @@ int drop_run(const drop_options *d, msocl_model *m, double mass,
   if ((rc = msocl_runtime_create(&rt, d->spec)) != MSOCL_OK)
     return drop_fail(d->prog, "choosing a device", rc);
   float *p = malloc(3 * (size_t)n * sizeof *p);
+  float *prev = malloc(3 * (size_t)n * sizeof *prev);
   float *nrm = malloc(3 * (size_t)n * sizeof *nrm);
-  int status = p && nrm ? simulate(d, rt, m, mass, n, p, nrm)
-                        : drop_fail(d->prog, "positions",
-                                    MSOCL_ERR_NO_MEMORY);
+  int status = p && prev && nrm
+                   ? simulate(d, rt, m, mass, n, p, prev, nrm)
+                   : drop_fail(d->prog, "positions", MSOCL_ERR_NO_MEMORY);
+  free(prev);
   free(nrm);
   msocl_runtime_destroy(rt);
   if (status)

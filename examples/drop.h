@@ -13,6 +13,10 @@ typedef struct {
   const char *spec;            /* -d: device spec (NULL: MSOCL_DEVICE) */
   const char *out;             /* -o: .obj or .ply */
   float air;                   /* -a: velocity factor a step, (0, 1] */
+  float dt;                    /* -T: time step (0: half the stable one) */
+  /* The smallest damping / stiffness of the model's springs (s; 0: no
+   * dashpots): what bounds explicit Euler's step. */
+  float dashpot_ratio;
   msocl_integrator integrator; /* -i */
   msocl_layout layout;         /* -l */
 } drop_options;

@@ -5,7 +5,7 @@
  *
  *   jello [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR]
  *         [-i symplectic|verlet|rk4|implicit|explicit]
- *         [-l auto|buffer|image2d] [-o OUT.obj|OUT.ply]
+ *         [-l auto|buffer|image2d|edges] [-o OUT.obj|OUT.ply]
  */
 #include "drop.h"
 
@@ -14,14 +14,15 @@
 
 int main(int argc, char **argv)
 {
-  /* Air resistance 0.999 a step: the springs' dashpots calm the cube's
-   * wobble, but nothing else slows the body as a whole - it bounces and
-   * rocks on the ground for seconds. 0.999 a step is a decay rate of
-   * about 5/s at the default step, which brings it to rest within 3 s
-   * without visibly slowing its fall. */
-  drop_options d = {"jello", "points along each edge", 8, 2, 100, 3.0,
-                    NULL, "jello.obj", 0.999f, MSOCL_SYMPLECTIC_EULER,
-                    MSOCL_LAYOUT_AUTO};
+  /* Air resistance 0.999 a step, the seed's kind of damping. The springs'
+   * dashpots alone (-a 1) bring the cube only just under the rest
+   * threshold in 3 s (its fastest point at 0.97 cm/s); 0.999 a step - a
+   * decay rate of 1.05/s at the default step, too weak to slow the 0.1 m
+   * fall visibly - leaves 0.28 cm/s. The factor is a step's: a smaller
+   * step (-T, or explicit Euler's) damps more per second. */
+  drop_options d = {.prog = "jello", .size_help = "points along each edge",
+                    .size = 8, .size_min = 2, .size_max = 64, .seconds = 3.0,
+                    .out = "jello.obj", .air = 0.999f};
   int rc = drop_parse(&d, argc, argv);
   if (rc)
     return rc;
@@ -34,6 +35,10 @@ int main(int argc, char **argv)
   msocl_lattice_desc_init(&ld);
   ld.nx = ld.ny = ld.nz = d.size;
   ld.origin[0] = ld.origin[2] = -0.5f * ld.spacing * (float)(d.size - 1);
+  /* The same dashpot on every spring: the stiffest set has the least c/k. */
+  float kmax = ld.k_structural > ld.k_shear_face ? ld.k_structural
+                                                 : ld.k_shear_face;
+  d.dashpot_ratio = ld.damping / (kmax > ld.k_bend ? kmax : ld.k_bend);
   msocl_model *m = NULL;
   if ((rc = msocl_model_lattice(&m, &ld)) != MSOCL_OK)
     return drop_fail(d.prog, "building the cube", rc);

@@ -1,6 +1,7 @@
 /* Energy of the state, summed on the device: each work-group of 64 points
  * writes one partial (kinetic, spring, gravitational, 0); the host adds the
- * partials in double. A spring's energy k (l - r)^2 / 2 is split between
+ * partials in double (group 0 starts at the launch's global offset). A
+ * spring's energy k (l - r)^2 / 2 is split between
  * its two ends, as each end's gather sees it. */
 
 #define MSOCL_ENERGY_GROUP 64
@@ -9,12 +10,12 @@ __kernel __attribute__((reqd_work_group_size(MSOCL_ENERGY_GROUP, 1, 1)))
 void msocl_energy(MSOCL_CONN, __global const float4 *pos,
                   __global const float4 *vel,
                   __global const float *inv_mass, float4 gravity,
-                  __global float4 *partial, int n)
+                  __global float4 *partial, int n, int end)
 {
   __local float4 part[MSOCL_ENERGY_GROUP];
   int i = get_global_id(0), l = get_local_id(0);
   float4 e = (float4)(0.0f);
-  if (i < n) {
+  if (i < end) { /* end: the last point of this device's range, + 1 */
     float3 p = pos[i].xyz, v = vel[i].xyz;
     float m = 1.0f / inv_mass[i];
     e.x = 0.5f * m * dot(v, v);

@@ -6,7 +6,7 @@
 
 #include <math.h>
 
-int msocl__energy(msocl_sim *s, msocl_energy *e)
+int msocl__energy(msocl__engine *s, msocl_energy *e)
 {
   cl_kernel k = s->k[MSOCL__K_ENERGY];
   int rc = msocl__arg_mem(k, s->nconn, s->pos[s->r]);
@@ -14,8 +14,8 @@ int msocl__energy(msocl_sim *s, msocl_energy *e)
     rc = msocl__arg_mem(k, s->nconn + 1, s->vel[s->r]);
   if (rc != MSOCL_OK)
     return rc;
-  const size_t local = 64;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &s->global,
+  const size_t local = 64, global = 64 * s->groups;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, &s->offset, &global,
                                    &local, 0, NULL, NULL));
   MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->partial, CL_TRUE, 0,
                                 s->groups * sizeof(cl_float4),
@@ -42,12 +42,4 @@ int msocl__energy(msocl_sim *s, msocl_energy *e)
   }
   e->total = e->kinetic + e->spring + e->gravity;
   return MSOCL_OK;
-}
-
-int msocl_sim_energy(msocl_sim *s, msocl_energy *e)
-{
-  msocl__clear_error();
-  if (!s || !e)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
-  return msocl__energy(s, e);
 }

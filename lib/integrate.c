@@ -27,10 +27,17 @@ static int arg_vec(cl_kernel k, cl_uint i, const cl_float4 *v)
   return MSOCL_OK;
 }
 
-int msocl__launch(msocl_sim *s, int k)
+int msocl__launch(msocl__engine *s, int k)
+{
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[k], 1, &s->offset,
+                                   &s->global, NULL, 0, NULL, NULL));
+  return MSOCL_OK;
+}
+
+int msocl__launch_all(msocl__engine *s, int k)
 {
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[k], 1, NULL,
-                                   &s->global, NULL, 0, NULL, NULL));
+                                   &s->full_global, NULL, 0, NULL, NULL));
   return MSOCL_OK;
 }
 
@@ -54,7 +61,7 @@ static int mems(cl_kernel k, cl_uint first, int n, const cl_mem *args)
 
 /* Fixed arguments: everything but the state buffers that ping-pong. The
  * argument orders are those of the kernels in kernels/. */
-int msocl__integrate_setup(msocl_sim *s)
+int msocl__integrate_setup(msocl__engine *s)
 {
   const cl_uint c = s->nconn;
   const float dt = s->o.dt;
@@ -129,6 +136,7 @@ int msocl__integrate_setup(msocl_sim *s)
     TRY(arg_vec(k, c + 3, &s->gravity));
     TRY(msocl__arg_mem(k, c + 4, s->partial));
     TRY(msocl__arg_int(k, c + 5, s->n));
+    TRY(msocl__arg_int(k, c + 6, s->hi));
   }
   if ((k = s->k[MSOCL__K_EDGES_FORCE])) {
     TRY(msocl__arg_mem(k, 0, s->lay.con));
@@ -161,7 +169,7 @@ int msocl__integrate_setup(msocl_sim *s)
 
 /* The position pass of the symplectic and implicit steps: pos[w] from
  * pos[r] and the new velocity vel[w]. */
-static int position_pass(msocl_sim *s)
+static int position_pass(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
   cl_mem p[3] = {s->pos[r], s->vel[w], s->pos[w]};
@@ -169,11 +177,9 @@ static int position_pass(msocl_sim *s)
   return msocl__launch(s, MSOCL__K_POSITION);
 }
 
-/* The paper's two passes (velocity, then position), with the velocity
- * strain correction between them when asked for. */
 /* EDGES: the per-spring pass scatters forces, then the per-point pass
  * integrates and clears them. */
-static int edges_velocity(msocl_sim *s)
+static int edges_velocity(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
   cl_kernel f = s->k[MSOCL__K_EDGES_FORCE];
@@ -186,30 +192,30 @@ static int edges_velocity(msocl_sim *s)
   return msocl__launch(s, MSOCL__K_EDGES_VEL);
 }
 
-static int symplectic(msocl_sim *s)
+/* The velocity pass of the paper's two (EDGES: scatter, then integrate),
+ * with the velocity strain correction after it when asked for. */
+static int symplectic_velocity(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
-  if (s->lay.kind == MSOCL_LAYOUT_EDGES) {
-    TRY(edges_velocity(s));
-    return position_pass(s);
-  }
+  if (s->lay.kind == MSOCL_LAYOUT_EDGES)
+    return edges_velocity(s);
   cl_mem v[3] = {s->pos[r], s->vel[r], s->vel[w]};
   TRY(mems(s->k[MSOCL__K_VELOCITY], s->nconn, 3, v));
   TRY(msocl__launch(s, MSOCL__K_VELOCITY));
   if (s->o.strain == MSOCL_STRAIN_VELOCITY)
     TRY(msocl__strain_velocity(s));
-  return position_pass(s);
+  return MSOCL_OK;
 }
 
-static int implicit_euler(msocl_sim *s)
+static int implicit_velocity(msocl__engine *s)
 {
   TRY(msocl__implicit_velocity(s));
   if (s->o.strain == MSOCL_STRAIN_VELOCITY)
     TRY(msocl__strain_velocity(s));
-  return position_pass(s);
+  return MSOCL_OK;
 }
 
-static int explicit_euler(msocl_sim *s)
+static int explicit_euler(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
   cl_mem a[4] = {s->pos[r], s->vel[r], s->pos[w], s->vel[w]};
@@ -217,69 +223,141 @@ static int explicit_euler(msocl_sim *s)
   return msocl__launch(s, MSOCL__K_EULER);
 }
 
-/* Kick-drift-kick: the drift turns vel[r] into the half-step velocity in
- * place and writes pos[w]; the kick gathers at (pos[w], v+) and writes
- * vel[w] and the acceleration the next step starts from. */
-static int verlet(msocl_sim *s)
+/* Verlet, kick-drift-kick. Drift: turns vel[r] into the half-step velocity
+ * in place and writes pos[w] (first computing the acceleration, when the
+ * state is new). Kick: gathers at (pos[w], v+), writes vel[w] and the
+ * acceleration the next step starts from. */
+static int verlet_drift(msocl__engine *s)
 {
-  const cl_uint c = s->nconn;
   const int r = s->r, w = 1 - r;
   if (!s->acc_valid) {
     cl_mem a[2] = {s->pos[r], s->vel[r]};
-    TRY(mems(s->k[MSOCL__K_ACCEL], c, 2, a));
+    TRY(mems(s->k[MSOCL__K_ACCEL], s->nconn, 2, a));
     TRY(msocl__launch(s, MSOCL__K_ACCEL));
     s->acc_valid = 1;
   }
   cl_mem d[2] = {s->pos[r], s->vel[r]};
   TRY(mems(s->k[MSOCL__K_DRIFT], 0, 2, d));
   TRY(msocl__arg_mem(s->k[MSOCL__K_DRIFT], 3, s->pos[w]));
-  TRY(msocl__launch(s, MSOCL__K_DRIFT));
+  return msocl__launch(s, MSOCL__K_DRIFT);
+}
+
+static int verlet_kick(msocl__engine *s)
+{
+  const int r = s->r, w = 1 - r;
   cl_mem k[3] = {s->pos[w], s->vel[r], s->vel[w]};
-  TRY(mems(s->k[MSOCL__K_KICK], c, 3, k));
+  TRY(mems(s->k[MSOCL__K_KICK], s->nconn, 3, k));
   return msocl__launch(s, MSOCL__K_KICK);
 }
 
-/* Four stages; the stage states alternate between two buffer pairs so no
- * kernel writes what its neighbours read. */
-static int rk4(msocl_sim *s)
+/* RK4 stage q: the stage states alternate between two buffer pairs so no
+ * kernel writes what its neighbours read; the last writes pos[w], vel[w]. */
+static int rk4_stage(msocl__engine *s, int q)
 {
   const cl_uint c = s->nconn;
   const int r = s->r, w = 1 - r;
   cl_kernel k = s->k[MSOCL__K_RK4];
   const float cs[4] = {0.5f, 0.5f, 1.0f, 0.0f};
   const int modes[4] = {0, 1, 1, 2};
-  cl_mem sp = s->pos[r], sv = s->vel[r];
-  TRY(msocl__arg_mem(k, c, s->pos[r]));
-  TRY(msocl__arg_mem(k, c + 1, s->vel[r]));
-  for (int q = 0; q < 4; q++) {
-    cl_mem np = q == 3 ? s->pos[w] : s->stage_p[q & 1];
-    cl_mem nv = q == 3 ? s->vel[w] : s->stage_v[q & 1];
-    cl_mem a[2] = {sp, sv}, b[2] = {np, nv};
-    TRY(mems(k, c + 2, 2, a));
-    TRY(mems(k, c + 6, 2, b));
-    TRY(msocl__arg_float(k, c + 12, cs[q]));
-    TRY(msocl__arg_int(k, c + 14, modes[q]));
-    TRY(msocl__launch(s, MSOCL__K_RK4));
-    sp = np;
-    sv = nv;
+  cl_mem sp = q == 0 ? s->pos[r] : s->stage_p[(q - 1) & 1];
+  cl_mem sv = q == 0 ? s->vel[r] : s->stage_v[(q - 1) & 1];
+  cl_mem np = q == 3 ? s->pos[w] : s->stage_p[q & 1];
+  cl_mem nv = q == 3 ? s->vel[w] : s->stage_v[q & 1];
+  cl_mem y0[2] = {s->pos[r], s->vel[r]}, a[2] = {sp, sv}, b[2] = {np, nv};
+  TRY(mems(k, c, 2, y0));
+  TRY(mems(k, c + 2, 2, a));
+  TRY(mems(k, c + 6, 2, b));
+  TRY(msocl__arg_float(k, c + 12, cs[q]));
+  TRY(msocl__arg_int(k, c + 14, modes[q]));
+  return msocl__launch(s, MSOCL__K_RK4);
+}
+
+int msocl__phase_count(const msocl__engine *s)
+{
+  switch (s->o.integrator) {
+  case MSOCL_SYMPLECTIC_EULER: return 2;
+  case MSOCL_EXPLICIT_EULER: return 1;
+  case MSOCL_VERLET: return 2;
+  case MSOCL_RK4: return 4;
+  case MSOCL_IMPLICIT_EULER: return 2;
   }
+  return 0;
+}
+
+/* What the other engines must receive after each phase: the positions
+ * every gather reads, and the velocities too when dashpots read them. */
+int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
+{
+  const unsigned vel_w = s->damped ? MSOCL__X_VEL_W : 0;
+  const int last = phase == msocl__phase_count(s) - 1;
+  *exchange = 0;
+  switch (s->o.integrator) {
+  case MSOCL_SYMPLECTIC_EULER:
+  case MSOCL_IMPLICIT_EULER:
+    if (phase == 0) {
+      TRY(s->o.integrator == MSOCL_IMPLICIT_EULER ? implicit_velocity(s)
+                                                  : symplectic_velocity(s));
+    } else {
+      TRY(position_pass(s));
+      *exchange = MSOCL__X_POS_W | vel_w;
+    }
+    break;
+  case MSOCL_EXPLICIT_EULER:
+    TRY(explicit_euler(s));
+    *exchange = MSOCL__X_POS_W | vel_w;
+    break;
+  case MSOCL_VERLET:
+    if (phase == 0) {
+      TRY(verlet_drift(s));
+      *exchange = MSOCL__X_POS_W | (s->damped ? MSOCL__X_VEL_R : 0);
+    } else {
+      TRY(verlet_kick(s));
+      *exchange = vel_w;
+    }
+    break;
+  case MSOCL_RK4:
+    TRY(rk4_stage(s, phase));
+    if (phase == 3)
+      *exchange = MSOCL__X_POS_W | vel_w;
+    else if (phase & 1)
+      *exchange = MSOCL__X_STAGE1 | (s->damped ? MSOCL__X_STAGEV1 : 0);
+    else
+      *exchange = MSOCL__X_STAGE0 | (s->damped ? MSOCL__X_STAGEV0 : 0);
+    break;
+  }
+  if (last && s->o.strain == MSOCL_STRAIN_PROVOT)
+    TRY(msocl__strain_position(s));
   return MSOCL_OK;
 }
 
-int msocl__integrate(msocl_sim *s, int n)
+cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit)
 {
+  switch (bit) {
+  case MSOCL__X_POS_W: return s->pos[1 - s->r];
+  case MSOCL__X_VEL_W: return s->vel[1 - s->r];
+  case MSOCL__X_VEL_R: return s->vel[s->r];
+  case MSOCL__X_STAGE0: return s->stage_p[0];
+  case MSOCL__X_STAGE1: return s->stage_p[1];
+  case MSOCL__X_STAGEV0: return s->stage_v[0];
+  case MSOCL__X_STAGEV1: return s->stage_v[1];
+  }
+  return NULL;
+}
+
+void msocl__step_done(msocl__engine *s)
+{
+  s->r = 1 - s->r;
+}
+
+int msocl__integrate(msocl__engine *s, int n)
+{
+  const int phases = msocl__phase_count(s);
   for (int q = 0; q < n; q++) {
-    switch (s->o.integrator) {
-    case MSOCL_SYMPLECTIC_EULER: TRY(symplectic(s)); break;
-    case MSOCL_EXPLICIT_EULER: TRY(explicit_euler(s)); break;
-    case MSOCL_VERLET: TRY(verlet(s)); break;
-    case MSOCL_RK4: TRY(rk4(s)); break;
-    case MSOCL_IMPLICIT_EULER: TRY(implicit_euler(s)); break;
+    for (int ph = 0; ph < phases; ph++) {
+      unsigned x;
+      TRY(msocl__phase(s, ph, &x));
     }
-    if (s->o.strain == MSOCL_STRAIN_PROVOT)
-      TRY(msocl__strain_position(s));
-    s->r = 1 - s->r;
-    s->steps++;
+    msocl__step_done(s);
     if ((q + 1) % 64 == 0)
       MSOCL__CL(clFlush(s->dev->queue));
   }

@@ -11,7 +11,7 @@ static const size_t group = 64;
 
 /* Runs kernel k with work-groups of 64 and returns the sum of the
  * partials' first components. */
-static int reduce(msocl_sim *s, int k, double *sum)
+static int reduce(msocl__engine *s, int k, double *sum)
 {
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[k], 1, NULL,
                                    &s->global, &group, 0, NULL, NULL));
@@ -32,7 +32,7 @@ static int reduce(msocl_sim *s, int k, double *sum)
       return msocl__rc;                                                       \
   } while (0)
 
-int msocl__implicit_setup(msocl_sim *s)
+int msocl__implicit_setup(msocl__engine *s)
 {
   const cl_uint c = s->nconn;
   const float dt = s->o.dt;
@@ -79,7 +79,7 @@ int msocl__implicit_setup(msocl_sim *s)
 
 /* Writes the new velocity to vel[1 - r]; the caller's position pass moves
  * the points. */
-int msocl__implicit_velocity(msocl_sim *s)
+int msocl__implicit_velocity(msocl__engine *s)
 {
   const cl_uint c = s->nconn;
   const int r = s->r, w = 1 - r;

@@ -275,6 +275,11 @@ typedef struct {
   msocl_layout layout;
   msocl_math math;
   int device;         /* index into the runtime's devices */
+  /* Several devices: the model is split into contiguous ranges of points,
+   * one a device, from `device` on (-1: all the runtime holds; 0 or 1:
+   * one), sized by `weights` (all 0: equal shares). */
+  int ndevices;
+  float weights[16];
   msocl_integrator integrator;
   msocl_strain strain;
   float strain_limit;    /* allowed elongation over rest length (0.1 = 10%) */
@@ -324,6 +329,21 @@ MSOCL_EXTERN int msocl_sim_solver_stats(const msocl_sim *s, int *iterations,
                                         double *residual);
 /* Steps taken since creation. */
 MSOCL_EXTERN int msocl_sim_step_count(const msocl_sim *s, long long *steps);
+
+/* How a simulation is split over devices, and what the split costs. */
+typedef struct {
+  int parts;                   /* devices the model runs on */
+  int device[16];              /* each part's index in the runtime */
+  int first[16], count[16];    /* the points each part advances */
+  double halo_points[16];      /* points each part receives a step */
+  double bytes_per_step;       /* exchanged through the host, each way */
+  double exchange_seconds;     /* host time in reads and writes */
+  double wait_seconds;         /* host time waiting for the devices */
+  long long steps;
+} msocl_split_info;
+
+MSOCL_EXTERN int msocl_sim_split_info(const msocl_sim *s,
+                                      msocl_split_info *info);
 
 /* The largest stable time step of the model under an integrator, from a
  * Gershgorin bound on the highest eigenfrequency (see lib/stable_dt.c):

@@ -32,7 +32,7 @@ void msocl_sim_options_init(msocl_sim_options *o)
 }
 
 /* -D options for just the features this model uses. */
-static int build_options(const msocl_sim *s, const msocl_model *m,
+static int build_options(const msocl__engine *s, const msocl_model *m,
                          char *buf, size_t cap)
 {
   int any_pin = 0, damped = 0, kinds[4] = {0};
@@ -71,7 +71,7 @@ static int build_options(const msocl_sim *s, const msocl_model *m,
   return MSOCL_OK;
 }
 
-static cl_mem buffer(msocl_sim *s, cl_mem_flags flags, size_t bytes,
+static cl_mem buffer(msocl__engine *s, cl_mem_flags flags, size_t bytes,
                      void *host, int *rc)
 {
   if (*rc != MSOCL_OK)
@@ -87,7 +87,7 @@ static cl_mem buffer(msocl_sim *s, cl_mem_flags flags, size_t bytes,
 }
 
 /* State, masses, colliders and the normals' triangle lists. */
-static int make_buffers(msocl_sim *s, const msocl_model *m)
+static int make_buffers(msocl__engine *s, const msocl_model *m)
 {
   const size_t n = (size_t)m->n;
   int rc = MSOCL_OK;
@@ -214,7 +214,7 @@ static const unsigned char gathers[MSOCL__K_COUNT] = {
     [MSOCL__K_STRAIN_VEL] = 1, [MSOCL__K_STRAIN_POS] = 1};
 
 /* Creates just the kernels the chosen integrator and options use. */
-static int make_kernels(msocl_sim *s, cl_program prog)
+static int make_kernels(msocl__engine *s, cl_program prog)
 {
   int want[MSOCL__K_COUNT] = {0};
   want[MSOCL__K_NORMALS] = want[MSOCL__K_ENERGY] = 1;
@@ -264,114 +264,32 @@ static int make_kernels(msocl_sim *s, cl_program prog)
   return MSOCL_OK;
 }
 
-static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
+int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
+                         const msocl_model *m, const msocl_sim_options *o,
+                         int lo, int hi)
 {
-  if (!isfinite(o->dt))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE, "time step dt is %g", o->dt);
-  if (!(o->dt > 0.0f))
-    return msocl__fail(MSOCL_ERR_BAD_DT, "time step dt = %g must be > 0",
-                       o->dt);
-  if (o->layout < MSOCL_LAYOUT_AUTO || o->layout > MSOCL_LAYOUT_EDGES)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d",
-                       (int)o->layout);
-  if (o->math != MSOCL_MATH_PRECISE && o->math != MSOCL_MATH_RELAXED)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown math mode %d",
-                       (int)o->math);
-  if (o->device < 0 || o->device >= rt->ndev)
-    return msocl__fail(MSOCL_ERR_BAD_INDEX,
-                       "device %d out of range: the runtime holds %d",
-                       o->device, rt->ndev);
-  if (o->integrator < MSOCL_SYMPLECTIC_EULER ||
-      o->integrator > MSOCL_IMPLICIT_EULER)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown integrator %d",
-                       (int)o->integrator);
-  if (o->strain < MSOCL_STRAIN_NONE || o->strain > MSOCL_STRAIN_VELOCITY)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown strain limiting %d",
-                       (int)o->strain);
-  if (!(o->strain_limit >= 0.0f) || !isfinite(o->strain_limit) ||
-      o->strain_iterations < 1 || o->strain_iterations > 1000)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "strain limit %g must be >= 0 and iterations %d in "
-                       "[1, 1000]",
-                       o->strain_limit, o->strain_iterations);
-  if (!(o->cg_tolerance > 0.0f) || !isfinite(o->cg_tolerance) ||
-      o->cg_max_iterations < 1)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "CG tolerance %g must be > 0 and iterations %d >= 1",
-                       o->cg_tolerance, o->cg_max_iterations);
-  if (o->strain == MSOCL_STRAIN_VELOCITY &&
-      o->integrator != MSOCL_SYMPLECTIC_EULER &&
-      o->integrator != MSOCL_IMPLICIT_EULER)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "velocity strain limiting needs an integrator whose "
-                       "position update uses the new velocity (symplectic "
-                       "or implicit Euler)");
-  if (o->layout == MSOCL_LAYOUT_EDGES &&
-      (o->integrator != MSOCL_SYMPLECTIC_EULER ||
-       o->strain != MSOCL_STRAIN_NONE))
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "the EDGES layout runs symplectic Euler without strain "
-                       "limiting (its per-spring pass feeds one velocity "
-                       "update); use BUFFER for other methods");
-  if (o->check_every < 0 || !(o->energy_factor > 0.0f) ||
-      !isfinite(o->energy_factor))
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "check_every %d must be >= 0 and energy_factor %g > 0",
-                       o->check_every, o->energy_factor);
-  return MSOCL_OK;
-}
-
-/* Mass and size of the scene: the blow-up check's energy scale. */
-static void scene_scale(msocl_sim *s, const msocl_model *m)
-{
-  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY,
-                                                         -INFINITY,
-                                                         -INFINITY};
-  s->total_mass = 0.0;
-  for (int i = 0; i < m->n; i++) {
-    s->total_mass += m->mass[i];
-    for (int c = 0; c < 3; c++) {
-      double x = m->pos[3 * i + c];
-      lo[c] = x < lo[c] ? x : lo[c];
-      hi[c] = x > hi[c] ? x : hi[c];
-    }
-  }
-  double d2 = 0.0;
-  for (int c = 0; c < 3; c++)
-    d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
-  s->extent = sqrt(d2);
-}
-
-int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
-                     const msocl_sim_options *opts)
-{
-  msocl__clear_error();
-  if (!out)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim out-pointer is NULL");
   *out = NULL;
-  if (!rt || !m)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
-                       rt ? "model" : "runtime");
-  msocl_sim_options o;
-  msocl_sim_options_init(&o);
-  if (opts)
-    o = *opts;
-  int rc = check_options(rt, &o);
-  if (rc == MSOCL_OK)
-    rc = msocl_model_validate(m);
-  if (rc != MSOCL_OK)
-    return rc;
-
-  msocl_sim *s = calloc(1, sizeof *s);
+  msocl__engine *s = calloc(1, sizeof *s);
   struct msocl__adjacency adj;
   memset(&adj, 0, sizeof adj);
   if (!s)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
-  s->dev = (struct msocl__device *)&rt->dev[o.device];
-  s->o = o;
+  int rc = MSOCL_OK;
+  s->dev = dev;
+  s->o = *o;
   s->n = m->n;
-  s->global = ((size_t)m->n + 63) / 64 * 64;
-  s->groups = s->global / 64;
+  s->lo = lo;
+  s->hi = hi;
+  s->full_global = ((size_t)m->n + 63) / 64 * 64;
+  if (lo == 0 && hi == m->n) {
+    s->offset = 0;
+    s->global = s->full_global;
+  } else {
+    /* exactly its points: the kernels' bound is n, not hi */
+    s->offset = (size_t)lo;
+    s->global = (size_t)(hi - lo);
+  }
+  s->groups = ((size_t)(hi - lo) + 63) / 64;
   s->gravity.s[0] = m->gravity[0];
   s->gravity.s[1] = m->gravity[1];
   s->gravity.s[2] = m->gravity[2];
@@ -379,20 +297,19 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
   s->viscous = m->viscous;
   s->air = m->air;
   s->ncol = m->ncol;
-  scene_scale(s, m);
-  s->pinned = malloc((size_t)m->n);
+  for (int i = 0; m->damp && i < m->ns && !s->damped; i++)
+    s->damped = m->damp[i] != 0.0f;
   s->stage = malloc(4 * (size_t)m->n * sizeof(float));
   /* room for the larger of the point and (EDGES) spring reductions */
-  s->partial_host = malloc((s->groups + (size_t)m->ns / 64 + 1) *
+  s->partial_host = malloc((s->full_global / 64 + (size_t)m->ns / 64 + 1) *
                            sizeof *s->partial_host);
-  if (!s->pinned || !s->stage || !s->partial_host) {
+  if (!s->stage || !s->partial_host) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
     goto fail;
   }
-  memcpy(s->pinned, m->pinned, (size_t)m->n);
   rc = msocl__adjacency_build(m, &adj);
   if (rc == MSOCL_OK)
-    rc = msocl__layout_create(s->dev, m, &adj, o.layout, &s->lay);
+    rc = msocl__layout_create(s->dev, m, &adj, o->layout, &s->lay);
   if (rc == MSOCL_OK)
     rc = make_buffers(s, m);
   char opt[512];
@@ -416,11 +333,11 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
     return MSOCL_OK;
   }
 fail:
-  msocl_sim_destroy(s);
+  msocl__engine_destroy(s);
   return rc;
 }
 
-void msocl_sim_destroy(msocl_sim *s)
+void msocl__engine_destroy(msocl__engine *s)
 {
   if (!s)
     return;
@@ -438,7 +355,6 @@ void msocl_sim_destroy(msocl_sim *s)
     if (mems[q])
       clReleaseMemObject(mems[q]);
   msocl__layout_release(&s->lay);
-  free(s->pinned);
   free(s->stage);
   free(s->partial_host);
   free(s);

@@ -1,5 +1,9 @@
-/* The simulation handle, shared by the files that set it up (sim.c), step
- * it (sim_step.c, integrate*.c, strain.c) and measure it (energy.c). */
+/* A simulation is one or more engines - a whole copy of the model on one
+ * device, advancing the points of its own range - and, with several, the
+ * plan for exchanging what their neighbours read. Shared by the files that
+ * set engines up (sim.c), step them (integrate*.c, strain.c), measure them
+ * (energy.c), and join them into the public simulation (sim_step.c,
+ * sim_io.c). */
 #ifndef MSOCL_SIM_H
 #define MSOCL_SIM_H
 
@@ -15,7 +19,9 @@ enum {
   MSOCL__K_EDGES_VEL, MSOCL__K_EDGES_ENERGY, MSOCL__K_COUNT
 };
 
-struct msocl_sim {
+typedef struct msocl__engine msocl__engine;
+
+struct msocl__engine {
   struct msocl__device *dev;
   msocl_sim_options o;
   int n;
@@ -32,41 +38,84 @@ struct msocl_sim {
   cl_kernel k[MSOCL__K_COUNT];
   int r;
   int acc_valid;          /* acc matches the current state */
-  size_t global, groups;
-  long long steps;
-  int e0_valid;           /* baseline energy of the blow-up check */
-  double e0, escale;      /* start energy and the scene's energy scale */
-  double total_mass, extent;
+  int damped;             /* dashpots: gathers read neighbours' velocities */
+  int lo, hi;             /* the points this engine advances */
+  size_t offset, global;  /* its launches: from lo, (hi - lo) work-items
+                             (one engine: 0 and n rounded up to 64) */
+  size_t groups;          /* reductions: work-groups of 64 over [lo, hi) */
+  size_t full_global;     /* n rounded up to 64 */
   int cg_iterations;
   double cg_residual;
   cl_float4 gravity;
   float viscous, air;
   int ncol;
-  unsigned char *pinned;  /* host copy: writes keep pos.w */
-  float *stage;           /* 4n floats for transfers */
+  float *stage;           /* 4n floats, the initial upload */
   cl_float4 *partial_host;
 };
 
+/* The largest number of engines and of exchange buffers a step names. */
+#define MSOCL__MAX_PARTS MSOCL__MAX_DEVICES
+
+/* What a phase of a step leaves that other engines' next phase reads. */
+enum {
+  MSOCL__X_POS_W = 1, MSOCL__X_VEL_W = 2, MSOCL__X_VEL_R = 4,
+  MSOCL__X_STAGE0 = 8, MSOCL__X_STAGE1 = 16, /* RK4 stage positions */
+  MSOCL__X_STAGEV0 = 32, MSOCL__X_STAGEV1 = 64 /* and velocities */
+};
+
+struct msocl_sim {
+  msocl_sim_options o;
+  int n, nparts;
+  msocl__engine *part[MSOCL__MAX_PARTS];
+  /* halo[d][e]: the half-open range of points of engine e that engine d's
+   * springs reach (empty: first >= second) */
+  int halo[MSOCL__MAX_PARTS][MSOCL__MAX_PARTS][2];
+  cl_float4 *xfer[2];     /* host staging for exchanges (n each) */
+  float *stage;           /* 4n floats for reads and writes */
+  unsigned char *pinned;  /* writes keep pos.w */
+  long long steps;
+  int e0_valid;           /* baseline energy of the blow-up check */
+  double e0, escale;
+  double total_mass, extent;
+  double bytes_exchanged, exchange_seconds, wait_seconds;
+};
+
+/* One engine for the whole model on `dev`, advancing points [lo, hi). */
+int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
+                         const msocl_model *m, const msocl_sim_options *o,
+                         int lo, int hi);
+void msocl__engine_destroy(msocl__engine *e);
 /* Sets the kernels' fixed arguments, once. */
-int msocl__integrate_setup(msocl_sim *s);
-/* Enqueues `n` steps of the chosen integrator (no wait). */
-int msocl__integrate(msocl_sim *s, int n);
-/* Energy of the current state (waits for the device). */
-int msocl__energy(msocl_sim *s, msocl_energy *e);
+int msocl__integrate_setup(msocl__engine *s);
+/* A step is a few phases; after each, the buffers in the returned mask
+ * must reach the other engines before the next phase reads them. */
+int msocl__phase_count(const msocl__engine *s);
+int msocl__phase(msocl__engine *s, int phase, unsigned *exchange);
+/* Ends a step: swaps the ping-pong buffers. */
+void msocl__step_done(msocl__engine *s);
+/* The buffer an exchange bit names, at this point of the step. */
+cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit);
+/* Enqueues `n` whole steps on one engine (no wait, no exchange). */
+int msocl__integrate(msocl__engine *s, int n);
+/* Energy of the engine's points (waits for the device); of the whole
+ * simulation. */
+int msocl__energy(msocl__engine *s, msocl_energy *e);
+int msocl__sim_energy(msocl_sim *s, msocl_energy *e);
 /* Sets argument i of kernel k to a buffer, a float, an int. */
 int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m);
 int msocl__arg_float(cl_kernel k, cl_uint i, float f);
 int msocl__arg_int(cl_kernel k, cl_uint i, int v);
 /* Implicit Euler (integrate_implicit.c): fixed arguments; the new
  * velocity into vel[1 - r]. */
-int msocl__implicit_setup(msocl_sim *s);
-int msocl__implicit_velocity(msocl_sim *s);
+int msocl__implicit_setup(msocl__engine *s);
+int msocl__implicit_velocity(msocl__engine *s);
 /* Strain limiting (strain.c): fixed arguments; the velocity correction on
  * vel[1 - r]; Provot's position correction on pos[1 - r]. */
-int msocl__strain_setup(msocl_sim *s);
-int msocl__strain_velocity(msocl_sim *s);
-int msocl__strain_position(msocl_sim *s);
-/* Enqueues kernel k over all points (global = n rounded up to 64). */
-int msocl__launch(msocl_sim *s, int k);
+int msocl__strain_setup(msocl__engine *s);
+int msocl__strain_velocity(msocl__engine *s);
+int msocl__strain_position(msocl__engine *s);
+/* Enqueues kernel k over the engine's points; _all: over every point. */
+int msocl__launch(msocl__engine *s, int k);
+int msocl__launch_all(msocl__engine *s, int k);
 
 #endif

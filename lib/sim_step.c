@@ -1,9 +1,129 @@
-/* Stepping a simulation and moving its state between host and device. */
+/* Stepping a simulation: every engine runs each phase of a step on its own
+ * points, then the points other engines read cross over through host
+ * memory; every check_every steps the blow-up check. */
 #include "config.h"
 #include "sim.h"
 
 #include <math.h>
 #include <string.h>
+#include <time.h>
+
+static double now(void)
+{
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int finish_all(msocl_sim *s)
+{
+  double t0 = now();
+  for (int d = 0; d < s->nparts; d++)
+    MSOCL__CL(clFinish(s->part[d]->dev->queue));
+  s->wait_seconds += now() - t0;
+  return MSOCL_OK;
+}
+
+/* Moves the buffers named in `mask`: each engine's halo spans from their
+ * owners, through host staging (devices may sit in different contexts and
+ * platforms). Reads wait; the writes are queued ahead of the next phase's
+ * kernels on each in-order queue. */
+static int exchange(msocl_sim *s, unsigned mask)
+{
+  if (s->nparts < 2 || mask == 0)
+    return MSOCL_OK;
+  int rc = finish_all(s); /* kernels done, last exchange's writes too */
+  if (rc != MSOCL_OK)
+    return rc;
+  double t0 = now();
+  int slot = 0;
+  for (unsigned bit = 1; bit <= MSOCL__X_STAGEV1 && rc == MSOCL_OK; bit <<= 1) {
+    if (!(mask & bit))
+      continue;
+    if (slot == 2) { /* both staging arrays in flight: let writes drain */
+      if ((rc = finish_all(s)) != MSOCL_OK)
+        break;
+      slot = 0;
+    }
+    cl_float4 *host = s->xfer[slot++];
+    /* every span any engine needs, read once from its owner */
+    for (int e = 0; e < s->nparts; e++) {
+      int lo = s->n, hi = 0;
+      for (int d = 0; d < s->nparts; d++)
+        if (d != e && s->halo[d][e][0] < s->halo[d][e][1]) {
+          lo = s->halo[d][e][0] < lo ? s->halo[d][e][0] : lo;
+          hi = s->halo[d][e][1] > hi ? s->halo[d][e][1] : hi;
+        }
+      if (lo >= hi)
+        continue;
+      size_t off = (size_t)lo * sizeof(cl_float4),
+             len = (size_t)(hi - lo) * sizeof(cl_float4);
+      msocl__engine *src = s->part[e];
+      MSOCL__CL(clEnqueueReadBuffer(src->dev->queue,
+                                    msocl__exchange_buffer(src, bit), CL_TRUE,
+                                    off, len, host + lo, 0, NULL, NULL));
+    }
+    for (int d = 0; d < s->nparts; d++)
+      for (int e = 0; e < s->nparts; e++) {
+        const int *h = s->halo[d][e];
+        if (d == e || h[0] >= h[1])
+          continue;
+        size_t off = (size_t)h[0] * sizeof(cl_float4),
+               len = (size_t)(h[1] - h[0]) * sizeof(cl_float4);
+        msocl__engine *dst = s->part[d];
+        MSOCL__CL(clEnqueueWriteBuffer(dst->dev->queue,
+                                       msocl__exchange_buffer(dst, bit),
+                                       CL_FALSE, off, len, host + h[0], 0,
+                                       NULL, NULL));
+        s->bytes_exchanged += (double)len;
+      }
+  }
+  s->exchange_seconds += now() - t0;
+  return rc;
+}
+
+/* `n` whole steps on every engine, phase by phase. */
+static int steps(msocl_sim *s, int n)
+{
+  const int phases = msocl__phase_count(s->part[0]);
+  for (int q = 0; q < n; q++) {
+    for (int ph = 0; ph < phases; ph++) {
+      unsigned mask = 0;
+      for (int d = 0; d < s->nparts; d++) {
+        int rc = msocl__phase(s->part[d], ph, &mask);
+        if (rc != MSOCL_OK)
+          return rc;
+      }
+      int rc = exchange(s, mask);
+      if (rc != MSOCL_OK)
+        return rc;
+    }
+    for (int d = 0; d < s->nparts; d++) {
+      msocl__step_done(s->part[d]);
+      if ((q + 1) % 64 == 0)
+        MSOCL__CL(clFlush(s->part[d]->dev->queue));
+    }
+    s->steps++;
+  }
+  return MSOCL_OK;
+}
+
+/* Energy of the whole state: each engine sums its own points. */
+int msocl__sim_energy(msocl_sim *s, msocl_energy *e)
+{
+  memset(e, 0, sizeof *e);
+  for (int d = 0; d < s->nparts; d++) {
+    msocl_energy p;
+    int rc = msocl__energy(s->part[d], &p);
+    if (rc != MSOCL_OK)
+      return rc;
+    e->kinetic += p.kinetic;
+    e->spring += p.spring;
+    e->gravity += p.gravity;
+  }
+  e->total = e->kinetic + e->spring + e->gravity;
+  return MSOCL_OK;
+}
 
 /* The blow-up check's baseline: energy at the start, and a scale for the
  * scene - its kinetic and spring energy plus the work gravity could do
@@ -11,26 +131,33 @@
 static int baseline(msocl_sim *s)
 {
   msocl_energy e;
-  int rc = msocl__energy(s, &e);
+  int rc = msocl__sim_energy(s, &e);
   if (rc != MSOCL_OK)
     return rc;
-  double g = sqrt((double)s->gravity.s[0] * s->gravity.s[0] +
-                  (double)s->gravity.s[1] * s->gravity.s[1] +
-                  (double)s->gravity.s[2] * s->gravity.s[2]);
+  const cl_float4 *g = &s->part[0]->gravity;
+  double gn = sqrt((double)g->s[0] * g->s[0] + (double)g->s[1] * g->s[1] +
+                   (double)g->s[2] * g->s[2]);
   s->e0 = e.total;
-  s->escale = e.kinetic + e.spring + s->total_mass * g * s->extent;
+  s->escale = e.kinetic + e.spring + s->total_mass * gn * s->extent;
   s->e0_valid = 1;
   return MSOCL_OK;
 }
 
-static int copy_state(msocl_sim *s, cl_mem from_p, cl_mem from_v, cl_mem to_p,
-                      cl_mem to_v)
+/* Saves (to_backup) or restores each engine's whole state. */
+static int backup(msocl_sim *s, int to_backup)
 {
-  const size_t bytes = 4 * (size_t)s->n * sizeof(float);
-  MSOCL__CL(clEnqueueCopyBuffer(s->dev->queue, from_p, to_p, 0, 0, bytes, 0,
-                                NULL, NULL));
-  MSOCL__CL(clEnqueueCopyBuffer(s->dev->queue, from_v, to_v, 0, 0, bytes, 0,
-                                NULL, NULL));
+  for (int d = 0; d < s->nparts; d++) {
+    msocl__engine *e = s->part[d];
+    const size_t bytes = 4 * (size_t)e->n * sizeof(float);
+    cl_mem st[2] = {e->pos[e->r], e->vel[e->r]}, bk[2] = {e->backup_p,
+                                                          e->backup_v};
+    for (int k = 0; k < 2; k++)
+      MSOCL__CL(clEnqueueCopyBuffer(e->dev->queue, to_backup ? st[k] : bk[k],
+                                    to_backup ? bk[k] : st[k], 0, 0, bytes,
+                                    0, NULL, NULL));
+    if (!to_backup)
+      e->acc_valid = 0;
+  }
   return MSOCL_OK;
 }
 
@@ -42,22 +169,22 @@ static int checked_steps(msocl_sim *s, int n)
   for (int done = 0; rc == MSOCL_OK && done < n;) {
     int batch = n - done < s->o.check_every ? n - done : s->o.check_every;
     long long first = s->steps;
-    rc = copy_state(s, s->pos[s->r], s->vel[s->r], s->backup_p, s->backup_v);
+    rc = backup(s, 1);
     if (rc == MSOCL_OK)
-      rc = msocl__integrate(s, batch);
+      rc = steps(s, batch);
     msocl_energy e;
     if (rc == MSOCL_OK)
-      rc = msocl__energy(s, &e);
+      rc = msocl__sim_energy(s, &e);
     if (rc != MSOCL_OK)
       return rc;
     double bound = s->e0 + s->o.energy_factor * s->escale;
     if (!isfinite(e.total) || e.total > bound) {
-      rc = copy_state(s, s->backup_p, s->backup_v, s->pos[s->r],
-                      s->vel[s->r]);
+      rc = backup(s, 0);
       s->steps = first;
-      s->acc_valid = 0;
       if (rc == MSOCL_OK)
-        MSOCL__CL(clFinish(s->dev->queue));
+        rc = finish_all(s);
+      if (rc != MSOCL_OK)
+        return rc;
       return msocl__fail(
           MSOCL_ERR_UNSTABLE,
           "blew up between steps %lld and %lld (dt = %g): total energy %g J "
@@ -78,123 +205,8 @@ int msocl_sim_step(msocl_sim *s, int n)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
   if (n < 0)
     return msocl__fail(MSOCL_ERR_BAD_COUNT, "step count %d is negative", n);
-  int rc = s->o.check_every > 0 ? checked_steps(s, n) : msocl__integrate(s, n);
+  int rc = s->o.check_every > 0 ? checked_steps(s, n) : steps(s, n);
   if (rc != MSOCL_OK)
     return rc;
-  MSOCL__CL(clFinish(s->dev->queue));
-  return MSOCL_OK;
-}
-
-int msocl_sim_step_count(const msocl_sim *s, long long *steps)
-{
-  if (!s || !steps)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
-  *steps = s->steps;
-  return MSOCL_OK;
-}
-
-int msocl_sim_solver_stats(const msocl_sim *s, int *iterations,
-                           double *residual)
-{
-  if (!s || !iterations || !residual)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
-  *iterations = s->cg_iterations;
-  *residual = s->cg_residual;
-  return MSOCL_OK;
-}
-
-static int read_xyz(msocl_sim *s, cl_mem b, float *xyz)
-{
-  msocl__clear_error();
-  if (!s || !xyz)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
-                       s ? "output array" : "sim");
-  MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, b, CL_TRUE, 0,
-                                4 * (size_t)s->n * sizeof(float), s->stage,
-                                0, NULL, NULL));
-  for (int i = 0; i < s->n; i++)
-    memcpy(xyz + 3 * i, s->stage + 4 * i, 3 * sizeof(float));
-  return MSOCL_OK;
-}
-
-/* Writes xyz into the current copy; w carries the pin flag for positions
- * and is 0 for velocities. */
-static int write_xyz(msocl_sim *s, cl_mem b, const float *xyz, int is_pos)
-{
-  msocl__clear_error();
-  if (!s || !xyz)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
-                       s ? "input array" : "sim");
-  for (int i = 0; i < 3 * s->n; i++)
-    if (!isfinite(xyz[i]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "point %d: coordinate %d is %g", i / 3, i % 3,
-                         xyz[i]);
-  for (int i = 0; i < s->n; i++) {
-    memcpy(s->stage + 4 * i, xyz + 3 * i, 3 * sizeof(float));
-    s->stage[4 * i + 3] = is_pos && s->pinned[i] ? 1.0f : 0.0f;
-  }
-  MSOCL__CL(clEnqueueWriteBuffer(s->dev->queue, b, CL_TRUE, 0,
-                                 4 * (size_t)s->n * sizeof(float), s->stage,
-                                 0, NULL, NULL));
-  /* A new state: new baseline energy, new Verlet acceleration. */
-  s->e0_valid = 0;
-  s->acc_valid = 0;
-  return MSOCL_OK;
-}
-
-int msocl_sim_read_positions(msocl_sim *s, float *xyz)
-{
-  return read_xyz(s, s ? s->pos[s->r] : NULL, xyz);
-}
-
-int msocl_sim_write_positions(msocl_sim *s, const float *xyz)
-{
-  return write_xyz(s, s ? s->pos[s->r] : NULL, xyz, 1);
-}
-
-int msocl_sim_read_velocities(msocl_sim *s, float *xyz)
-{
-  return read_xyz(s, s ? s->vel[s->r] : NULL, xyz);
-}
-
-int msocl_sim_write_velocities(msocl_sim *s, const float *xyz)
-{
-  return write_xyz(s, s ? s->vel[s->r] : NULL, xyz, 0);
-}
-
-int msocl_sim_read_normals(msocl_sim *s, float *xyz)
-{
-  msocl__clear_error();
-  if (!s || !xyz)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
-                       s ? "output array" : "sim");
-  int rc = msocl__arg_mem(s->k[MSOCL__K_NORMALS], 0, s->pos[s->r]);
-  if (rc == MSOCL_OK)
-    rc = msocl__launch(s, MSOCL__K_NORMALS);
-  return rc == MSOCL_OK ? read_xyz(s, s->normal, xyz) : rc;
-}
-
-int msocl_sim_point_count(const msocl_sim *s, int *n)
-{
-  if (!s || !n)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
-  *n = s->n;
-  return MSOCL_OK;
-}
-
-int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout)
-{
-  if (!s || !layout)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
-  *layout = s->lay.kind;
-  return MSOCL_OK;
-}
-
-int msocl_sim_device_info(const msocl_sim *s, msocl_device_info *info)
-{
-  if (!s || !info)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
-  *info = s->dev->info;
-  return MSOCL_OK;
+  return finish_all(s);
 }

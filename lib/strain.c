@@ -12,7 +12,7 @@
       return msocl__rc;                                                       \
   } while (0)
 
-int msocl__strain_setup(msocl_sim *s)
+int msocl__strain_setup(msocl__engine *s)
 {
   const cl_uint c = s->nconn;
   cl_kernel k;
@@ -36,7 +36,7 @@ int msocl__strain_setup(msocl_sim *s)
 
 /* Sweeps kernel `kind` from `from` (read from arg c+in, written to arg
  * c+out), ping-ponging with `to`; returns the buffer holding the result. */
-static int sweeps(msocl_sim *s, int kind, cl_uint in, cl_uint out,
+static int sweeps(msocl__engine *s, int kind, cl_uint in, cl_uint out,
                   cl_mem from, cl_mem to, cl_mem *result)
 {
   cl_kernel k = s->k[kind];
@@ -53,7 +53,7 @@ static int sweeps(msocl_sim *s, int kind, cl_uint in, cl_uint out,
 }
 
 /* On the new velocities vel[1 - r], before the position pass. */
-int msocl__strain_velocity(msocl_sim *s)
+int msocl__strain_velocity(msocl__engine *s)
 {
   cl_mem target = s->vel[1 - s->r], result;
   TRY(msocl__arg_mem(s->k[MSOCL__K_STRAIN_VEL], s->nconn, s->pos[s->r]));
@@ -67,7 +67,7 @@ int msocl__strain_velocity(msocl_sim *s)
 
 /* On the new state pos[1 - r], vel[1 - r], after the step: the sweeps run
  * on a copy, then the commit moves points and velocities together. */
-int msocl__strain_position(msocl_sim *s)
+int msocl__strain_position(msocl__engine *s)
 {
   const int w = 1 - s->r;
   cl_mem result;

@@ -1,0 +1,96 @@
+/* What the parts of msocl-bench share: options, the tablecloth scene's
+ * constants, one CSV row per run, timing and progress. */
+#ifndef BENCH_H
+#define BENCH_H
+
+#include <msocl.h>
+
+#include <stdio.h>
+
+/* The paper's scene (examples/tablecloth): a 1 m square cloth of 0.5 kg,
+ * 5 cm above a round table of radius 0.35 m, stretch / shear / bend springs
+ * of 50 / 10 / 10 N/m, viscous damping 0.5 x the point mass. */
+#define TC_MASS 0.5f
+#define TC_HEIGHT 0.05f
+#define TC_RADIUS 0.35f
+#define TC_FRICTION 0.3f
+#define TC_K_STRETCH 50.0f
+#define TC_K_SHEAR 10.0f
+#define TC_K_BEND 10.0f
+#define TC_VISCOUS_PER_MASS 0.5f
+#define TC_GRAVITY (-9.81f)
+
+#define BENCH_MAX_LIST 32
+
+struct bench_opts {
+  const char *spec;               /* -d: device spec, NULL = MSOCL_DEVICE */
+  int grids[BENCH_MAX_LIST], ngrids; /* -g */
+  int steps;                      /* -s */
+  int big_steps;                  /* --big-steps: grids above 128 */
+  int max_grid;                   /* --max-grid, 0 = none */
+  int layouts[3], nlayouts;       /* -l (msocl_layout values) */
+  int integrators[5], nintegrators; /* -i */
+  int maths[2], nmaths;           /* -m */
+  double sim_time;                /* -T: simulated seconds (precision) */
+  int levels;                     /* --levels: dt values (precision) */
+  double from;                    /* --from: largest dt / stable step */
+  int copy_mib;                   /* --copy-mib: copy buffer size */
+  int quick;                      /* --quick */
+  const char *csv;                /* --csv */
+};
+
+/* One run: a CSV row. NaN numbers are written as empty fields. */
+struct bench_row {
+  char device[128];
+  const char *layout, *integrator, *math;
+  int grid;
+  double dt;
+  long long steps;
+  double seconds, steps_per_s, vertex_steps_per_s;
+  double bytes_per_vertex_step, effective_gbps, copy_gbps, fraction;
+  double error;
+  const char *status;
+};
+
+extern const char *const bench_integrator_names[5];
+
+/* Empty row: every number NaN, names "". */
+void bench_row_init(struct bench_row *r);
+/* Rates from grid, steps and seconds; GB/s and the fraction from the bytes
+ * and copy bandwidth when both are known. */
+void bench_row_rates(struct bench_row *r);
+void bench_csv_header(FILE *f);
+void bench_csv_row(FILE *f, const struct bench_row *r);
+/* The device's name as a CSV field: commas and quotes replaced. */
+void bench_device_label(char *out, size_t size, const msocl_device_info *d);
+
+double bench_now(void);
+/* "\r[i/n] text" on stderr when it is a terminal; nothing otherwise.
+ * i = 0 clears the line. */
+void bench_progress(int i, int n, const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/* Prints the library's error and returns 1. */
+int bench_fail(const char *what, int rc);
+
+int bench_table1(const struct bench_opts *o, FILE *csv);
+int bench_precision(const struct bench_opts *o, FILE *csv);
+
+/* Device-to-device copy bandwidth (bytes read + written per second / 1e9)
+ * of the device `info` names, through clEnqueueCopyBuffer on a context of
+ * its own; buffers of at most max_bytes. */
+int bench_copy_gbps(const msocl_device_info *info, size_t max_bytes,
+                    double *gbps);
+
+/* The paper's Algorithm 1 as plain serial C in single precision: the
+ * tablecloth of n x n points, stepped with dt (bench_serial.c). */
+typedef struct bench_serial bench_serial;
+int bench_serial_create(bench_serial **s, int n, float dt);
+void bench_serial_step(bench_serial *s, int steps);
+/* 3 floats a point, the msocl model's point order. */
+const float *bench_serial_positions(const bench_serial *s);
+void bench_serial_destroy(bench_serial *s);
+
+#endif /* BENCH_H */

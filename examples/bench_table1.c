@@ -1,0 +1,403 @@
+/* table1: the paper's Table 1 (tablecloth on a round table, time for 2000
+ * iterations) reproduced beside the paper's numbers and extended to larger
+ * grids: serial C (Algorithm 1) against libmsocl per device, layout and
+ * math mode, with a roofline column from the device's copy bandwidth. */
+#include "bench.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* Table 1 of Vassilev & Rousev: time for 2000 iterations (s) and
+ * iterations per second, machines 1 and 2, CPU and GPU. */
+static const struct {
+  int grid;
+  double t[4];
+  int ips[4];
+} paper[] = {
+    {48, {4.39, 3.05, 1.68, 0.67}, {455, 656, 1190, 2985}},
+    {64, {7.70, 5.53, 2.20, 0.67}, {260, 362, 909, 2985}},
+    {96, {18.65, 12.30, 4.25, 0.67}, {107, 163, 470, 2985}},
+    {128, {32.86, 21.87, 6.90, 0.67}, {61, 91, 290, 2985}},
+};
+static const char *const paper_cols[4] = {"CPU 1", "CPU 2", "GPU 1",
+                                          "GPU 2"};
+
+/* Bytes a vertex-step moves under this model. BUFFER and IMAGE2D: the
+ * velocity pass reads pos, vel (16 B each), inv_mass (4 B) and the point's
+ * connectivity (BUFFER: max-degree slots of 12 B; IMAGE2D: 16 texels of
+ * 16 B), neighbour positions counted as cached (0), and writes vel (16 B).
+ * EDGES: the spring pass reads 16 B a spring (ends, rest, k), end positions
+ * cached, and each point's force accumulator once (read + write, 32 B); the
+ * point pass reads pos, vel, force, inv_mass (52 B), writes vel and clears
+ * force (32 B). All: the position pass reads pos and vel (32 B) and writes
+ * pos (16 B). */
+static double bytes_model(int layout, int slots, double springs_per_point)
+{
+  if (layout == MSOCL_LAYOUT_EDGES)
+    return 16.0 * springs_per_point + 32 + (52 + 32) + (32 + 16);
+  double conn = layout == MSOCL_LAYOUT_IMAGE2D ? 16.0 * 16.0 : 12.0 * slots;
+  return (16 + 16 + 4 + conn + 16) + (32 + 16);
+}
+
+static const char *layout_name(int layout)
+{
+  return layout == MSOCL_LAYOUT_IMAGE2D ? "image2d"
+         : layout == MSOCL_LAYOUT_EDGES ? "edges"
+                                        : "buffer";
+}
+
+static msocl_model *build(int n, float *dt)
+{
+  msocl_cloth_desc d;
+  msocl_cloth_desc_init(&d);
+  d.nx = d.ny = n;
+  /* u = z, v = x: the tablecloth example's cloth, normals up */
+  const float origin[3] = {-0.5f, TC_HEIGHT, -0.5f}, u[3] = {0, 0, 1},
+              v[3] = {1, 0, 0}, top[3] = {0, 0, 0};
+  memcpy(d.origin, origin, sizeof origin);
+  memcpy(d.u, u, sizeof u);
+  memcpy(d.v, v, sizeof v);
+  d.point_mass = TC_MASS / (float)(n * n);
+  d.k_stretch = TC_K_STRETCH;
+  d.k_shear = TC_K_SHEAR;
+  d.k_bend = TC_K_BEND;
+  msocl_model *m = NULL;
+  int rc = msocl_model_cloth_grid(&m, &d);
+  if (rc == MSOCL_OK)
+    rc = msocl_model_add_table(m, top, TC_RADIUS, TC_FRICTION);
+  if (rc == MSOCL_OK)
+    rc = msocl_model_set_viscous_damping(m, TC_VISCOUS_PER_MASS * d.point_mass);
+  if (rc == MSOCL_OK)
+    rc = msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, dt);
+  if (rc != MSOCL_OK) {
+    bench_fail("building the tablecloth", rc);
+    msocl_model_destroy(m);
+    return NULL;
+  }
+  *dt *= 0.5f; /* half the stable step, as examples/tablecloth */
+  return m;
+}
+
+/* Physical memory of the host in bytes, 0 if unknown. */
+static double host_memory(void)
+{
+#ifdef _SC_PHYS_PAGES
+  long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+  if (pages > 0 && size > 0)
+    return (double)pages * (double)size;
+#endif
+  return 0.0;
+}
+
+static double rms_diff(const float *a, const float *b, int n)
+{
+  double sum = 0.0;
+  for (int i = 0; i < 3 * n; i++) {
+    double d = (double)a[i] - b[i];
+    sum += d * d;
+  }
+  return sqrt(sum / n);
+}
+
+struct result {
+  int grid, steps;
+  char engine[64];
+  double ips, seconds;
+  int ok;
+};
+
+struct ctx {
+  const struct bench_opts *o;
+  FILE *csv;
+  msocl_runtime *rt;
+  int ndev;
+  msocl_device_info *info;
+  double *copy;
+  struct result *res;
+  int nres, done, total;
+  float *xyz;
+};
+
+static void print_row(const struct bench_row *r, const char *engine,
+                      double serial_ips)
+{
+  char t2000[32] = "-", speed[32] = "-", bytes[32] = "-", gbps[32] = "-",
+       frac[32] = "-", err[32] = "-";
+  if (r->steps_per_s > 0) {
+    snprintf(t2000, sizeof t2000, "%.2f%s", 2000.0 / r->steps_per_s,
+             r->steps == 2000 ? "" : "*");
+    if (serial_ips > 0)
+      snprintf(speed, sizeof speed, "%.2fx", r->steps_per_s / serial_ips);
+  }
+  if (isfinite(r->bytes_per_vertex_step))
+    snprintf(bytes, sizeof bytes, "%.0f", r->bytes_per_vertex_step);
+  if (isfinite(r->effective_gbps))
+    snprintf(gbps, sizeof gbps, "%.2f", r->effective_gbps);
+  if (isfinite(r->fraction))
+    snprintf(frac, sizeof frac, "%.0f%%", 100.0 * r->fraction);
+  if (isfinite(r->error))
+    snprintf(err, sizeof err, "%.1e", r->error);
+  if (strcmp(r->status, "ok"))
+    printf("%4dx%-4d %-28s %s\n", r->grid, r->grid, engine, r->status);
+  else
+    printf("%4dx%-4d %-28s %6lld %8.3f %8.1f %9s %9s %6s %6s %6s %9s\n",
+           r->grid, r->grid, engine, r->steps, r->seconds, r->steps_per_s,
+           t2000, speed, bytes, gbps, frac, err);
+  fflush(stdout);
+}
+
+static void keep(struct ctx *c, const struct bench_row *r, const char *engine)
+{
+  struct result *x = &c->res[c->nres++];
+  x->grid = r->grid;
+  x->steps = (int)r->steps;
+  snprintf(x->engine, sizeof x->engine, "%s", engine);
+  x->ok = !strcmp(r->status, "ok");
+  x->ips = x->ok ? r->steps_per_s : 0.0;
+  x->seconds = r->seconds;
+}
+
+/* The serial baseline on grid n; *ips gets its iterations per second. */
+static int run_serial(struct ctx *c, int n, float dt, int steps,
+                      const float **pos, bench_serial **keep_s, double *ips)
+{
+  struct bench_row r;
+  bench_row_init(&r);
+  snprintf(r.device, sizeof r.device, "host serial C");
+  r.layout = "springs";
+  r.integrator = "symplectic";
+  r.math = "precise";
+  r.grid = n;
+  r.dt = dt;
+  r.steps = steps;
+  bench_progress(++c->done, c->total, "%dx%d serial C, %d steps", n, n,
+                 steps);
+  bench_serial *s = NULL;
+  int rc = bench_serial_create(&s, n, dt);
+  if (rc != MSOCL_OK) {
+    r.status = "failed";
+    fprintf(stderr, "msocl-bench: serial %dx%d: %s\n", n, n,
+            msocl_strerror(rc));
+  } else {
+    bench_serial_step(s, 1); /* warm-up */
+    double t0 = bench_now();
+    bench_serial_step(s, steps);
+    r.seconds = bench_now() - t0;
+    r.status = "ok";
+    bench_row_rates(&r);
+  }
+  bench_progress(0, 0, " ");
+  print_row(&r, "serial C (Algorithm 1)", 0.0);
+  bench_csv_row(c->csv, &r);
+  keep(c, &r, "serial C");
+  *ips = r.steps_per_s > 0 ? r.steps_per_s : 0.0;
+  *pos = s ? bench_serial_positions(s) : NULL;
+  *keep_s = s;
+  return rc;
+}
+
+static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
+                       int steps, int dev, int layout, int math,
+                       const float *serial_pos, double serial_ips)
+{
+  const msocl_device_info *info = &c->info[dev];
+  struct bench_row r;
+  bench_row_init(&r);
+  bench_device_label(r.device, sizeof r.device, info);
+  r.layout = layout_name(layout);
+  r.integrator = "symplectic";
+  r.math = math == MSOCL_MATH_RELAXED ? "relaxed" : "precise";
+  r.grid = n;
+  r.dt = dt;
+  r.steps = steps;
+  r.copy_gbps = c->copy[dev] > 0 ? c->copy[dev] : NAN;
+  int slots = 0, ns = 0;
+  msocl_model_max_degree(m, &slots);
+  msocl_model_spring_count(m, &ns);
+  r.bytes_per_vertex_step = bytes_model(layout, slots, (double)ns / (n * n));
+  char engine[64];
+  snprintf(engine, sizeof engine, "%d:%d %s %s", info->platform_index,
+           info->device_index, r.layout, r.math);
+  bench_progress(++c->done, c->total, "%dx%d %s, %d steps", n, n, engine,
+                 steps);
+  /* Device memory: 4 state copies, a backup, inverse masses, normals, the
+   * force accumulators and the connectivity, with room to spare. */
+  double conn = layout == MSOCL_LAYOUT_IMAGE2D ? 256.0
+                : layout == MSOCL_LAYOUT_EDGES ? 16.0 * ns / ((double)n * n)
+                                               : 12.0 * slots;
+  double need = 1.5 * (double)n * n * (64 + 32 + 4 + 16 + 16 + conn);
+  msocl_sim *s = NULL;
+  int rc = MSOCL_OK;
+  if (info->global_mem > 0 && need > (double)info->global_mem) {
+    r.status = "skipped (device memory)";
+  } else {
+    msocl_sim_options so;
+    msocl_sim_options_init(&so);
+    so.dt = dt;
+    so.layout = (msocl_layout)layout;
+    so.math = (msocl_math)math;
+    so.device = dev;
+    so.check_every = 0;
+    rc = msocl_sim_create(&s, c->rt, m, &so);
+    if (rc == MSOCL_OK)
+      rc = msocl_sim_step(s, 1); /* warm-up */
+    double t0 = bench_now();
+    if (rc == MSOCL_OK)
+      rc = msocl_sim_step(s, steps);
+    r.seconds = bench_now() - t0;
+    if (rc == MSOCL_OK && serial_pos && c->xyz &&
+        (rc = msocl_sim_read_positions(s, c->xyz)) == MSOCL_OK)
+      r.error = rms_diff(c->xyz, serial_pos, n * n);
+    r.status = rc == MSOCL_OK ? "ok" : "failed";
+    if (rc != MSOCL_OK) {
+      bench_progress(0, 0, " ");
+      bench_fail(engine, rc);
+      r.seconds = NAN;
+    }
+    bench_row_rates(&r);
+  }
+  msocl_sim_destroy(s);
+  bench_progress(0, 0, " ");
+  print_row(&r, engine, serial_ips);
+  bench_csv_row(c->csv, &r);
+  keep(c, &r, engine);
+}
+
+/* The paper's numbers beside ours, grid by grid. */
+static void print_paper(const struct ctx *c)
+{
+  printf("\nBeside the paper's Table 1 (time for 2000 iterations, s / "
+         "iterations per second;\n* = extrapolated from fewer steps):\n\n");
+  printf("%-9s", "grid");
+  for (int k = 0; k < 4; k++)
+    printf(" %-13s", paper_cols[k]);
+  printf("|");
+  for (int e = 0; e < c->nres && c->res[e].grid == c->res[0].grid; e++)
+    printf(" %-24.24s", c->res[e].engine);
+  printf("\n");
+  for (int e = 0; e < c->nres;) {
+    int g = c->res[e].grid;
+    printf("%4dx%-4d", g, g);
+    int p = -1;
+    for (int k = 0; k < 4; k++)
+      if (paper[k].grid == g)
+        p = k;
+    for (int k = 0; k < 4; k++) {
+      char cell[32] = "-";
+      if (p >= 0)
+        snprintf(cell, sizeof cell, "%.2f/%d", paper[p].t[k],
+                 paper[p].ips[k]);
+      printf(" %-13s", cell);
+    }
+    printf("|");
+    for (; e < c->nres && c->res[e].grid == g; e++) {
+      char cell[40] = "-";
+      if (c->res[e].ok)
+        snprintf(cell, sizeof cell, "%.2f%s/%.0f", 2000.0 / c->res[e].ips,
+                 c->res[e].steps == 2000 ? "" : "*", c->res[e].ips);
+      printf(" %-24s", cell);
+    }
+    printf("\n");
+  }
+}
+
+int bench_table1(const struct bench_opts *o, FILE *csv)
+{
+  struct ctx c;
+  memset(&c, 0, sizeof c);
+  c.o = o;
+  c.csv = csv;
+  int rc = msocl_runtime_create(&c.rt, o->spec);
+  if (rc != MSOCL_OK)
+    return bench_fail("choosing devices", rc);
+  msocl_runtime_device_count(c.rt, &c.ndev);
+  int per_grid = 1 + c.ndev * o->nlayouts * o->nmaths, ngrids = 0, big = 0;
+  for (int g = 0; g < o->ngrids; g++)
+    if (!o->max_grid || o->grids[g] <= o->max_grid)
+      ngrids++;
+  c.info = calloc((size_t)c.ndev, sizeof *c.info);
+  c.copy = calloc((size_t)c.ndev, sizeof *c.copy);
+  c.res = calloc((size_t)(ngrids * per_grid + 1), sizeof *c.res);
+  if (!c.info || !c.copy || !c.res) {
+    rc = MSOCL_ERR_NO_MEMORY;
+    bench_fail("table1", rc);
+    goto out;
+  }
+  c.total = ngrids * per_grid;
+  printf("msocl-bench table1 (libmsocl %s): tablecloth on a round table, "
+         "symplectic Euler at half the stable step, check_every 0\n",
+         msocl_version_string());
+  for (int d = 0; d < c.ndev; d++) {
+    msocl_runtime_device_info(c.rt, d, &c.info[d]);
+    bench_progress(1, 1, "copy bandwidth of device %d:%d",
+                   c.info[d].platform_index, c.info[d].device_index);
+    int e = bench_copy_gbps(&c.info[d], (size_t)o->copy_mib << 20,
+                            &c.copy[d]);
+    bench_progress(0, 0, " ");
+    printf("device %d:%d %s [%s]: copy bandwidth ", c.info[d].platform_index,
+           c.info[d].device_index, c.info[d].name, c.info[d].platform_name);
+    if (e == 0)
+      printf("%.2f GB/s (clEnqueueCopyBuffer, read + written bytes, best of "
+             "5x4 copies of %d MiB)\n",
+             c.copy[d], o->copy_mib);
+    else
+      printf("not measured (%s)\n", msocl_err_name(e));
+  }
+  printf("bytes per vertex-step: velocity pass reads pos 16 + vel 16 + "
+         "inv_mass 4 + connectivity\n(BUFFER: max degree x 12 B; IMAGE2D: "
+         "16 x 16 B), neighbours cached (0), writes vel 16; EDGES:\n16 B a "
+         "spring + force accumulator 32 + point pass 84; position pass reads "
+         "pos + vel 32,\nwrites pos 16. GB/s = bytes x vertex-steps/s; %%copy "
+         "= GB/s over the copy bandwidth.\n\n");
+  printf("%-9s %-28s %6s %8s %8s %9s %9s %6s %6s %6s %9s\n", "grid",
+         "engine", "steps", "time s", "it/s", "s/2000it", "vs serial",
+         "B/v-st", "GB/s", "%copy", "rms vs C");
+  for (int g = 0; g < o->ngrids; g++) {
+    int n = o->grids[g];
+    if (o->max_grid && n > o->max_grid)
+      continue;
+    int steps = n > 128 ? o->big_steps : o->steps;
+    big |= n > 128 && steps != o->steps;
+    double host = host_memory();
+    if (host > 0 && 1024.0 * n * n > 0.5 * host) {
+      printf("%4dx%-4d skipped: about %.1f GB of host memory needed\n", n, n,
+             1024.0 * n * n / 1e9);
+      c.done += per_grid;
+      continue;
+    }
+    float dt = 0.0f;
+    msocl_model *m = build(n, &dt);
+    if (!m) {
+      rc = 1;
+      break;
+    }
+    free(c.xyz);
+    c.xyz = malloc(3 * (size_t)n * n * sizeof *c.xyz);
+    const float *spos = NULL;
+    bench_serial *s = NULL;
+    double sips = 0.0;
+    run_serial(&c, n, dt, steps, &spos, &s, &sips);
+    for (int d = 0; d < c.ndev; d++)
+      for (int l = 0; l < o->nlayouts; l++)
+        for (int k = 0; k < o->nmaths; k++)
+          run_device(&c, m, n, dt, steps, d, o->layouts[l], o->maths[k], spos,
+                     sips);
+    bench_serial_destroy(s);
+    msocl_model_destroy(m);
+  }
+  if (big)
+    printf("(grids above 128 ran %d steps: * marks times extrapolated to "
+           "2000)\n",
+           o->big_steps);
+  if (c.nres > 0)
+    print_paper(&c);
+out:
+  free(c.xyz);
+  free(c.res);
+  free(c.copy);
+  free(c.info);
+  msocl_runtime_destroy(c.rt);
+  return rc == MSOCL_OK ? 0 : 1;
+}

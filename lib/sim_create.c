@@ -1,0 +1,229 @@
+/* Creating a simulation: checking the options, splitting the model into
+ * one range of points a device, and planning which points each device
+ * must receive from the others every step. */
+#include "config.h"
+#include "sim.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
+{
+  if (!isfinite(o->dt))
+    return msocl__fail(MSOCL_ERR_NOT_FINITE, "time step dt is %g", o->dt);
+  if (!(o->dt > 0.0f))
+    return msocl__fail(MSOCL_ERR_BAD_DT, "time step dt = %g must be > 0",
+                       o->dt);
+  if (o->layout < MSOCL_LAYOUT_AUTO || o->layout > MSOCL_LAYOUT_EDGES)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d",
+                       (int)o->layout);
+  if (o->math != MSOCL_MATH_PRECISE && o->math != MSOCL_MATH_RELAXED)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown math mode %d",
+                       (int)o->math);
+  if (o->device < 0 || o->device >= rt->ndev)
+    return msocl__fail(MSOCL_ERR_BAD_INDEX,
+                       "device %d out of range: the runtime holds %d",
+                       o->device, rt->ndev);
+  int parts = o->ndevices < 0 ? rt->ndev - o->device
+                              : o->ndevices == 0 ? 1 : o->ndevices;
+  if (o->device + parts > rt->ndev || parts > 16)
+    return msocl__fail(MSOCL_ERR_BAD_INDEX,
+                       "devices %d to %d asked for: the runtime holds %d",
+                       o->device, o->device + parts - 1, rt->ndev);
+  for (int d = 0; d < parts && d < 16; d++)
+    if (!(o->weights[d] >= 0.0f) || !isfinite(o->weights[d]))
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "weight %d is %g: weights must be finite and >= 0",
+                         d, o->weights[d]);
+  if (parts > 1 && (o->integrator == MSOCL_IMPLICIT_EULER ||
+                    o->layout == MSOCL_LAYOUT_EDGES ||
+                    o->strain != MSOCL_STRAIN_NONE))
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "a model split over %d devices runs the gather layouts "
+                       "with symplectic Euler, explicit Euler, Verlet or RK4, "
+                       "without strain limiting (implicit Euler, EDGES and "
+                       "strain sweeps run on one device)",
+                       parts);
+  if (o->integrator < MSOCL_SYMPLECTIC_EULER ||
+      o->integrator > MSOCL_IMPLICIT_EULER)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown integrator %d",
+                       (int)o->integrator);
+  if (o->strain < MSOCL_STRAIN_NONE || o->strain > MSOCL_STRAIN_VELOCITY)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown strain limiting %d",
+                       (int)o->strain);
+  if (!(o->strain_limit >= 0.0f) || !isfinite(o->strain_limit) ||
+      o->strain_iterations < 1 || o->strain_iterations > 1000)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "strain limit %g must be >= 0 and iterations %d in "
+                       "[1, 1000]",
+                       o->strain_limit, o->strain_iterations);
+  if (!(o->cg_tolerance > 0.0f) || !isfinite(o->cg_tolerance) ||
+      o->cg_max_iterations < 1)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "CG tolerance %g must be > 0 and iterations %d >= 1",
+                       o->cg_tolerance, o->cg_max_iterations);
+  if (o->strain == MSOCL_STRAIN_VELOCITY &&
+      o->integrator != MSOCL_SYMPLECTIC_EULER &&
+      o->integrator != MSOCL_IMPLICIT_EULER)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "velocity strain limiting needs an integrator whose "
+                       "position update uses the new velocity (symplectic "
+                       "or implicit Euler)");
+  if (o->layout == MSOCL_LAYOUT_EDGES &&
+      (o->integrator != MSOCL_SYMPLECTIC_EULER ||
+       o->strain != MSOCL_STRAIN_NONE))
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "the EDGES layout runs symplectic Euler without strain "
+                       "limiting (its per-spring pass feeds one velocity "
+                       "update); use BUFFER for other methods");
+  if (o->check_every < 0 || !(o->energy_factor > 0.0f) ||
+      !isfinite(o->energy_factor))
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "check_every %d must be >= 0 and energy_factor %g > 0",
+                       o->check_every, o->energy_factor);
+  return MSOCL_OK;
+}
+
+/* Mass and size of the scene: the blow-up check's energy scale. */
+static void scene_scale(msocl_sim *s, const msocl_model *m)
+{
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY,
+                                                         -INFINITY,
+                                                         -INFINITY};
+  s->total_mass = 0.0;
+  for (int i = 0; i < m->n; i++) {
+    s->total_mass += m->mass[i];
+    for (int c = 0; c < 3; c++) {
+      double x = m->pos[3 * i + c];
+      lo[c] = x < lo[c] ? x : lo[c];
+      hi[c] = x > hi[c] ? x : hi[c];
+    }
+  }
+  double d2 = 0.0;
+  for (int c = 0; c < 3; c++)
+    d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
+  s->extent = sqrt(d2);
+}
+
+
+/* Contiguous ranges sized by the weights (all 0: equal). */
+static int partition(msocl_sim *s, const msocl_model *m)
+{
+  double w[MSOCL__MAX_PARTS], total = 0.0;
+  for (int d = 0; d < s->nparts; d++)
+    total += (w[d] = s->o.weights[d]);
+  if (!(total > 0.0))
+    for (int d = 0; d < s->nparts; d++)
+      total += (w[d] = 1.0);
+  double cum = 0.0;
+  int lo = 0;
+  for (int d = 0; d < s->nparts; d++) {
+    cum += w[d];
+    int hi = d == s->nparts - 1 ? m->n : (int)llround(m->n * (cum / total));
+    if (hi <= lo)
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "device %d would get no points of %d (weights too "
+                         "uneven, or fewer points than devices)",
+                         d, m->n);
+    s->halo[d][d][0] = lo;
+    s->halo[d][d][1] = hi;
+    lo = hi;
+  }
+  return MSOCL_OK;
+}
+
+/* For every pair, the span of e's points that d's springs reach: any
+ * split is correct, even one whose ranges are narrower than a spring's
+ * reach (the span then covers several devices' ranges). */
+static void plan_halos(msocl_sim *s, const msocl_model *m)
+{
+  int owner_lo[MSOCL__MAX_PARTS], owner_hi[MSOCL__MAX_PARTS];
+  for (int d = 0; d < s->nparts; d++) {
+    owner_lo[d] = s->halo[d][d][0];
+    owner_hi[d] = s->halo[d][d][1];
+    for (int e = 0; e < s->nparts; e++)
+      if (e != d) {
+        s->halo[d][e][0] = m->n;
+        s->halo[d][e][1] = 0;
+      }
+  }
+  for (int sp = 0; sp < m->ns; sp++)
+    for (int end = 0; end < 2; end++) {
+      int i = m->ij[2 * sp + end], j = m->ij[2 * sp + 1 - end], d = 0, e = 0;
+      while (i >= owner_hi[d])
+        d++;
+      while (j >= owner_hi[e])
+        e++;
+      if (d == e)
+        continue;
+      int *h = s->halo[d][e];
+      h[0] = j < h[0] ? j : h[0];
+      h[1] = j + 1 > h[1] ? j + 1 : h[1];
+    }
+  (void)owner_lo;
+}
+
+int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
+                     const msocl_sim_options *opts)
+{
+  msocl__clear_error();
+  if (!out)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim out-pointer is NULL");
+  *out = NULL;
+  if (!rt || !m)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
+                       rt ? "model" : "runtime");
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  if (opts)
+    o = *opts;
+  int rc = check_options(rt, &o);
+  if (rc == MSOCL_OK)
+    rc = msocl_model_validate(m);
+  if (rc != MSOCL_OK)
+    return rc;
+  msocl_sim *s = calloc(1, sizeof *s);
+  if (!s)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
+  s->o = o;
+  s->n = m->n;
+  s->nparts = o.ndevices < 0 ? rt->ndev - o.device
+                             : o.ndevices == 0 ? 1 : o.ndevices;
+  scene_scale(s, m);
+  s->stage = malloc(4 * (size_t)m->n * sizeof(float));
+  s->pinned = malloc((size_t)m->n);
+  s->xfer[0] = malloc((size_t)m->n * sizeof(cl_float4));
+  s->xfer[1] = malloc((size_t)m->n * sizeof(cl_float4));
+  if (!s->stage || !s->pinned || !s->xfer[0] || !s->xfer[1]) {
+    msocl_sim_destroy(s);
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
+  }
+  memcpy(s->pinned, m->pinned, (size_t)m->n);
+  rc = partition(s, m);
+  if (rc == MSOCL_OK)
+    plan_halos(s, m);
+  for (int d = 0; rc == MSOCL_OK && d < s->nparts; d++)
+    rc = msocl__engine_create(&s->part[d],
+                              (struct msocl__device *)&rt->dev[o.device + d],
+                              m, &o, s->halo[d][d][0], s->halo[d][d][1]);
+  if (rc != MSOCL_OK) {
+    msocl_sim_destroy(s);
+    return rc;
+  }
+  *out = s;
+  return MSOCL_OK;
+}
+
+void msocl_sim_destroy(msocl_sim *s)
+{
+  if (!s)
+    return;
+  for (int d = 0; d < s->nparts; d++)
+    msocl__engine_destroy(s->part[d]);
+  free(s->stage);
+  free(s->pinned);
+  free(s->xfer[0]);
+  free(s->xfer[1]);
+  free(s);
+}

@@ -1,0 +1,179 @@
+/* Moving a simulation's state between host and devices, and what it
+ * reports about itself. With several devices each one's own range is read,
+ * and writes go to every device (each holds the whole state). */
+#include "config.h"
+#include "sim.h"
+
+#include <math.h>
+#include <string.h>
+
+static int read_state(msocl_sim *s, int velocities, float *xyz)
+{
+  msocl__clear_error();
+  if (!s || !xyz)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
+                       s ? "output array" : "sim");
+  for (int d = 0; d < s->nparts; d++) {
+    msocl__engine *e = s->part[d];
+    cl_mem b = velocities ? e->vel[e->r] : e->pos[e->r];
+    MSOCL__CL(clEnqueueReadBuffer(e->dev->queue, b, CL_TRUE,
+                                  (size_t)e->lo * 4 * sizeof(float),
+                                  (size_t)(e->hi - e->lo) * 4 * sizeof(float),
+                                  s->stage + 4 * (size_t)e->lo, 0, NULL,
+                                  NULL));
+  }
+  for (int i = 0; i < s->n; i++)
+    memcpy(xyz + 3 * i, s->stage + 4 * i, 3 * sizeof(float));
+  return MSOCL_OK;
+}
+
+/* The whole state into every engine's current copy; w carries the pin
+ * flag for positions, 0 for velocities. */
+static int write_state(msocl_sim *s, int velocities, const float *xyz)
+{
+  msocl__clear_error();
+  if (!s || !xyz)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
+                       s ? "input array" : "sim");
+  for (int i = 0; i < 3 * s->n; i++)
+    if (!isfinite(xyz[i]))
+      return msocl__fail(MSOCL_ERR_NOT_FINITE,
+                         "point %d: coordinate %d is %g", i / 3, i % 3,
+                         xyz[i]);
+  for (int i = 0; i < s->n; i++) {
+    memcpy(s->stage + 4 * i, xyz + 3 * i, 3 * sizeof(float));
+    s->stage[4 * i + 3] = !velocities && s->pinned[i] ? 1.0f : 0.0f;
+  }
+  for (int d = 0; d < s->nparts; d++) {
+    msocl__engine *e = s->part[d];
+    MSOCL__CL(clEnqueueWriteBuffer(e->dev->queue,
+                                   velocities ? e->vel[e->r] : e->pos[e->r],
+                                   CL_TRUE, 0, 4 * (size_t)s->n * sizeof(float),
+                                   s->stage, 0, NULL, NULL));
+    e->acc_valid = 0; /* a new state: new Verlet acceleration */
+  }
+  s->e0_valid = 0;    /* and a new baseline for the blow-up check */
+  return MSOCL_OK;
+}
+
+int msocl_sim_read_positions(msocl_sim *s, float *xyz)
+{
+  return read_state(s, 0, xyz);
+}
+
+int msocl_sim_write_positions(msocl_sim *s, const float *xyz)
+{
+  return write_state(s, 0, xyz);
+}
+
+int msocl_sim_read_velocities(msocl_sim *s, float *xyz)
+{
+  return read_state(s, 1, xyz);
+}
+
+int msocl_sim_write_velocities(msocl_sim *s, const float *xyz)
+{
+  return write_state(s, 1, xyz);
+}
+
+/* On the first device; split over several, it first receives the other
+ * ranges' positions (normals follow triangles, not springs). */
+int msocl_sim_read_normals(msocl_sim *s, float *xyz)
+{
+  msocl__clear_error();
+  if (!s || !xyz)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
+                       s ? "output array" : "sim");
+  msocl__engine *e = s->part[0];
+  if (s->nparts > 1) {
+    int rc = read_state(s, 0, xyz);
+    if (rc != MSOCL_OK)
+      return rc; /* s->stage now holds every position with its pin flag */
+    MSOCL__CL(clEnqueueWriteBuffer(e->dev->queue, e->pos[e->r], CL_TRUE, 0,
+                                   4 * (size_t)s->n * sizeof(float),
+                                   s->stage, 0, NULL, NULL));
+  }
+  int rc = msocl__arg_mem(e->k[MSOCL__K_NORMALS], 0, e->pos[e->r]);
+  if (rc == MSOCL_OK)
+    rc = msocl__launch_all(e, MSOCL__K_NORMALS);
+  if (rc != MSOCL_OK)
+    return rc;
+  MSOCL__CL(clEnqueueReadBuffer(e->dev->queue, e->normal, CL_TRUE, 0,
+                                4 * (size_t)s->n * sizeof(float), s->stage, 0,
+                                NULL, NULL));
+  for (int i = 0; i < s->n; i++)
+    memcpy(xyz + 3 * i, s->stage + 4 * i, 3 * sizeof(float));
+  return MSOCL_OK;
+}
+
+int msocl_sim_energy(msocl_sim *s, msocl_energy *e)
+{
+  msocl__clear_error();
+  if (!s || !e)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
+  return msocl__sim_energy(s, e);
+}
+
+int msocl_sim_point_count(const msocl_sim *s, int *n)
+{
+  if (!s || !n)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
+  *n = s->n;
+  return MSOCL_OK;
+}
+
+int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout)
+{
+  if (!s || !layout)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
+  *layout = s->part[0]->lay.kind;
+  return MSOCL_OK;
+}
+
+int msocl_sim_device_info(const msocl_sim *s, msocl_device_info *info)
+{
+  if (!s || !info)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
+  *info = s->part[0]->dev->info;
+  return MSOCL_OK;
+}
+
+int msocl_sim_step_count(const msocl_sim *s, long long *steps)
+{
+  if (!s || !steps)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
+  *steps = s->steps;
+  return MSOCL_OK;
+}
+
+int msocl_sim_solver_stats(const msocl_sim *s, int *iterations,
+                           double *residual)
+{
+  if (!s || !iterations || !residual)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
+  *iterations = s->part[0]->cg_iterations;
+  *residual = s->part[0]->cg_residual;
+  return MSOCL_OK;
+}
+
+int msocl_sim_split_info(const msocl_sim *s, msocl_split_info *info)
+{
+  if (!s || !info)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
+  memset(info, 0, sizeof *info);
+  info->parts = s->nparts;
+  for (int d = 0; d < s->nparts; d++) {
+    info->device[d] = s->o.device + d;
+    info->first[d] = s->part[d]->lo;
+    info->count[d] = s->part[d]->hi - s->part[d]->lo;
+    for (int e = 0; e < s->nparts; e++)
+      if (e != d && s->halo[d][e][0] < s->halo[d][e][1])
+        info->halo_points[d] += s->halo[d][e][1] - s->halo[d][e][0];
+  }
+  info->steps = s->steps;
+  info->bytes_per_step = s->steps > 0 ? s->bytes_exchanged / (double)s->steps
+                                      : 0.0;
+  info->exchange_seconds = s->exchange_seconds;
+  info->wait_seconds = s->wait_seconds;
+  return MSOCL_OK;
+}

@@ -1,0 +1,26 @@
+#!/bin/sh
+# Smoke test of msocl-bench: a tiny table1 and precision run must exit 0 and
+# write CSVs with the documented header. Asserts nothing about speed.
+# Skips (77) when there is no OpenCL device.
+./examples/msocl-devices >/dev/null 2>&1 || { echo "no OpenCL device: SKIP"; exit 77; }
+tmp=$(mktemp -d) || exit 99
+trap 'rm -rf "$tmp"' EXIT
+header='device,layout,integrator,math,grid,dt,steps,seconds,steps_per_s,vertex_steps_per_s,bytes_per_vertex_step,effective_GBps,copy_GBps,fraction_of_copy,error,status'
+fail() { echo "FAIL: $*"; exit 1; }
+
+./examples/msocl-bench table1 --quick -g 8 -s 5 --csv "$tmp/t1.csv" ||
+  fail "table1 exited $?"
+[ "$(head -n 1 "$tmp/t1.csv")" = "$header" ] || fail "table1 CSV header"
+# serial C + buffer + image2d on each device, all "ok"
+rows=$(tail -n +2 "$tmp/t1.csv" | wc -l)
+[ "$rows" -ge 3 ] || fail "table1 CSV has $rows rows"
+if tail -n +2 "$tmp/t1.csv" | grep -v ',ok$'; then fail "table1 run not ok"; fi
+
+./examples/msocl-bench precision --quick -g 5 -i symplectic,implicit \
+  -m precise --levels 2 --csv "$tmp/p.csv" || fail "precision exited $?"
+[ "$(head -n 1 "$tmp/p.csv")" = "$header" ] || fail "precision CSV header"
+# the reference row plus 2 integrators x 2 dt values
+rows=$(tail -n +2 "$tmp/p.csv" | wc -l)
+[ "$rows" -ge 5 ] || fail "precision CSV has $rows rows"
+grep -q ',reference$' "$tmp/p.csv" || fail "no reference row"
+echo "PASS"

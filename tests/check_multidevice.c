@@ -1,0 +1,305 @@
+/* One model split over several devices (PoCL's pthread devices here):
+ * bitwise the same positions and velocities as on one device, for every
+ * gather layout and explicit integrator, with even and uneven splits and
+ * splits narrower than a spring's reach. */
+#include "scenes.h"
+
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <math.h>
+#include <string.h>
+
+static msocl_runtime *rt;
+static int ndev;
+static char spec[256];
+
+static void setup(void)
+{
+  ck_assert_int_eq(msocl_runtime_create(&rt, spec), MSOCL_OK);
+}
+
+static void teardown(void)
+{
+  msocl_runtime_destroy(rt);
+  rt = NULL;
+}
+
+static const char *const inames[] = {"symplectic Euler", "explicit Euler",
+                                     "Verlet", "RK4"};
+
+/* Runs the model on `parts` devices with `weights` (NULL: equal); returns
+ * positions and velocities. */
+static void run(const msocl_model *m, msocl_integrator in, msocl_layout lay,
+                float dt, int steps, int parts, const float *weights,
+                float *pos, float *vel)
+{
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = dt;
+  o.integrator = in;
+  o.layout = lay;
+  o.ndevices = parts;
+  o.check_every = 0;
+  for (int d = 0; weights && d < parts; d++)
+    o.weights[d] = weights[d];
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, rt, m, &o);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  rc = msocl_sim_step(s, steps);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  ck_assert_int_eq(msocl_sim_read_positions(s, pos), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_read_velocities(s, vel), MSOCL_OK);
+  msocl_sim_destroy(s);
+}
+
+/* One device against `parts`, bitwise. */
+static void same_bits(const msocl_model *m, msocl_integrator in,
+                      msocl_layout lay, float dt, int steps, int parts,
+                      const float *weights, const char *what)
+{
+  int n;
+  msocl_model_point_count(m, &n);
+  size_t bytes = 3 * (size_t)n * sizeof(float);
+  float *p1 = malloc(bytes), *v1 = malloc(bytes), *pk = malloc(bytes),
+        *vk = malloc(bytes), *p0 = malloc(bytes);
+  msocl_model_get_positions(m, p0);
+  run(m, in, lay, dt, steps, 1, NULL, p1, v1);
+  run(m, in, lay, dt, steps, parts, weights, pk, vk);
+  ck_assert_msg(scene_max_diff(p0, p1, 3 * n) > 1e-4, "%s: did not move",
+                what);
+  ck_assert_msg(memcmp(p1, pk, bytes) == 0 && memcmp(v1, vk, bytes) == 0,
+                "%s, %s, %s, %d devices: positions differ by %g, velocities "
+                "by %g",
+                what, inames[in],
+                lay == MSOCL_LAYOUT_IMAGE2D ? "IMAGE2D" : "BUFFER", parts,
+                scene_max_diff(p1, pk, 3 * n), scene_max_diff(v1, vk, 3 * n));
+  free(p1); free(v1); free(pk); free(vk); free(p0);
+}
+
+/* _i: integrator * 2 + layout */
+START_TEST(tablecloth_500_steps)
+{
+  msocl_integrator in = (msocl_integrator)(_i / 2);
+  msocl_layout lay = _i % 2 ? MSOCL_LAYOUT_BUFFER : MSOCL_LAYOUT_IMAGE2D;
+  msocl_model *m = scene_tablecloth(24);
+  /* forward Euler grows without damping: a short enough step keeps its
+   * 500 steps finite */
+  float dt = scene_tablecloth_dt(24) / (in == MSOCL_EXPLICIT_EULER ? 20 : 1);
+  for (int parts = 2; parts <= ndev && parts <= 3; parts++)
+    same_bits(m, in, lay, dt, 500, parts, NULL, "tablecloth");
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Dashpots make every gather read the neighbours' velocities too. */
+START_TEST(damped_hanging_cloth)
+{
+  msocl_integrator in = (msocl_integrator)(_i / 2);
+  msocl_layout lay = _i % 2 ? MSOCL_LAYOUT_BUFFER : MSOCL_LAYOUT_IMAGE2D;
+  msocl_model *m = scene_hanging(16);
+  float dt = in == MSOCL_EXPLICIT_EULER ? 1e-4f : 1e-3f;
+  for (int parts = 2; parts <= ndev && parts <= 3; parts++)
+    same_bits(m, in, lay, dt, 500, parts, NULL, "damped hanging cloth");
+  msocl_model_destroy(m);
+}
+END_TEST
+
+START_TEST(uneven_weights)
+{
+  msocl_model *m = scene_tablecloth(24);
+  const float w2[2] = {1.0f, 3.0f}, w3[3] = {5.0f, 1.0f, 1.0f};
+  same_bits(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_BUFFER,
+            scene_tablecloth_dt(24), 500, 2, w2, "weights 1:3");
+  if (ndev >= 3)
+    same_bits(m, MSOCL_RK4, MSOCL_LAYOUT_BUFFER, scene_tablecloth_dt(24),
+              500, 3, w3, "weights 5:1:1");
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* A 16 x 6 cloth with bend springs reaches two rows (32 points) away; the
+ * middle device gets about one row, so the outer devices' halos reach
+ * across it into each other. */
+START_TEST(narrower_than_halo)
+{
+  msocl_cloth_desc d;
+  msocl_cloth_desc_init(&d);
+  d.nx = 16;
+  d.ny = 6;
+  d.damping = 1e-3f;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_cloth_grid(&m, &d), MSOCL_OK);
+  msocl_model_pin(m, 0, 1);
+  msocl_model_pin(m, 15, 1);
+  const float w[3] = {1.0f, 0.3f, 1.0f};
+  if (ndev >= 3)
+    same_bits(m, MSOCL_VERLET, MSOCL_LAYOUT_BUFFER, 2e-4f, 500, 3, w,
+              "middle range narrower than the halo");
+  else
+    same_bits(m, MSOCL_VERLET, MSOCL_LAYOUT_BUFFER, 2e-4f, 500, 2, w,
+              "uneven 1:0.3");
+  msocl_model_destroy(m);
+}
+END_TEST
+
+START_TEST(split_report_and_normals)
+{
+  msocl_model *m = scene_tablecloth(24);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = scene_tablecloth_dt(24);
+  o.ndevices = -1;
+  msocl_sim *s = NULL, *one = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  o.ndevices = 1;
+  ck_assert_int_eq(msocl_sim_create(&one, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(one, 100), MSOCL_OK);
+  msocl_split_info info;
+  ck_assert_int_eq(msocl_sim_split_info(s, &info), MSOCL_OK);
+  ck_assert_int_eq(info.parts, ndev);
+  int total = 0;
+  for (int d = 0; d < info.parts; d++) {
+    ck_assert_int_eq(info.first[d], total);
+    total += info.count[d];
+    ck_assert_double_ge(info.halo_points[d], 24); /* a row at least */
+    printf("part %d: device %d, points [%d, %d), receives %.0f points a "
+           "phase\n", d, info.device[d], info.first[d],
+           info.first[d] + info.count[d], info.halo_points[d]);
+  }
+  ck_assert_int_eq(total, 24 * 24);
+  ck_assert_double_gt(info.bytes_per_step, 0.0);
+  printf("%.0f bytes a step through the host; %.3f s exchanging, %.3f s "
+         "waiting for devices over %lld steps\n",
+         info.bytes_per_step, info.exchange_seconds, info.wait_seconds,
+         info.steps);
+  float a[3 * 576], b[3 * 576];
+  ck_assert_int_eq(msocl_sim_read_normals(s, a), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_read_normals(one, b), MSOCL_OK);
+  ck_assert(memcmp(a, b, sizeof a) == 0);
+  msocl_energy ea, eb;
+  msocl_sim_energy(s, &ea);
+  msocl_sim_energy(one, &eb);
+  ck_assert_double_eq_tol(ea.total, eb.total, 1e-5 * fabs(eb.total));
+  msocl_sim_destroy(s);
+  msocl_sim_destroy(one);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+START_TEST(refused)
+{
+  msocl_model *m = scene_tablecloth(8);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.ndevices = 2;
+  msocl_sim *s = NULL;
+  o.integrator = MSOCL_IMPLICIT_EULER;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  o.integrator = MSOCL_SYMPLECTIC_EULER;
+  o.layout = MSOCL_LAYOUT_EDGES;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  o.layout = MSOCL_LAYOUT_BUFFER;
+  o.strain = MSOCL_STRAIN_PROVOT;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  o.strain = MSOCL_STRAIN_NONE;
+  o.ndevices = ndev + 1;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_INDEX);
+  o.ndevices = 2;
+  o.weights[0] = -1.0f;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  o.weights[0] = 1e6f;
+  o.weights[1] = 1.0f; /* 64 points: the second device would get none */
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_ptr_null(s);
+  msocl_runtime *twice = NULL;
+  char dup[64];
+  msocl_device_info info;
+  msocl_runtime_device_info(rt, 0, &info);
+  snprintf(dup, sizeof dup, "%d:%d,%d:%d", info.platform_index,
+           info.device_index, info.platform_index, info.device_index);
+  ck_assert_int_eq(msocl_runtime_create(&twice, dup), MSOCL_ERR_DUP_DEVICE);
+  ck_assert_ptr_null(twice);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* A blow-up across devices rolls every device back. */
+START_TEST(unstable_rolls_back)
+{
+  msocl_model *m = scene_tablecloth(16);
+  msocl_model_set_gravity(m, 0, 0, 0);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  float limit;
+  msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
+  o.dt = 3.0f * limit;
+  o.ndevices = 2;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  float p[3 * 256], q[3 * 256];
+  msocl_model_get_positions(m, p);
+  for (int i = 0; i < 3 * 256; i++)
+    p[i] += 1e-3f * (float)((i * 7919) % 13 - 6) / 6.0f;
+  ck_assert_int_eq(msocl_sim_write_positions(s, p), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, 1000), MSOCL_ERR_UNSTABLE);
+  ck_assert_int_eq(msocl_sim_read_positions(s, q), MSOCL_OK);
+  ck_assert(memcmp(p, q, sizeof p) == 0);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* The spec naming up to three of PoCL's CPU devices. */
+static int cpu_spec(void)
+{
+  msocl_device_info *list = NULL;
+  int count = 0, found = 0;
+  if (msocl_device_list(&list, &count) != MSOCL_OK)
+    return 0;
+  spec[0] = '\0';
+  for (int i = 0; i < count && found < 3; i++)
+    if (list[i].type == MSOCL_DEVICE_CPU) {
+      size_t len = strlen(spec);
+      snprintf(spec + len, sizeof spec - len, "%s%d:%d", found ? "," : "",
+               list[i].platform_index, list[i].device_index);
+      found++;
+    }
+  free(list);
+  return found;
+}
+
+int main(void)
+{
+  /* three PoCL CPU devices unless the caller chose otherwise; must be set
+   * before the first OpenCL call */
+  setenv("POCL_DEVICES", "pthread pthread pthread", 0);
+  scene_require_device("check_multidevice");
+  ndev = cpu_spec();
+  if (ndev < 2) {
+    printf("check_multidevice: SKIP: needs two CPU devices (POCL_DEVICES="
+           "\"pthread pthread\"), found %d\n", ndev);
+    return 77;
+  }
+  printf("devices: %s\n", spec);
+  Suite *su = suite_create("multidevice");
+  TCase *tc = tcase_create("multidevice");
+  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_set_timeout(tc, 600);
+  tcase_add_loop_test(tc, tablecloth_500_steps, 0, 8);
+  tcase_add_loop_test(tc, damped_hanging_cloth, 0, 8);
+  tcase_add_test(tc, uneven_weights);
+  tcase_add_test(tc, narrower_than_halo);
+  tcase_add_test(tc, split_report_and_normals);
+  tcase_add_test(tc, refused);
+  tcase_add_test(tc, unstable_rolls_back);
+  suite_add_tcase(su, tc);
+  SRunner *sr = srunner_create(su);
+  /* PoCL hangs in fork()ed children once the parent has used OpenCL. */
+  srunner_set_fork_status(sr, CK_NOFORK);
+  srunner_run_all(sr, CK_NORMAL);
+  int failed = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}
