@@ -352,6 +352,29 @@ MSOCL_EXTERN int msocl_sim_split_info(const msocl_sim *s,
 MSOCL_EXTERN int msocl_stable_dt(const msocl_model *m,
                                  msocl_integrator integrator, float *dt);
 
+/* --------------------------------------------------------------- batches */
+
+/* Many independent simulations (say 64 small cloths) spread over the
+ * runtime's devices, stepped together: each device works through its
+ * share while the others work through theirs. */
+typedef struct msocl_batch msocl_batch;
+
+/* count models, each with options o (dt, layout, integrator, ...; o's
+ * device and ndevices are ignored: simulation i goes to device
+ * i mod devices). */
+MSOCL_EXTERN int msocl_batch_create(msocl_batch **b, msocl_runtime *rt,
+                                    int count,
+                                    const msocl_model *const *models,
+                                    const msocl_sim_options *o);
+MSOCL_EXTERN void msocl_batch_destroy(msocl_batch *b);
+/* n steps of every simulation; on a blow-up, the others still finish
+ * their steps and the first error is returned (its message names the
+ * simulation). */
+MSOCL_EXTERN int msocl_batch_step(msocl_batch *b, int n);
+MSOCL_EXTERN int msocl_batch_count(const msocl_batch *b, int *count);
+/* Simulation i, to read or write its state (owned by the batch). */
+MSOCL_EXTERN int msocl_batch_sim(msocl_batch *b, int i, msocl_sim **s);
+
 /* ------------------------------------------------------------- reference */
 
 /* The same model and step on the host in double precision: the yardstick

@@ -101,6 +101,13 @@ int msocl__integrate(msocl__engine *s, int n);
  * simulation. */
 int msocl__energy(msocl__engine *s, msocl_energy *e);
 int msocl__sim_energy(msocl_sim *s, msocl_energy *e);
+/* Stepping pieces (sim_step.c) for batches of simulations: a checked
+ * batch is begin (save, queue the steps) then end (check, restore past the
+ * bound); unchecked, just queue; finish waits for the devices. */
+int msocl__batch_begin(msocl_sim *s, int batch, long long *first);
+int msocl__batch_end(msocl_sim *s, long long first);
+int msocl__sim_steps(msocl_sim *s, int n);
+int msocl__sim_finish(msocl_sim *s);
 /* Sets argument i of kernel k to a buffer, a float, an int. */
 int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m);
 int msocl__arg_float(cl_kernel k, cl_uint i, float f);

@@ -161,41 +161,50 @@ static int backup(msocl_sim *s, int to_backup)
   return MSOCL_OK;
 }
 
-/* Runs `n` steps in batches of check_every, each followed by the check;
- * a failed check restores the state saved before its batch. */
-static int checked_steps(msocl_sim *s, int n)
+/* A checked batch, in two halves so that many simulations can run theirs
+ * at once: begin saves the state and queues the steps; end checks the
+ * energy and, past the bound, restores the saved state. */
+int msocl__batch_begin(msocl_sim *s, int batch, long long *first)
 {
   int rc = s->e0_valid ? MSOCL_OK : baseline(s);
-  for (int done = 0; rc == MSOCL_OK && done < n;) {
-    int batch = n - done < s->o.check_every ? n - done : s->o.check_every;
-    long long first = s->steps;
+  *first = s->steps;
+  if (rc == MSOCL_OK)
     rc = backup(s, 1);
-    if (rc == MSOCL_OK)
-      rc = steps(s, batch);
-    msocl_energy e;
-    if (rc == MSOCL_OK)
-      rc = msocl__sim_energy(s, &e);
-    if (rc != MSOCL_OK)
-      return rc;
-    double bound = s->e0 + s->o.energy_factor * s->escale;
-    if (!isfinite(e.total) || e.total > bound) {
-      rc = backup(s, 0);
-      s->steps = first;
-      if (rc == MSOCL_OK)
-        rc = finish_all(s);
-      if (rc != MSOCL_OK)
-        return rc;
-      return msocl__fail(
-          MSOCL_ERR_UNSTABLE,
-          "blew up between steps %lld and %lld (dt = %g): total energy %g J "
-          "against %g J at the start (bound %g J); state restored to step "
-          "%lld; msocl_stable_dt() gives a safe step",
-          first, first + batch, (double)s->o.dt, e.total, s->e0, bound,
-          first);
-    }
-    done += batch;
-  }
-  return rc;
+  return rc == MSOCL_OK ? steps(s, batch) : rc;
+}
+
+int msocl__batch_end(msocl_sim *s, long long first)
+{
+  msocl_energy e;
+  int rc = msocl__sim_energy(s, &e);
+  if (rc != MSOCL_OK)
+    return rc;
+  double bound = s->e0 + s->o.energy_factor * s->escale;
+  if (isfinite(e.total) && e.total <= bound)
+    return MSOCL_OK;
+  long long last = s->steps;
+  rc = backup(s, 0);
+  s->steps = first;
+  if (rc == MSOCL_OK)
+    rc = finish_all(s);
+  if (rc != MSOCL_OK)
+    return rc;
+  return msocl__fail(
+      MSOCL_ERR_UNSTABLE,
+      "blew up between steps %lld and %lld (dt = %g): total energy %g J "
+      "against %g J at the start (bound %g J); state restored to step %lld; "
+      "msocl_stable_dt() gives a safe step",
+      first, last, (double)s->o.dt, e.total, s->e0, bound, first);
+}
+
+int msocl__sim_steps(msocl_sim *s, int n)
+{
+  return steps(s, n);
+}
+
+int msocl__sim_finish(msocl_sim *s)
+{
+  return finish_all(s);
 }
 
 int msocl_sim_step(msocl_sim *s, int n)
@@ -205,8 +214,16 @@ int msocl_sim_step(msocl_sim *s, int n)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
   if (n < 0)
     return msocl__fail(MSOCL_ERR_BAD_COUNT, "step count %d is negative", n);
-  int rc = s->o.check_every > 0 ? checked_steps(s, n) : steps(s, n);
-  if (rc != MSOCL_OK)
-    return rc;
-  return finish_all(s);
+  int rc = MSOCL_OK;
+  if (s->o.check_every <= 0)
+    rc = steps(s, n);
+  for (int done = 0; s->o.check_every > 0 && rc == MSOCL_OK && done < n;) {
+    int batch = n - done < s->o.check_every ? n - done : s->o.check_every;
+    long long first;
+    rc = msocl__batch_begin(s, batch, &first);
+    if (rc == MSOCL_OK)
+      rc = msocl__batch_end(s, first);
+    done += batch;
+  }
+  return rc == MSOCL_OK ? finish_all(s) : rc;
 }

@@ -251,6 +251,76 @@ START_TEST(unstable_rolls_back)
 }
 END_TEST
 
+/* 64 small cloths spread over the devices, stepped by one call: each ends
+ * bitwise where it ends alone on the first device; one with an unstable
+ * step fails alone, named, while the others finish. */
+START_TEST(batch_of_64)
+{
+  enum { COUNT = 64 };
+  msocl_model *models[COUNT];
+  for (int i = 0; i < COUNT; i++) {
+    msocl_cloth_desc d;
+    msocl_cloth_desc_init(&d);
+    d.nx = 8;
+    d.ny = 6 + i % 5;
+    d.k_stretch = 500.0f + 10.0f * (float)i;
+    ck_assert_int_eq(msocl_model_cloth_grid(&models[i], &d), MSOCL_OK);
+    msocl_model_pin(models[i], 0, 1);
+    msocl_model_pin(models[i], i % 8, 1);
+  }
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = 2e-4f;
+  msocl_batch *b = NULL;
+  ck_assert_int_eq(msocl_batch_create(&b, rt, COUNT,
+                                      (const msocl_model *const *)models, &o),
+                   MSOCL_OK);
+  ck_assert_int_eq(msocl_batch_step(b, 300), MSOCL_OK);
+  for (int i = 0; i < COUNT; i += 7) {
+    msocl_sim *s = NULL, *alone = NULL;
+    ck_assert_int_eq(msocl_batch_sim(b, i, &s), MSOCL_OK);
+    msocl_device_info info;
+    msocl_sim_device_info(s, &info);
+    ck_assert_int_eq(msocl_sim_create(&alone, rt, models[i], &o), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_step(alone, 300), MSOCL_OK);
+    float p[3 * 80], q[3 * 80];
+    int n;
+    msocl_sim_point_count(s, &n);
+    msocl_sim_read_positions(s, p);
+    msocl_sim_read_positions(alone, q);
+    ck_assert(memcmp(p, q, 3 * (size_t)n * sizeof(float)) == 0);
+    msocl_sim_destroy(alone);
+  }
+  msocl_batch_destroy(b);
+  /* one unstable member */
+  msocl_model_set_gravity(models[5], 0, 0, 0);
+  msocl_model_destroy(models[9]);
+  msocl_cloth_desc d;
+  msocl_cloth_desc_init(&d);
+  d.nx = d.ny = 8;
+  d.k_stretch = 1e7f; /* far too stiff for dt = 2e-4 */
+  msocl_model_cloth_grid(&models[9], &d);
+  ck_assert_int_eq(msocl_batch_create(&b, rt, COUNT,
+                                      (const msocl_model *const *)models, &o),
+                   MSOCL_OK);
+  ck_assert_int_eq(msocl_batch_step(b, 300), MSOCL_ERR_UNSTABLE);
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "batch simulation 9:"));
+  msocl_sim *other = NULL;
+  long long steps;
+  msocl_batch_sim(b, 10, &other);
+  msocl_sim_step_count(other, &steps);
+  ck_assert_int_eq(steps, 300);
+  msocl_batch_destroy(b);
+  ck_assert_int_eq(msocl_batch_create(&b, rt, 0, NULL, &o),
+                   MSOCL_ERR_NULL_HANDLE);
+  ck_assert_int_eq(msocl_batch_create(&b, rt, 0,
+                                      (const msocl_model *const *)models, &o),
+                   MSOCL_ERR_BAD_COUNT);
+  for (int i = 0; i < COUNT; i++)
+    msocl_model_destroy(models[i]);
+}
+END_TEST
+
 /* The spec naming up to three of PoCL's CPU devices. */
 static int cpu_spec(void)
 {
@@ -294,6 +364,7 @@ int main(void)
   tcase_add_test(tc, split_report_and_normals);
   tcase_add_test(tc, refused);
   tcase_add_test(tc, unstable_rolls_back);
+  tcase_add_test(tc, batch_of_64);
   suite_add_tcase(su, tc);
   SRunner *sr = srunner_create(su);
   /* PoCL hangs in fork()ed children once the parent has used OpenCL. */
