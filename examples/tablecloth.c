@@ -3,7 +3,7 @@
  *
  *   tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l auto|image2d|buffer|edges]
  *              [-m precise|relaxed] [-i symplectic|explicit|verlet|rk4|implicit]
- *              [-S none|provot|velocity] [-o OUT.obj]
+ *              [-S none|provot|velocity] [-p PARTS] [-o OUT.obj]
  */
 #include <msocl.h>
 
@@ -27,7 +27,8 @@ static int usage(const char *argv0)
           "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
           "[-l auto|image2d|buffer|edges] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
-          "[-S none|provot|velocity] [-o OUT.obj]\n",
+          "[-S none|provot|velocity] [-p PARTS] [-o OUT.obj]\n"
+          "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n",
           argv0);
   return 2;
 }
@@ -97,7 +98,7 @@ int main(int argc, char **argv)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   int in = 0, strain = 0;
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:h")) != -1) {
+  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:h")) != -1) {
     switch (opt) {
     case 'n': n = atoi(optarg); break;
     case 's': steps = atoi(optarg); break;
@@ -119,6 +120,7 @@ int main(int argc, char **argv)
       if ((in = pick(optarg, integrators, 5)) < 0) return usage(argv[0]);
       o.integrator = (msocl_integrator)in;
       break;
+    case 'p': o.ndevices = atoi(optarg); break;
     case 'S':
       if ((strain = pick(optarg, strains, 3)) < 0) return usage(argv[0]);
       o.strain = (msocl_strain)strain;
@@ -161,6 +163,11 @@ int main(int argc, char **argv)
          integrators[in], strains[strain]);
   printf("grid %dx%d, %d steps of %.3g s (setup %.3f s)\n", n, n, steps,
          (double)o.dt, t1 - t0);
+  msocl_split_info split;
+  msocl_sim_split_info(s, &split);
+  for (int d = 0; split.parts > 1 && d < split.parts; d++)
+    printf("part %d: device %d, points [%d, %d)\n", d, split.device[d],
+           split.first[d], split.first[d] + split.count[d]);
 
   /* One warm-up step keeps first-launch costs out of the timing. */
   rc = msocl_sim_step(s, 1);
@@ -187,6 +194,13 @@ int main(int argc, char **argv)
     printf("%.3f s: %.1f steps/s, %.3g vertex-steps/s\n", secs,
            secs > 0 ? steps / secs : 0.0,
            secs > 0 ? (double)steps * n * n / secs : 0.0);
+    if (split.parts > 1) {
+      msocl_sim_split_info(s, &split);
+      printf("exchange: %.0f bytes a step through the host; host time "
+             "%.3f s in transfers, %.3f s waiting for the devices\n",
+             split.bytes_per_step, split.exchange_seconds,
+             split.wait_seconds);
+    }
     printf("wrote %s\n", out);
   } else {
     fail("simulating", rc);
