@@ -6,18 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-static msocl_runtime *rt;
-
-static void setup(void)
-{
-  ck_assert_int_eq(msocl_runtime_create(&rt, "cpu"), MSOCL_OK);
-}
-
-static void teardown(void)
-{
-  msocl_runtime_destroy(rt);
-  rt = NULL;
-}
+#define rt scene_rt
 
 /* Max position difference between device and reference after `steps`;
  * also checks the reference moved at least `moved` from the start. */
@@ -131,18 +120,12 @@ int main(void)
   scene_require_device("check_accuracy");
   Suite *su = suite_create("accuracy");
   TCase *tc = tcase_create("accuracy");
-  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_checked_fixture(tc, scene_setup_cpu, scene_teardown);
   tcase_set_timeout(tc, 300);
   tcase_add_test(tc, hanging_cloth_one_second);
   tcase_add_test(tc, tablecloth_with_contact);
   tcase_add_test(tc, relaxed_math_bounded);
   tcase_add_test(tc, reference_rejects_bad_input);
   suite_add_tcase(su, tc);
-  SRunner *sr = srunner_create(su);
-  /* PoCL hangs in fork()ed children once the parent has used OpenCL. */
-  srunner_set_fork_status(sr, CK_NOFORK);
-  srunner_run_all(sr, CK_NORMAL);
-  int failed = srunner_ntests_failed(sr);
-  srunner_free(sr);
-  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+  return scene_run(su);
 }

@@ -9,18 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-static msocl_runtime *rt;
-
-static void setup(void)
-{
-  ck_assert_int_eq(msocl_runtime_create(&rt, "cpu"), MSOCL_OK);
-}
-
-static void teardown(void)
-{
-  msocl_runtime_destroy(rt);
-  rt = NULL;
-}
+#define rt scene_rt
 
 /* Max position difference EDGES vs BUFFER after `steps`; also compares
  * the energies the two compute (per-spring and per-point sums). */
@@ -132,18 +121,12 @@ int main(void)
   scene_require_device("check_edges");
   Suite *su = suite_create("edges");
   TCase *tc = tcase_create("edges");
-  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_checked_fixture(tc, scene_setup_cpu, scene_teardown);
   tcase_set_timeout(tc, 300);
   tcase_add_test(tc, hanging_cloth);
   tcase_add_test(tc, tablecloth);
   tcase_add_test(tc, lattice_degree_24);
   tcase_add_test(tc, only_symplectic);
   suite_add_tcase(su, tc);
-  SRunner *sr = srunner_create(su);
-  /* PoCL hangs in fork()ed children once the parent has used OpenCL. */
-  srunner_set_fork_status(sr, CK_NOFORK);
-  srunner_run_all(sr, CK_NORMAL);
-  int failed = srunner_ntests_failed(sr);
-  srunner_free(sr);
-  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+  return scene_run(su);
 }

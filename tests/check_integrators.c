@@ -179,11 +179,5 @@ int main(void)
   tcase_add_loop_test(tc, device_matches_reference, 0, 5);
   tcase_add_loop_test(tc, convergence_order, 0, 5);
   suite_add_tcase(su, tc);
-  SRunner *sr = srunner_create(su);
-  /* PoCL hangs in fork()ed children once the parent has used OpenCL. */
-  srunner_set_fork_status(sr, CK_NOFORK);
-  srunner_run_all(sr, CK_NORMAL);
-  int failed = srunner_ntests_failed(sr);
-  srunner_free(sr);
-  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+  return scene_run(su);
 }

@@ -6,18 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static msocl_runtime *rt;
-
-static void setup(void)
-{
-  ck_assert_int_eq(msocl_runtime_create(&rt, "cpu"), MSOCL_OK);
-}
-
-static void teardown(void)
-{
-  msocl_runtime_destroy(rt);
-  rt = NULL;
-}
+#define rt scene_rt
 
 /* Runs `steps` steps of a model on one layout; returns positions and
  * velocities (caller frees). */
@@ -145,18 +134,12 @@ int main(void)
   scene_require_device("check_layout");
   Suite *su = suite_create("layout");
   TCase *tc = tcase_create("layouts");
-  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_checked_fixture(tc, scene_setup_cpu, scene_teardown);
   tcase_set_timeout(tc, 300);
   tcase_add_test(tc, tablecloth_bitwise);
   tcase_add_test(tc, damped_pinned_bitwise);
   tcase_add_test(tc, degree_limit);
   tcase_add_test(tc, auto_is_buffer_on_cpu);
   suite_add_tcase(su, tc);
-  SRunner *sr = srunner_create(su);
-  /* PoCL hangs in fork()ed children once the parent has used OpenCL. */
-  srunner_set_fork_status(sr, CK_NOFORK);
-  srunner_run_all(sr, CK_NORMAL);
-  int failed = srunner_ntests_failed(sr);
-  srunner_free(sr);
-  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+  return scene_run(su);
 }

@@ -366,11 +366,5 @@ int main(void)
   tcase_add_test(tc, unstable_rolls_back);
   tcase_add_test(tc, batch_of_64);
   suite_add_tcase(su, tc);
-  SRunner *sr = srunner_create(su);
-  /* PoCL hangs in fork()ed children once the parent has used OpenCL. */
-  srunner_set_fork_status(sr, CK_NOFORK);
-  srunner_run_all(sr, CK_NORMAL);
-  int failed = srunner_ntests_failed(sr);
-  srunner_free(sr);
-  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+  return scene_run(su);
 }

@@ -8,18 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static msocl_runtime *rt;
-
-static void setup(void)
-{
-  ck_assert_int_eq(msocl_runtime_create(&rt, "cpu"), MSOCL_OK);
-}
-
-static void teardown(void)
-{
-  msocl_runtime_destroy(rt);
-  rt = NULL;
-}
+#define rt scene_rt
 
 static msocl_sim *make_sim(const msocl_model *m, float dt)
 {
@@ -272,7 +261,7 @@ int main(void)
   scene_require_device("check_physics");
   Suite *su = suite_create("physics");
   TCase *tc = tcase_create("physics");
-  tcase_add_checked_fixture(tc, setup, teardown);
+  tcase_add_checked_fixture(tc, scene_setup_cpu, scene_teardown);
   tcase_set_timeout(tc, 300);
   tcase_add_test(tc, spring_period);
   tcase_add_test(tc, pinned_never_move);
@@ -282,11 +271,5 @@ int main(void)
   tcase_add_test(tc, normals_of_flat_cloth);
   tcase_add_test(tc, air_resistance);
   suite_add_tcase(su, tc);
-  SRunner *sr = srunner_create(su);
-  /* PoCL hangs in fork()ed children once the parent has used OpenCL. */
-  srunner_set_fork_status(sr, CK_NOFORK);
-  srunner_run_all(sr, CK_NORMAL);
-  int failed = srunner_ntests_failed(sr);
-  srunner_free(sr);
-  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+  return scene_run(su);
 }

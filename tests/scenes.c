@@ -87,6 +87,29 @@ void scene_require_device(const char *program)
   }
 }
 
+msocl_runtime *scene_rt;
+
+void scene_setup_cpu(void)
+{
+  ck_assert_int_eq(msocl_runtime_create(&scene_rt, "cpu"), MSOCL_OK);
+}
+
+void scene_teardown(void)
+{
+  msocl_runtime_destroy(scene_rt);
+  scene_rt = NULL;
+}
+
+int scene_run(Suite *su)
+{
+  SRunner *sr = srunner_create(su);
+  srunner_set_fork_status(sr, CK_NOFORK);
+  srunner_run_all(sr, CK_NORMAL);
+  int failed = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+}
+
 double scene_max_diff(const float *a, const float *b, int n)
 {
   double m = 0.0;

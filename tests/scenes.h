@@ -20,6 +20,16 @@ double scene_table_gap(const float *p);
  * otherwise returns. Call in main() before srunner_run_all. */
 void scene_require_device(const char *program);
 
+/* A runtime on the first CPU device, for checked fixtures. */
+extern msocl_runtime *scene_rt;
+void scene_setup_cpu(void);
+void scene_teardown(void);
+
+/* Runs a suite without forking (PoCL hangs in fork()ed children once the
+ * parent has used OpenCL); returns the exit status. */
+#include <check.h>
+int scene_run(Suite *su);
+
 /* max |a - b| over n floats. */
 double scene_max_diff(const float *a, const float *b, int n);
 
