@@ -2,6 +2,7 @@
  * bitwise the same positions and velocities as on one device, for every
  * gather layout and explicit integrator, with even and uneven splits and
  * splits narrower than a spring's reach. */
+#include "internal.h" /* to take a device's image support away */
 #include "scenes.h"
 
 #include <check.h>
@@ -225,6 +226,28 @@ START_TEST(refused)
 }
 END_TEST
 
+/* Devices without a feature the model needs: a split IMAGE2D model on a
+ * runtime whose second device lacks images (PoCL's have them, so this
+ * test takes the flag away) is refused, naming the device. */
+START_TEST(device_without_images)
+{
+  msocl_model *m = scene_tablecloth(8);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.layout = MSOCL_LAYOUT_IMAGE2D;
+  o.ndevices = 2;
+  rt->dev[1].info.image_support = 0;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_NO_IMAGES);
+  ck_assert_ptr_null(s);
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), rt->dev[1].info.name));
+  o.layout = MSOCL_LAYOUT_BUFFER; /* needs no images */
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 /* A blow-up across devices rolls every device back. */
 START_TEST(unstable_rolls_back)
 {
@@ -365,6 +388,7 @@ int main(void)
   tcase_add_test(tc, refused);
   tcase_add_test(tc, unstable_rolls_back);
   tcase_add_test(tc, batch_of_64);
+  tcase_add_test(tc, device_without_images);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }
