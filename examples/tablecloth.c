@@ -3,7 +3,7 @@
  *
  *   tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l auto|image2d|buffer|edges]
  *              [-m precise|relaxed] [-i symplectic|explicit|verlet|rk4|implicit]
- *              [-S none|provot|velocity] [-p PARTS] [-o OUT.obj]
+ *              [-S none|provot|velocity] [-p PARTS [-c STEPS]] [-o OUT.obj]
  */
 #include <msocl.h>
 
@@ -27,8 +27,9 @@ static int usage(const char *argv0)
           "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
           "[-l auto|image2d|buffer|edges] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
-          "[-S none|provot|velocity] [-p PARTS] [-o OUT.obj]\n"
-          "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n",
+          "[-S none|provot|velocity] [-p PARTS [-c STEPS]] [-o OUT.obj]\n"
+          "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n"
+          "  -c: weigh the devices by a calibration run of STEPS steps\n",
           argv0);
   return 2;
 }
@@ -98,7 +99,7 @@ int main(int argc, char **argv)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   int in = 0, strain = 0;
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:h")) != -1) {
+  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:h")) != -1) {
     switch (opt) {
     case 'n': n = atoi(optarg); break;
     case 's': steps = atoi(optarg); break;
@@ -121,6 +122,7 @@ int main(int argc, char **argv)
       o.integrator = (msocl_integrator)in;
       break;
     case 'p': o.ndevices = atoi(optarg); break;
+    case 'c': o.calibrate_steps = atoi(optarg); break;
     case 'S':
       if ((strain = pick(optarg, strains, 3)) < 0) return usage(argv[0]);
       o.strain = (msocl_strain)strain;
@@ -166,8 +168,9 @@ int main(int argc, char **argv)
   msocl_split_info split;
   msocl_sim_split_info(s, &split);
   for (int d = 0; split.parts > 1 && d < split.parts; d++)
-    printf("part %d: device %d, points [%d, %d)\n", d, split.device[d],
-           split.first[d], split.first[d] + split.count[d]);
+    printf("part %d: device %d, weight %.3g, points [%d, %d)\n", d,
+           split.device[d], (double)split.weight[d], split.first[d],
+           split.first[d] + split.count[d]);
 
   /* One warm-up step keeps first-launch costs out of the timing. */
   rc = msocl_sim_step(s, 1);

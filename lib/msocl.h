@@ -280,6 +280,9 @@ typedef struct {
    * one), sized by `weights` (all 0: equal shares). */
   int ndevices;
   float weights[16];
+  /* > 0 and all weights 0: weigh the devices by their speed on this model,
+   * from a calibration run of this many steps on each device alone. */
+  int calibrate_steps;
   msocl_integrator integrator;
   msocl_strain strain;
   float strain_limit;    /* allowed elongation over rest length (0.1 = 10%) */
@@ -335,6 +338,7 @@ typedef struct {
   int parts;                   /* devices the model runs on */
   int device[16];              /* each part's index in the runtime */
   int first[16], count[16];    /* the points each part advances */
+  float weight[16];            /* its share (given or calibrated) */
   double halo_points[16];      /* points each part receives a step */
   double bytes_per_step;       /* exchanged through the host, each way */
   double exchange_seconds;     /* host time in reads and writes */

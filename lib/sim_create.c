@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
 {
@@ -77,6 +78,9 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
                        "the EDGES layout runs symplectic Euler without strain "
                        "limiting (its per-spring pass feeds one velocity "
                        "update); use BUFFER for other methods");
+  if (o->calibrate_steps < 0)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "calibrate_steps %d is negative",
+                       o->calibrate_steps);
   if (o->check_every < 0 || !(o->energy_factor > 0.0f) ||
       !isfinite(o->energy_factor))
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
@@ -106,6 +110,41 @@ static void scene_scale(msocl_sim *s, const msocl_model *m)
   s->extent = sqrt(d2);
 }
 
+
+static double now(void)
+{
+  struct timespec t;
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* Weighs each device by its speed: the whole model for `steps` steps on
+ * it alone (after one untimed step, which builds and warms up). */
+static int calibrate(msocl_sim *s, msocl_runtime *rt, const msocl_model *m)
+{
+  msocl_sim_options o = s->o;
+  o.check_every = 0;
+  for (int d = 0; d < s->nparts; d++) {
+    msocl__engine *e = NULL;
+    int rc = msocl__engine_create(&e, (struct msocl__device *)&rt->dev[o.device + d],
+                                  m, &o, 0, m->n);
+    if (rc == MSOCL_OK)
+      rc = msocl__integrate(e, 1);
+    if (rc == MSOCL_OK && clFinish(e->dev->queue) != CL_SUCCESS)
+      rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "calibration failed");
+    double t0 = now();
+    if (rc == MSOCL_OK)
+      rc = msocl__integrate(e, o.calibrate_steps);
+    if (rc == MSOCL_OK && clFinish(e->dev->queue) != CL_SUCCESS)
+      rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "calibration failed");
+    double t = now() - t0;
+    msocl__engine_destroy(e);
+    if (rc != MSOCL_OK)
+      return rc;
+    s->o.weights[d] = (float)(1.0 / (t > 1e-9 ? t : 1e-9));
+  }
+  return MSOCL_OK;
+}
 
 /* Contiguous ranges sized by the weights (all 0: equal). */
 static int partition(msocl_sim *s, const msocl_model *m)
@@ -200,6 +239,16 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
   }
   memcpy(s->pinned, m->pinned, (size_t)m->n);
+  int weighed = 0;
+  for (int d = 0; d < s->nparts; d++)
+    weighed |= o.weights[d] > 0.0f;
+  if (s->nparts > 1 && !weighed && o.calibrate_steps > 0) {
+    rc = calibrate(s, rt, m);
+    if (rc != MSOCL_OK) {
+      msocl_sim_destroy(s);
+      return rc;
+    }
+  }
   rc = partition(s, m);
   if (rc == MSOCL_OK)
     plan_halos(s, m);

@@ -248,6 +248,41 @@ START_TEST(device_without_images)
 }
 END_TEST
 
+/* Weights from a calibration run: positive, reported, and the split
+ * still gives one device's bits. */
+START_TEST(calibrated_weights)
+{
+  msocl_model *m = scene_tablecloth(24);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = scene_tablecloth_dt(24);
+  o.ndevices = 2;
+  o.calibrate_steps = 20;
+  o.check_every = 0;
+  msocl_sim *s = NULL, *one = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  msocl_split_info info;
+  msocl_sim_split_info(s, &info);
+  printf("calibrated weights %.3g : %.3g -> %d and %d points\n",
+         info.weight[0], info.weight[1], info.count[0], info.count[1]);
+  ck_assert(info.weight[0] > 0.0f && info.weight[1] > 0.0f);
+  ck_assert_int_eq(info.count[0] + info.count[1], 576);
+  o.ndevices = 1;
+  ck_assert_int_eq(msocl_sim_create(&one, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, 200), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(one, 200), MSOCL_OK);
+  float a[3 * 576], b[3 * 576];
+  msocl_sim_read_positions(s, a);
+  msocl_sim_read_positions(one, b);
+  ck_assert(memcmp(a, b, sizeof a) == 0);
+  msocl_sim_destroy(s);
+  msocl_sim_destroy(one);
+  o.calibrate_steps = -1;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 /* A blow-up across devices rolls every device back. */
 START_TEST(unstable_rolls_back)
 {
@@ -389,6 +424,7 @@ int main(void)
   tcase_add_test(tc, unstable_rolls_back);
   tcase_add_test(tc, batch_of_64);
   tcase_add_test(tc, device_without_images);
+  tcase_add_test(tc, calibrated_weights);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }
