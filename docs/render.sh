@@ -1,12 +1,13 @@
 #!/bin/sh
-# Renders a scene's final mesh (an OBJ the examples write) to a PNG with
-# gnuplot: the mesh's faces as lit polygons, with the scene's collider.
+# Renders a scene's final mesh (an OBJ the examples write) to an 800 x 600
+# PNG with gnuplot: the mesh's faces lit, with the scene's collider.
 #
 #   docs/render.sh tablecloth|jello|ball IN.obj OUT.png
 #
-# tablecloth: the round table (radius 0.35 m, top at y = 0) under the cloth;
-# jello, ball: the ground, y = 0. Needs gnuplot 5.4 or later
-# (apt-get install gnuplot-nox). The OBJ's y axis is up.
+# tablecloth: the round table of examples/tablecloth (radius 0.35 m, top at
+# y = 0) under the cloth; jello, ball: the ground y = 0, darkened under the
+# body as if lit from above. The OBJ's y axis is up. Needs gnuplot 5.4
+# (apt-get install gnuplot-nox); uses pngcairo when there is one.
 set -eu
 
 usage() {
@@ -24,22 +25,26 @@ command -v gnuplot >/dev/null 2>&1 ||
   { echo "$0: gnuplot not found (apt-get install gnuplot-nox)" >&2; exit 1; }
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/msocl-render.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT INT TERM
+trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' HUP INT TERM
 
-# gnuplot's pm3d lights grid surfaces (its "with polygons" shades level
-# faces wrongly in 5.4), so every face goes out as a 2 x 2 grid of its own:
-# quad(p, q, r, s) prints the scans "p q" and "s r". A triangle a b c is
-# the quadrangle a b m c, m the middle of b c: pm3d leaves a quadrangle
-# with a repeated corner unlit, and takes its normal from three corners,
-# which must not lie on a line. Larger faces are cut into a fan.
-# OBJ (x, y, z) becomes gnuplot (x, -z, y), a rotation that puts y up.
-# Faces may be "f a b c", "f a/t b/t c/t" or "f a//n b//n c//n"; negative
-# indices count back from the last vertex.
+# pm3d lights grid surfaces (its "with polygons" shades level faces wrongly
+# in 5.4), so every face goes out as a 2 x 2 grid of its own, corners
+# "x y z colour": quad(p, q, r, s) prints the scans "p q" and "s r". A
+# triangle a b c is the quadrangle a b m c, m the middle of b c: pm3d
+# leaves a quadrangle with a repeated corner unlit, and takes its normal
+# from three corners, which must not lie on a line. Larger faces are cut
+# into a fan. Colours are palette values (pm3d lights no "fc rgb"): 0 to 1
+# the collider, 1 to 2 the ground's darker tiles, 2.5 the mesh.
 quad='function quad(p, q, r, s) { printf "%s\n%s\n\n%s\n%s\n\n\n", p, q, s, r }'
+
+# The mesh. OBJ (x, y, z) becomes gnuplot (x, -z, y), a rotation that puts
+# y up. Faces may be "f a b c", "f a/t b/t c/t" or "f a//n b//n c//n";
+# negative indices count back from the last vertex.
 awk "$quad"'
-  function at(i) { return x[i] " " y[i] " " z[i] }
+  function at(i) { return x[i] " " y[i] " " z[i] " 2.5" }
   function mid(i, j) {
-    return (x[i] + x[j]) / 2 " " (y[i] + y[j]) / 2 " " (z[i] + z[j]) / 2
+    return (x[i] + x[j]) / 2 " " (y[i] + y[j]) / 2 " " (z[i] + z[j]) / 2 " 2.5"
   }
   $1 == "v" { n++; x[n] = $2; y[n] = -$4; z[n] = $3; next }
   $1 == "f" {
@@ -57,16 +62,16 @@ awk "$quad"'
 [ -s "$tmp/mesh.dat" ] || { echo "$0: no faces in $obj" >&2; exit 1; }
 
 # The collider, in pieces about as small as the mesh's faces: pm3d sorts
-# faces by the depth of their centres, right only for small ones.
+# faces by the depth of their centres, which is right only for small ones.
 if [ "$scene" = tablecloth ]; then
-  # The round table: its side from the top down to -0.75 m, and its top in
-  # rings; drawn 2 cm inside and 1 cm below the true surface, where the
-  # cloth lies on it.
+  # The table: its side from the top down to -0.6 m, and its top in rings;
+  # drawn 2 cm inside and 1 cm below the true surface, where the cloth
+  # lies on it.
   awk "$quad"'
-    function at(rad, a, h) { return rad * cos(a) " " rad * sin(a) " " h }
+    function at(rad, a, h) { return rad * cos(a) " " rad * sin(a) " " h " 0.5" }
     BEGIN {
-      pi = atan2(0, -1); r = 0.33; top = -0.01; bottom = -0.75
-      m = 144; rows = 50; rings = 22
+      pi = atan2(0, -1); r = 0.33; top = -0.01; bottom = -0.6
+      m = 144; rows = 40; rings = 22
       for (k = 0; k < m; k++) {
         a0 = 2 * pi * k / m; a1 = 2 * pi * (k + 1) / m
         for (j = 0; j < rows; j++) {
@@ -79,43 +84,59 @@ if [ "$scene" = tablecloth ]; then
                at(r * (j + 1) / rings, a1, top), at(r * j / rings, a1, top))
       }
     }' >"$tmp/collider.dat"
-  view="62, 28, 1.35" mesh_colour="#b8323a" collider_colour="#8a6a4a"
+  view="64, 28, 1.5"
+  palette='0 "#8a6a4a", 1 "#8a6a4a", 1 "#000000", 2 "#000000"'
+  mesh_colour="#b8323a"
 else
-  # The ground: a checkered square of 2 cm tiles, a file per colour.
+  # The ground: a square checkered in 2 cm tiles, in 1 cm pieces, each
+  # darker the nearer its centre lies to the body's points seen from above
+  # (full shade within 1.5 cm of one, none beyond 6 cm).
   half=0.2
   [ "$scene" = ball ] && half=0.24
-  awk -v h="$half" -v out="$tmp/collider" '
-    function at(x, y) { return x " " y " 0" }
-    BEGIN {
-      s = 0.02; m = int(2 * h / s + 0.5)
+  awk -v half="$half" "$quad"'
+    function at(x, y) { return x " " y " 0 " colour }
+    $1 == "v" { n++; px[n] = $2; py[n] = -$4 }
+    END {
+      s = 0.01; m = int(2 * half / s + 0.5)
       for (i = 0; i < m; i++)
         for (j = 0; j < m; j++) {
-          x = -h + i * s; y = -h + j * s
-          f = out ((i + j) % 2 ? "2.dat" : ".dat")
-          printf "%s\n%s\n\n%s\n%s\n\n\n", at(x, y), at(x + s, y),
-                 at(x, y + s), at(x + s, y + s) > f
+          x = -half + i * s; y = -half + j * s; d = 1e9
+          for (k = 1; k <= n; k++) {
+            dx = px[k] - x - s / 2; dy = py[k] - y - s / 2
+            if (dx * dx + dy * dy < d) d = dx * dx + dy * dy
+          }
+          d = sqrt(d); f = d < 0.015 ? 0 : d > 0.06 ? 1 : (d - 0.015) / 0.045
+          colour = (int(i / 2) + int(j / 2)) % 2 + 0.02 + 0.97 * f
+          quad(at(x, y), at(x + s, y), at(x + s, y + s), at(x, y + s))
         }
-    }'
-
-  view="60, 32, 1.6"
+    }' "$obj" >"$tmp/collider.dat"
+  # The ground never hides the body, so it is drawn first, and the mesh on
+  # top in the same frame: no depth sorting between the two to go wrong.
+  top=$(awk '$1 == "v" && $3 > t { t = $3 } END { print t + 0.001 }' "$obj")
+  ranges="set xrange [-$half:$half]; set yrange [-$half:$half]; set zrange [0:$top]"
+  view="66, 30, 1.7"
+  palette='0 "#6e6e6e", 1 "#dadada", 1 "#5c5c5c", 2 "#b6b6b6"'
   if [ "$scene" = jello ]; then
     mesh_colour="#3fae49"
   else
     mesh_colour="#2f6fb5"
   fi
-  collider_colour="#d8d8d8" collider_colour2="#b4b4b4"
+fi
+
+if [ "$scene" = tablecloth ]; then
+  # The table hides part of the cloth and the cloth part of the table.
+  plots="splot 'collider.dat' using 1:2:3:4 with pm3d, \\
+    'mesh.dat' using 1:2:3:4 with pm3d"
+else
+  plots="$ranges
+set multiplot
+splot 'collider.dat' using 1:2:3:4 with pm3d
+splot 'mesh.dat' using 1:2:3:4 with pm3d
+unset multiplot"
 fi
 
 terminal=png
 gnuplot -e "set terminal pngcairo" >/dev/null 2>&1 && terminal=pngcairo
-
-# pm3d lights palette colours only (not "fc rgb"), so each part gets a
-# band of a three-colour palette: ground tiles or table, tiles, mesh.
-: "${collider_colour2:=$collider_colour}"
-plots="'collider.dat' using 1:2:3:(0.5) with pm3d"
-[ -s "$tmp/collider2.dat" ] &&
-  plots="$plots, 'collider2.dat' using 1:2:3:(1.5) with pm3d"
-plots="$plots, 'mesh.dat' using 1:2:3:(2.5) with pm3d"
 
 (
   cd "$tmp"
@@ -128,13 +149,12 @@ unset key
 unset colorbox
 set view $view
 set view equal xyz
-set palette defined (0 "$collider_colour", 1 "$collider_colour", \\
-  1 "$collider_colour2", 2 "$collider_colour2", 2 "$mesh_colour", 3 "$mesh_colour")
+set palette defined ($palette, 2 "$mesh_colour", 3 "$mesh_colour")
 set cbrange [0:3]
 set pm3d depthorder
 set pm3d lighting primary 0.5 specular 0.2
 set style fill solid 1.0 noborder
-splot $plots
+$plots
 EOF
 )
 cp "$tmp/out.png" "$png"

@@ -3,7 +3,7 @@
  * settles. Prints steps per second, the final kinetic energy, whether it
  * came to rest and its lowest point, and writes the final surface mesh.
  *
- *   jello [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR]
+ *   jello [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] [-T DT]
  *         [-i symplectic|verlet|rk4|implicit|explicit]
  *         [-l auto|buffer|image2d|edges] [-o OUT.obj|OUT.ply]
  */

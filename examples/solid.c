@@ -4,7 +4,7 @@
  * kinetic energy, whether it came to rest, and how much of its volume it
  * kept; writes the final surface mesh.
  *
- *   solid [-n SUBDIVISIONS] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR]
+ *   solid [-n SUBDIVISIONS] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] [-T DT]
  *         [-i symplectic|verlet|rk4|implicit|explicit]
  *         [-l auto|buffer|image2d|edges] [-o OUT.obj|OUT.ply]
  */
@@ -60,12 +60,13 @@ int main(int argc, char **argv)
   int n = 0, springs = 0, ntri = 0;
   const int *tri = NULL;
   float *start = NULL, *xyz = NULL;
-  if ((rc = msocl_model_point_count(m, &n)) != MSOCL_OK ||
+  if ((rc = msocl_model_point_count(m, &n)) == MSOCL_OK &&
+      !(start = malloc(3 * (size_t)n * sizeof *start)))
+    rc = MSOCL_ERR_NO_MEMORY;
+  if (rc != MSOCL_OK ||
       (rc = msocl_model_spring_count(m, &springs)) != MSOCL_OK ||
       (rc = msocl_model_triangles(m, &ntri, &tri)) != MSOCL_OK ||
-      (rc = !(start = malloc(3 * (size_t)n * sizeof *start))
-                ? MSOCL_ERR_NO_MEMORY
-                : msocl_model_get_positions(m, start)) != MSOCL_OK) {
+      (rc = msocl_model_get_positions(m, start)) != MSOCL_OK) {
     free(start);
     msocl_model_destroy(m);
     return drop_fail(d.prog, "reading the ball", rc);
