@@ -55,7 +55,7 @@ NR == 1 {
     ok[s] = ok[s] sprintf("%.9g %.9g\n", e, y)
     if (dt * steps > T) T = dt * steps
   } else {
-    bad[s] = bad[s] sprintf("%.9g\n", y)
+    bad[s] = bad[s] sprintf("%.9g\n", y); nbad++
   }
   if (ymin == 0 || y < ymin) ymin = y
   if (y > ymax) ymax = y
@@ -87,7 +87,10 @@ END {
   t = title
   if (t == "") {
     t = sprintf("Work-precision: %sx%s hanging cloth, T = %g s", grid, grid, T)
-    if (ndev == 1) { dn = devname[1]; gsub("@", "at", dn); t = t "\\n" dn }
+    for (i = 1; i <= ndev; i++) {
+      dn = devname[i]; gsub("@", "at", dn)
+      t = t "\\n" dn
+    }
   }
   t = t sprintf("\\n{/*0.85 dt from %.3g s down to %.3g s by halves", dtmax, dtmin)
   if (refconv != "")
@@ -115,7 +118,10 @@ END {
     if (bad[s] != "")
       plot = plot sprintf("\"%s\" using (%g*(1+%g)):1 with points lc rgb \"%s\" pt 2 ps 2 lw 2 %s, ", fb, xband, (relaxed ? 0.25 : -0.2), c, ok[s] == "" ? "title \"" name " (unstable)\"" : "notitle")
   }
-  plot = plot "NaN with points lc rgb \"#555555\" pt 2 ps 2 lw 2 title \"blew up (at its time)\""
+  if (nbad > 0)
+    plot = plot "NaN with points lc rgb \"#555555\" pt 2 ps 2 lw 2 title \"blew up (at its time)\""
+  else
+    sub(/, $/, "", plot)
   print plot > g
 }' "$csv"
 gnuplot "$tmp/plot.gp"

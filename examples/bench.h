@@ -27,6 +27,7 @@ struct bench_opts {
   int grids[BENCH_MAX_LIST], ngrids; /* -g */
   int steps;                      /* -s */
   int big_steps;                  /* --big-steps: grids above 128 */
+  int repeat;                     /* --repeat: timed runs, best counts */
   int max_grid;                   /* --max-grid, 0 = none */
   int layouts[3], nlayouts;       /* -l (msocl_layout values) */
   int integrators[5], nintegrators; /* -i */

@@ -5,7 +5,8 @@
  *   msocl-bench [table1|precision] [-d SPEC] [-g LIST] [-s STEPS]
  *               [-l LIST] [-i LIST] [-m LIST] [-T SECONDS] [--from X]
  *               [--levels N]
- *               [--max-grid N] [--big-steps N] [--copy-mib N] [--quick]
+ *               [--max-grid N] [--big-steps N] [--repeat N] [--copy-mib N]
+ *               [--quick]
  *               [--csv FILE]
  */
 #include "bench.h"
@@ -36,6 +37,8 @@ static int usage(FILE *f, int code)
 "                 256,512,1024,2048; precision: one size, default 16)\n"
 "  -s STEPS       steps per run (table1, default 2000)\n"
 "  --big-steps N  steps for grids above 128 (table1, default: -s)\n"
+"  --repeat N     time each run N times back to back, the fastest counts\n"
+"                 (table1, default 1; for a noisy machine)\n"
 "  --max-grid N   skip grids larger than N\n"
 "  -l LIST        layouts: buffer,image2d,edges (table1 default all three;\n"
 "                 precision default buffer; edges: symplectic Euler only)\n"
@@ -65,7 +68,7 @@ static int parse_int(const char *s, int lo, int *out)
 }
 
 /* Comma-separated words, each the index of a name in names (n); or, with
- * names NULL, integers >= 2. */
+ * names NULL, grid sizes >= 3. */
 static int parse_list(const char *s, const char *const *names, int n,
                       int *out, int max, int *count)
 {
@@ -84,7 +87,7 @@ static int parse_list(const char *s, const char *const *names, int n,
           v = i;
       if (v < 0)
         return -1;
-    } else if (parse_int(word, 2, &v)) {
+    } else if (parse_int(word, 3, &v)) {
       return -1;
     }
     out[(*count)++] = v;
@@ -103,6 +106,7 @@ int main(int argc, char **argv)
   memset(&o, 0, sizeof o);
   o.steps = 2000;
   o.big_steps = -1;
+  o.repeat = 1;
   o.sim_time = 0.5;
   o.levels = 11;
   o.from = 16.0;
@@ -132,6 +136,8 @@ int main(int argc, char **argv)
       bad = parse_int(v, 1, &o.steps), have_s = 1;
     } else if (!strcmp(w, "--big-steps")) {
       bad = parse_int(v, 1, &o.big_steps);
+    } else if (!strcmp(w, "--repeat")) {
+      bad = parse_int(v, 1, &o.repeat);
     } else if (!strcmp(w, "--max-grid")) {
       bad = parse_int(v, 2, &o.max_grid);
     } else if (!strcmp(w, "--levels")) {
