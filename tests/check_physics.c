@@ -5,6 +5,7 @@
 
 #include <check.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -57,6 +58,8 @@ START_TEST(spring_period)
   }
   ck_assert_int_ge(crossings, 3);
   double period = (last - first) / (crossings - 1);
+  printf("spring period %.6f s, analytic 2 pi sqrt(m/k) = %.6f s (%.3f%%)\n",
+         period, expect, 100.0 * fabs(period - expect) / expect);
   ck_assert_msg(fabs(period - expect) <= 0.01 * expect,
                 "period %.6f s, expected %.6f s", period, expect);
   msocl_sim_destroy(s);
