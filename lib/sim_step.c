@@ -18,6 +18,10 @@ static double now(void)
 static int finish_all(msocl_sim *s)
 {
   double t0 = now();
+  /* flush every queue first: a queue starts its work when flushed, so
+   * finishing them one by one would run the devices one after another */
+  for (int d = 0; s->nparts > 1 && d < s->nparts; d++)
+    MSOCL__CL(clFlush(s->part[d]->dev->queue));
   for (int d = 0; d < s->nparts; d++)
     MSOCL__CL(clFinish(s->part[d]->dev->queue));
   s->wait_seconds += now() - t0;
