@@ -102,6 +102,12 @@ int msocl__program_get(struct msocl__device *dev, const char *options,
                        cl_program *out);
 void msocl__program_cache_free(struct msocl__device *dev);
 
+/* Builders' argument checks (builder_check.c): every one of n floats
+ * finite; a coefficient >= 0. Messages name the builder and the field. */
+int msocl__check_finite(const char *builder, const char *what,
+                        const float *x, int n);
+int msocl__check_coef(const char *builder, const char *what, float x);
+
 /* Frame writers (export*.c): the argument checks they share, and closing
  * a written file with the system's reason for any write error. */
 int msocl__frame_check(const char *path, int npoints, const float *xyz,

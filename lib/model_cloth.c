@@ -27,25 +27,6 @@ void msocl_cloth_desc_init(msocl_cloth_desc *d) {
   d->damping = 0.0f;
 }
 
-/* n floats, named by `what` (and the index when n > 1). */
-static int check_finite(const char *what, const float *x, int n) {
-  int c;
-  for (c = 0; c < n; c++)
-    if (!isfinite(x[c]))
-      return n > 1 ? msocl__fail(MSOCL_ERR_NOT_FINITE,
-                                 "cloth: %s[%d] = %g is not finite", what, c,
-                                 x[c])
-                   : msocl__fail(MSOCL_ERR_NOT_FINITE,
-                                 "cloth: %s %g is not finite", what, x[c]);
-  return MSOCL_OK;
-}
-
-static int check_coef(const char *what, float x) {
-  if (x < 0)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "cloth: %s %g must be >= 0", what,
-                       x);
-  return MSOCL_OK;
-}
 
 /* u and v span the cloth: neither zero nor parallel (the cross product is
  * tiny against the lengths), else the triangles have no area. */
@@ -89,21 +70,21 @@ static int check_desc(const msocl_cloth_desc *d) {
       2LL * (d->nx - 1) * (d->ny - 1) > INT_MAX / 3)
     return msocl__fail(MSOCL_ERR_TOO_MANY, "cloth: %d x %d points is too many",
                        d->nx, d->ny);
-  if ((rc = check_finite("origin", d->origin, 3)) ||
-      (rc = check_finite("u", d->u, 3)) || (rc = check_finite("v", d->v, 3)) ||
-      (rc = check_finite("point_mass", &d->point_mass, 1)) ||
-      (rc = check_finite("k_stretch", &d->k_stretch, 1)) ||
-      (rc = check_finite("k_shear", &d->k_shear, 1)) ||
-      (rc = check_finite("k_bend", &d->k_bend, 1)) ||
-      (rc = check_finite("damping", &d->damping, 1)))
+  if ((rc = msocl__check_finite("cloth", "origin", d->origin, 3)) ||
+      (rc = msocl__check_finite("cloth", "u", d->u, 3)) || (rc = msocl__check_finite("cloth", "v", d->v, 3)) ||
+      (rc = msocl__check_finite("cloth", "point_mass", &d->point_mass, 1)) ||
+      (rc = msocl__check_finite("cloth", "k_stretch", &d->k_stretch, 1)) ||
+      (rc = msocl__check_finite("cloth", "k_shear", &d->k_shear, 1)) ||
+      (rc = msocl__check_finite("cloth", "k_bend", &d->k_bend, 1)) ||
+      (rc = msocl__check_finite("cloth", "damping", &d->damping, 1)))
     return rc;
   if (!(d->point_mass > 0))
     return msocl__fail(MSOCL_ERR_BAD_MASS, "cloth: point mass %g must be > 0",
                        d->point_mass);
-  if ((rc = check_coef("k_stretch", d->k_stretch)) ||
-      (rc = check_coef("k_shear", d->k_shear)) ||
-      (rc = check_coef("k_bend", d->k_bend)) ||
-      (rc = check_coef("damping", d->damping)))
+  if ((rc = msocl__check_coef("cloth", "k_stretch", d->k_stretch)) ||
+      (rc = msocl__check_coef("cloth", "k_shear", d->k_shear)) ||
+      (rc = msocl__check_coef("cloth", "k_bend", d->k_bend)) ||
+      (rc = msocl__check_coef("cloth", "damping", d->damping)))
     return rc;
   return check_axes(d->u, d->v);
 }

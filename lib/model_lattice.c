@@ -31,25 +31,6 @@ void msocl_lattice_desc_init(msocl_lattice_desc *d) {
   d->damping = 0.02f;
 }
 
-/* n floats, named by `what` (and the index when n > 1). */
-static int check_finite(const char *what, const float *x, int n) {
-  int c;
-  for (c = 0; c < n; c++)
-    if (!isfinite(x[c]))
-      return n > 1 ? msocl__fail(MSOCL_ERR_NOT_FINITE,
-                                 "lattice: %s[%d] = %g is not finite", what, c,
-                                 x[c])
-                   : msocl__fail(MSOCL_ERR_NOT_FINITE,
-                                 "lattice: %s %g is not finite", what, x[c]);
-  return MSOCL_OK;
-}
-
-static int check_coef(const char *what, float x) {
-  if (x < 0)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "lattice: %s %g must be >= 0",
-                       what, x);
-  return MSOCL_OK;
-}
 
 /* Springs of each set in a full lattice (see the header's counts). */
 static long long structural(long long x, long long y, long long z) {
@@ -88,14 +69,14 @@ static int check_desc(const msocl_lattice_desc *d) {
     return msocl__fail(MSOCL_ERR_BAD_COUNT,
                        "lattice: %d x %d x %d points, need at least 2 x 2 x 2",
                        d->nx, d->ny, d->nz);
-  if ((rc = check_finite("origin", d->origin, 3)) ||
-      (rc = check_finite("spacing", &d->spacing, 1)) ||
-      (rc = check_finite("point_mass", &d->point_mass, 1)) ||
-      (rc = check_finite("k_structural", &d->k_structural, 1)) ||
-      (rc = check_finite("k_shear_face", &d->k_shear_face, 1)) ||
-      (rc = check_finite("k_shear_body", &d->k_shear_body, 1)) ||
-      (rc = check_finite("k_bend", &d->k_bend, 1)) ||
-      (rc = check_finite("damping", &d->damping, 1)))
+  if ((rc = msocl__check_finite("lattice", "origin", d->origin, 3)) ||
+      (rc = msocl__check_finite("lattice", "spacing", &d->spacing, 1)) ||
+      (rc = msocl__check_finite("lattice", "point_mass", &d->point_mass, 1)) ||
+      (rc = msocl__check_finite("lattice", "k_structural", &d->k_structural, 1)) ||
+      (rc = msocl__check_finite("lattice", "k_shear_face", &d->k_shear_face, 1)) ||
+      (rc = msocl__check_finite("lattice", "k_shear_body", &d->k_shear_body, 1)) ||
+      (rc = msocl__check_finite("lattice", "k_bend", &d->k_bend, 1)) ||
+      (rc = msocl__check_finite("lattice", "damping", &d->damping, 1)))
     return rc;
   if (!(d->spacing > 0))
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "lattice: spacing %g must be > 0",
@@ -103,11 +84,11 @@ static int check_desc(const msocl_lattice_desc *d) {
   if (!(d->point_mass > 0))
     return msocl__fail(MSOCL_ERR_BAD_MASS,
                        "lattice: point mass %g must be > 0", d->point_mass);
-  if ((rc = check_coef("k_structural", d->k_structural)) ||
-      (rc = check_coef("k_shear_face", d->k_shear_face)) ||
-      (rc = check_coef("k_shear_body", d->k_shear_body)) ||
-      (rc = check_coef("k_bend", d->k_bend)) ||
-      (rc = check_coef("damping", d->damping)))
+  if ((rc = msocl__check_coef("lattice", "k_structural", d->k_structural)) ||
+      (rc = msocl__check_coef("lattice", "k_shear_face", d->k_shear_face)) ||
+      (rc = msocl__check_coef("lattice", "k_shear_body", d->k_shear_body)) ||
+      (rc = msocl__check_coef("lattice", "k_bend", d->k_bend)) ||
+      (rc = msocl__check_coef("lattice", "damping", d->damping)))
     return rc;
   /* The model's own limits, checked before the scratch arrays are sized:
    * 3 floats per point, 2 ints per spring and 3 per triangle must index

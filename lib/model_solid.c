@@ -37,35 +37,16 @@ void msocl_solid_desc_init(msocl_solid_desc *d) {
 
 /* ---------------------------------------------------------------- checks */
 
-/* n floats, named by `what` (and the index when n > 1). */
-static int check_finite(const char *what, const float *x, int n) {
-  int c;
-  for (c = 0; c < n; c++)
-    if (!isfinite(x[c]))
-      return n > 1 ? msocl__fail(MSOCL_ERR_NOT_FINITE,
-                                 "solid: %s[%d] = %g is not finite", what, c,
-                                 x[c])
-                   : msocl__fail(MSOCL_ERR_NOT_FINITE,
-                                 "solid: %s %g is not finite", what, x[c]);
-  return MSOCL_OK;
-}
-
-static int check_coef(const char *what, float x) {
-  if (x < 0)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "solid: %s %g must be >= 0", what,
-                       x);
-  return MSOCL_OK;
-}
 
 /* The fields both builders use: masses, stiffnesses, damping. */
 static int check_material(const msocl_solid_desc *d) {
   int rc;
 
-  if ((rc = check_finite("surface_mass", &d->surface_mass, 1)) ||
-      (rc = check_finite("centre_mass", &d->centre_mass, 1)) ||
-      (rc = check_finite("k_surface", &d->k_surface, 1)) ||
-      (rc = check_finite("k_support", &d->k_support, 1)) ||
-      (rc = check_finite("damping", &d->damping, 1)))
+  if ((rc = msocl__check_finite("solid", "surface_mass", &d->surface_mass, 1)) ||
+      (rc = msocl__check_finite("solid", "centre_mass", &d->centre_mass, 1)) ||
+      (rc = msocl__check_finite("solid", "k_surface", &d->k_surface, 1)) ||
+      (rc = msocl__check_finite("solid", "k_support", &d->k_support, 1)) ||
+      (rc = msocl__check_finite("solid", "damping", &d->damping, 1)))
     return rc;
   if (!(d->surface_mass > 0))
     return msocl__fail(MSOCL_ERR_BAD_MASS,
@@ -73,9 +54,9 @@ static int check_material(const msocl_solid_desc *d) {
   if (!(d->centre_mass > 0))
     return msocl__fail(MSOCL_ERR_BAD_MASS, "solid: centre mass %g must be > 0",
                        d->centre_mass);
-  if ((rc = check_coef("k_surface", d->k_surface)) ||
-      (rc = check_coef("k_support", d->k_support)) ||
-      (rc = check_coef("damping", d->damping)))
+  if ((rc = msocl__check_coef("solid", "k_surface", d->k_surface)) ||
+      (rc = msocl__check_coef("solid", "k_support", d->k_support)) ||
+      (rc = msocl__check_coef("solid", "damping", d->damping)))
     return rc;
   return MSOCL_OK;
 }
@@ -87,8 +68,8 @@ static int check_shape(const msocl_solid_desc *d) {
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "solid: %d subdivisions, need 0 to %d", d->subdivisions,
                        MAX_SUBDIVISIONS);
-  if ((rc = check_finite("centre", d->centre, 3)) ||
-      (rc = check_finite("radii", d->radii, 3)))
+  if ((rc = msocl__check_finite("solid", "centre", d->centre, 3)) ||
+      (rc = msocl__check_finite("solid", "radii", d->radii, 3)))
     return rc;
   for (c = 0; c < 3; c++)
     if (!(d->radii[c] > 0))
