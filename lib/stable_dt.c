@@ -12,8 +12,10 @@
  * Limits for an undamped oscillator of frequency w (the stability regions
  * of the methods on the imaginary axis): symplectic Euler and velocity
  * Verlet h w < 2; classic RK4 h w <= 2 sqrt 2; explicit Euler has none on
- * that axis - with viscous damping rate g = c/m it needs h <= g / w^2;
- * backward Euler is unconditionally stable. Dashpots and viscous damping
+ * that axis - a mode damped at rate g needs h <= g / w^2, so viscous
+ * damping c/m gives h <= (c/m) / w^2 and dashpots c >= beta k on every
+ * spring (rate >= beta w^2) give h <= beta; backward Euler is
+ * unconditionally stable. Dashpots and viscous damping
  * also bound explicit steps: the damping matrix's Gershgorin bound d needs
  * h d <= 2. */
 #include "config.h"
@@ -23,7 +25,8 @@
 #include <stdlib.h>
 
 /* Gershgorin bounds of the stiffness (w^2) and damping (d) operators. */
-static int bounds(const msocl_model *m, double *w2, double *d, double *gmin)
+static int bounds(const msocl_model *m, double *w2, double *d, double *gmin,
+                  double *beta)
 {
   /* own[9i..]: point i's assembled diagonal block (row sums of absolute
    * values are taken after assembly: the blocks of crossing springs
@@ -37,6 +40,7 @@ static int bounds(const msocl_model *m, double *w2, double *d, double *gmin)
     free(drow);
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "stable_dt");
   }
+  *beta = INFINITY;
   for (int s = 0; s < m->ns; s++) {
     int i = m->ij[2 * s], j = m->ij[2 * s + 1];
     double u[3], len = 0.0;
@@ -65,6 +69,8 @@ static int bounds(const msocl_model *m, double *w2, double *d, double *gmin)
         off[3 * j + a] += blk / mij;
     }
     double c = m->damp ? m->damp[s] : 0.0;
+    if (k > 0.0 && c / k < *beta)
+      *beta = c / k;
     drow[i] += 2.0 * c / m->mass[i];
     drow[j] += 2.0 * c / m->mass[j];
   }
@@ -107,8 +113,8 @@ int msocl_stable_dt(const msocl_model *m, msocl_integrator integrator,
     *dt = INFINITY;
     return MSOCL_OK;
   }
-  double w2 = 0.0, d = 0.0, gmin = 0.0;
-  rc = bounds(m, &w2, &d, &gmin);
+  double w2 = 0.0, d = 0.0, gmin = 0.0, beta = 0.0;
+  rc = bounds(m, &w2, &d, &gmin, &beta);
   if (rc != MSOCL_OK)
     return rc;
   double w = sqrt(w2), h = INFINITY;
@@ -121,13 +127,18 @@ int msocl_stable_dt(const msocl_model *m, msocl_integrator integrator,
     h = 2.0 * sqrt(2.0) / w;
     break;
   case MSOCL_EXPLICIT_EULER:
-    if (!(gmin > 0.0) && w2 > 0.0)
+    if (!(gmin > 0.0) && !(beta > 0.0) && w2 > 0.0)
       return msocl__fail(MSOCL_ERR_UNSTABLE,
                          "explicit Euler has no stable step for undamped "
                          "springs (highest frequency %g rad/s): add viscous "
-                         "damping or choose another integrator",
+                         "damping, a dashpot on every spring, or choose "
+                         "another integrator",
                          w);
     h = w2 > 0.0 ? gmin / w2 : INFINITY;
+    /* dashpots c >= beta k on every spring damp each mode at rate
+     * >= beta w^2, which makes h <= beta stable at any frequency */
+    if (beta > h && isfinite(beta))
+      h = beta;
     break;
   default:
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown integrator %d",
