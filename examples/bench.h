@@ -29,7 +29,7 @@ struct bench_opts {
   int big_steps;                  /* --big-steps: grids above 128 */
   int repeat;                     /* --repeat: timed runs, best counts */
   int max_grid;                   /* --max-grid, 0 = none */
-  int layouts[3], nlayouts;       /* -l (msocl_layout values) */
+  int layouts[4], nlayouts;       /* -l (msocl_layout values) */
   int integrators[5], nintegrators; /* -i */
   int maths[2], nmaths;           /* -m */
   double sim_time;                /* -T: simulated seconds (precision) */

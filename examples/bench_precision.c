@@ -141,7 +141,7 @@ static int timed(const struct run *u, msocl_sim *s, int steps,
 }
 
 static const char *const layout_label[] = {"auto", "image2d", "buffer",
-                                           "edges"};
+                                           "edges", "grid"};
 
 int bench_precision(const struct bench_opts *o, FILE *csv)
 {

@@ -23,17 +23,14 @@ struct bench_serial {
   int ns;
 };
 
-static void push(bench_serial *s, int i, int j, float k)
+/* Every spring of a kind rests at the grid's spacing for that kind (as
+ * lib/model_cloth.c does): h for stretch, h sqrt 2 for shear, 2h for bend. */
+static void push(bench_serial *s, int i, int j, float k, double rest)
 {
-  double d2 = 0.0;
-  for (int c = 0; c < 3; c++) {
-    double d = (double)s->pos[3 * j + c] - s->pos[3 * i + c];
-    d2 += d * d;
-  }
   struct spring *e = &s->sp[s->ns++];
   e->i = i;
   e->j = j;
-  e->rest = (float)sqrt(d2); /* rests at its length in the flat grid */
+  e->rest = (float)rest;
   e->k = k;
 }
 
@@ -49,20 +46,21 @@ static void build(bench_serial *s, int n)
       p[1] = TC_HEIGHT;
       p[2] = (float)(-0.5 + a);
     }
+  const double h = 1.0 / (n - 1), diag = sqrt(2.0 * h * h);
   for (int j = 0; j < n; j++)
     for (int i = 0; i < n; i++) {
-      if (i + 1 < n) push(s, j * n + i, j * n + i + 1, TC_K_STRETCH);
-      if (j + 1 < n) push(s, j * n + i, (j + 1) * n + i, TC_K_STRETCH);
+      if (i + 1 < n) push(s, j * n + i, j * n + i + 1, TC_K_STRETCH, h);
+      if (j + 1 < n) push(s, j * n + i, (j + 1) * n + i, TC_K_STRETCH, h);
     }
   for (int j = 0; j + 1 < n; j++)
     for (int i = 0; i + 1 < n; i++) {
-      push(s, j * n + i, (j + 1) * n + i + 1, TC_K_SHEAR);
-      push(s, j * n + i + 1, (j + 1) * n + i, TC_K_SHEAR);
+      push(s, j * n + i, (j + 1) * n + i + 1, TC_K_SHEAR, diag);
+      push(s, j * n + i + 1, (j + 1) * n + i, TC_K_SHEAR, diag);
     }
   for (int j = 0; j < n; j++)
     for (int i = 0; i < n; i++) {
-      if (i + 2 < n) push(s, j * n + i, j * n + i + 2, TC_K_BEND);
-      if (j + 2 < n) push(s, j * n + i, (j + 2) * n + i, TC_K_BEND);
+      if (i + 2 < n) push(s, j * n + i, j * n + i + 2, TC_K_BEND, 2 * h);
+      if (j + 2 < n) push(s, j * n + i, (j + 2) * n + i, TC_K_BEND, 2 * h);
     }
 }
 

@@ -31,13 +31,15 @@ static const char *const paper_cols[4] = {"CPU 1", "CPU 2", "GPU 1",
  * EDGES: the spring pass reads 16 B a spring (ends, rest, k), end positions
  * cached, and each point's force accumulator once (read + write, 32 B); the
  * point pass reads pos, vel, force, inv_mass (52 B), writes vel and clears
- * force (32 B). All: the position pass reads pos and vel (32 B) and writes
- * pos (16 B). */
+ * force (32 B). GRID: as BUFFER with no connectivity at all. All: the
+ * position pass reads pos and vel (32 B) and writes pos (16 B). */
 static double bytes_model(int layout, int slots, double springs_per_point)
 {
   if (layout == MSOCL_LAYOUT_EDGES)
     return 16.0 * springs_per_point + 32 + (52 + 32) + (32 + 16);
-  double conn = layout == MSOCL_LAYOUT_IMAGE2D ? 16.0 * 16.0 : 12.0 * slots;
+  double conn = layout == MSOCL_LAYOUT_IMAGE2D ? 16.0 * 16.0
+                : layout == MSOCL_LAYOUT_GRID  ? 0.0
+                                               : 12.0 * slots;
   return (16 + 16 + 4 + conn + 16) + (32 + 16);
 }
 
@@ -45,6 +47,7 @@ static const char *layout_name(int layout)
 {
   return layout == MSOCL_LAYOUT_IMAGE2D ? "image2d"
          : layout == MSOCL_LAYOUT_EDGES ? "edges"
+         : layout == MSOCL_LAYOUT_GRID  ? "grid"
                                         : "buffer";
 }
 
@@ -230,6 +233,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
    * force accumulators and the connectivity, with room to spare. */
   double conn = layout == MSOCL_LAYOUT_IMAGE2D ? 256.0
                 : layout == MSOCL_LAYOUT_EDGES ? 16.0 * ns / ((double)n * n)
+                : layout == MSOCL_LAYOUT_GRID  ? 0.0
                                                : 12.0 * slots;
   double need = 1.5 * (double)n * n * (64 + 32 + 4 + 16 + 16 + conn);
   msocl_sim *s = NULL;

@@ -15,7 +15,8 @@
 static const char *const integrators[] = {"symplectic", "explicit", "verlet",
                                           "rk4", "implicit"};
 /* In msocl_layout order. */
-static const char *const layouts[] = {"auto", "image2d", "buffer", "edges"};
+static const char *const layouts[] = {"auto", "image2d", "buffer", "edges",
+                                      "grid"};
 
 /* At rest: no point moved faster than REST_SPEED (m/s) on average between
  * samples a tenth of REST_SECONDS apart over the last REST_SECONDS. From
@@ -304,7 +305,7 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
   }
   printf("device: %s [%s]\nlayout: %s, integrator: %s\n", info.name,
          info.platform_name,
-         (int)layout >= 0 && (int)layout < 4 ? layouts[layout] : "other",
+         (int)layout >= 0 && (int)layout < 5 ? layouts[layout] : "other",
          integrators[d->integrator]);
   printf("dt %.3g s (%s), air resistance %g a step (%.3g/s)\n"
          "%.3g s simulated: %lld steps (setup %.3f s)\n",

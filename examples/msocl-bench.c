@@ -40,8 +40,9 @@ static int usage(FILE *f, int code)
 "  --repeat N     time each run N times back to back, the fastest counts\n"
 "                 (table1, default 1; for a noisy machine)\n"
 "  --max-grid N   skip grids larger than N\n"
-"  -l LIST        layouts: buffer,image2d,edges (table1 default all three;\n"
-"                 precision default buffer; edges: symplectic Euler only)\n"
+"  -l LIST        layouts: buffer,image2d,edges,grid (table1 default all\n"
+"                 four; precision default buffer; edges: symplectic Euler\n"
+"                 only)\n"
 "  -i LIST        integrators: symplectic,explicit,verlet,rk4,implicit\n"
 "                 (precision, default all)\n"
 "  -m LIST        math modes: precise,relaxed (default precise for table1,\n"
@@ -97,7 +98,7 @@ static int parse_list(const char *s, const char *const *names, int n,
 }
 
 static const char *const layout_names[] = {"auto", "image2d", "buffer",
-                                          "edges"};
+                                          "edges", "grid"};
 static const char *const math_names[] = {"precise", "relaxed"};
 
 int main(int argc, char **argv)
@@ -155,7 +156,7 @@ int main(int argc, char **argv)
       bad = end == v || *end || !(o.sim_time > 0) || !isfinite(o.sim_time);
       have_t = 1;
     } else if (!strcmp(w, "-l")) {
-      bad = parse_list(v, layout_names + 1, 3, o.layouts, 3, &o.nlayouts);
+      bad = parse_list(v, layout_names + 1, 4, o.layouts, 4, &o.nlayouts);
       for (int i = 0; i < o.nlayouts; i++)
         o.layouts[i] += 1; /* names start at IMAGE2D */
       have_l = 1;
@@ -177,10 +178,11 @@ int main(int argc, char **argv)
   }
   /* Defaults that depend on the mode and --quick. */
   if (!have_l) {
-    o.nlayouts = mode == 0 ? 3 : 1;
+    o.nlayouts = mode == 0 ? 4 : 1;
     o.layouts[0] = MSOCL_LAYOUT_BUFFER;
     o.layouts[1] = MSOCL_LAYOUT_IMAGE2D;
     o.layouts[2] = MSOCL_LAYOUT_EDGES;
+    o.layouts[3] = MSOCL_LAYOUT_GRID;
   }
   if (!have_m) {
     o.nmaths = mode == 0 ? 1 : 2;

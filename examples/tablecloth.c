@@ -1,7 +1,7 @@
 /* The paper's scene: a square tablecloth falls onto a round table. Prints
  * steps per second and writes the final mesh as OBJ.
  *
- *   tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l auto|image2d|buffer|edges]
+ *   tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l auto|image2d|buffer|edges|grid]
  *              [-m precise|relaxed] [-i symplectic|explicit|verlet|rk4|implicit]
  *              [-S none|provot|velocity] [-p PARTS [-c STEPS]] [-o OUT.obj]
  */
@@ -25,7 +25,7 @@ static int usage(const char *argv0)
 {
   fprintf(stderr,
           "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
-          "[-l auto|image2d|buffer|edges] [-m precise|relaxed]\n"
+          "[-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
           "[-S none|provot|velocity] [-p PARTS [-c STEPS]] [-o OUT.obj]\n"
           "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n"
@@ -109,6 +109,7 @@ int main(int argc, char **argv)
       if (!strcmp(optarg, "image2d")) o.layout = MSOCL_LAYOUT_IMAGE2D;
       else if (!strcmp(optarg, "buffer")) o.layout = MSOCL_LAYOUT_BUFFER;
       else if (!strcmp(optarg, "edges")) o.layout = MSOCL_LAYOUT_EDGES;
+      else if (!strcmp(optarg, "grid")) o.layout = MSOCL_LAYOUT_GRID;
       else if (!strcmp(optarg, "auto")) o.layout = MSOCL_LAYOUT_AUTO;
       else return usage(argv[0]);
       break;
@@ -160,6 +161,7 @@ int main(int argc, char **argv)
          info.name, info.platform_name,
          layout == MSOCL_LAYOUT_IMAGE2D  ? "image2d"
          : layout == MSOCL_LAYOUT_EDGES ? "edges"
+         : layout == MSOCL_LAYOUT_GRID  ? "grid"
                                         : "buffer",
          o.math == MSOCL_MATH_RELAXED ? "relaxed" : "precise",
          integrators[in], strains[strain]);

@@ -2,7 +2,8 @@
  * (whichever layout holds them), spring forces and collision response.
  * The library compiles it first, followed by the other kernel files, as one
  * program; its -D options name only what the model uses:
- *   MSOCL_LAYOUT_IMAGE2D | MSOCL_LAYOUT_BUFFER   where the springs live
+ *   MSOCL_LAYOUT_IMAGE2D | MSOCL_LAYOUT_BUFFER | MSOCL_LAYOUT_GRID
+ *                          where the springs live
  *   MSOCL_SLOTS=n          slots per point (BUFFER)
  *   MSOCL_DAMPING          per-spring dashpots (a slot table of coefficients)
  *   MSOCL_VISCOUS          viscous damping -c v
@@ -35,11 +36,24 @@
 
 /* Connectivity parameters of every gathering kernel, and the same names to
  * pass them on. */
-#ifdef MSOCL_LAYOUT_IMAGE2D
+#if defined(MSOCL_LAYOUT_IMAGE2D)
 #define MSOCL_MAX_SLOTS 16
 #define MSOCL_CONN                                                            \
   __read_only image2d_t con, int tex_w, int tex_h, __read_only image2d_t dmp
 #define MSOCL_CONN_ARGS con, tex_w, tex_h, dmp
+#elif defined(MSOCL_LAYOUT_GRID)
+#define MSOCL_MAX_SLOTS 12
+#define MSOCL_CONN int grid_nx, int grid_ny, float4 grid_k, float8 grid_rest
+#define MSOCL_CONN_ARGS grid_nx, grid_ny, grid_k, grid_rest
+/* A cloth grid's 12 neighbours in the order msocl_model_cloth_grid adds
+ * their springs (so in BUFFER's slot order): stretch below, left, right,
+ * above; shear below-left, below-right, above-left, above-right; bend two
+ * below, left, right, above. kind: 0 stretch, 1 shear, 2 bend; rest: index
+ * into grid_rest. */
+__constant int msocl_grid_dx[12] = {0, -1, 1, 0, -1, 1, -1, 1, 0, -2, 2, 0};
+__constant int msocl_grid_dy[12] = {-1, 0, 0, 1, -1, -1, 1, 1, -2, 0, 0, 2};
+__constant int msocl_grid_kind[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
+__constant int msocl_grid_rest[12] = {1, 0, 0, 1, 2, 3, 3, 2, 5, 4, 4, 5};
 #else
 #define MSOCL_MAX_SLOTS MSOCL_SLOTS
 #define MSOCL_CONN                                                            \
@@ -55,7 +69,27 @@
 static int msocl_slot(MSOCL_CONN, int i, int s, int n, int *j, float *rest,
                       float *k, float *c)
 {
-#ifdef MSOCL_LAYOUT_IMAGE2D
+#if defined(MSOCL_LAYOUT_GRID)
+  /* A missing neighbour (grid edge, or a kind the cloth leaves out) is a
+   * spring to the point itself with k = 0: it adds exact zeros, and the
+   * loop keeps a fixed trip count. */
+  int x = i % grid_nx, y = i / grid_nx;
+  int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s];
+  int kind = msocl_grid_kind[s];
+  float kk = kind == 0 ? grid_k.x : kind == 1 ? grid_k.y : grid_k.z;
+  bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
+               kk != 0.0f;
+  int ri = msocl_grid_rest[s];
+  float r = ri == 0 ? grid_rest.s0 : ri == 1 ? grid_rest.s1
+          : ri == 2 ? grid_rest.s2 : ri == 3 ? grid_rest.s3
+          : ri == 4 ? grid_rest.s4 : grid_rest.s5;
+  *j = there ? qy * grid_nx + qx : i;
+  *rest = r;
+  *k = there ? kk : 0.0f;
+  *c = there ? grid_k.w : 0.0f;
+  (void)n;
+  return 1;
+#elif defined(MSOCL_LAYOUT_IMAGE2D)
   const sampler_t smp =
       CLK_NORMALIZED_COORDS_FALSE | CLK_ADDRESS_NONE | CLK_FILTER_NEAREST;
   int x = i % tex_w, y = i / tex_w;
@@ -119,6 +153,9 @@ static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
                           float viscous)
 {
   float3 p = pos[i].xyz, v = vel[i].xyz, f = (float3)(0.0f);
+#ifdef MSOCL_LAYOUT_GRID
+#pragma unroll
+#endif
   for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
     int j;
     float rest, k, c;

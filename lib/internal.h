@@ -60,6 +60,14 @@ struct msocl_model {
   float air; /* velocity factor a step, (0, 1] */
   int ncol;
   struct msocl__collider col[MSOCL__MAX_COLLIDERS];
+  /* Set by msocl_model_cloth_grid: the grid the GRID layout recomputes
+   * neighbours from; valid while ns == grid.ns (no springs added since). */
+  struct {
+    int nx, ny, ns;
+    float k[3];    /* stretch, shear, bend (0: absent) */
+    float rest[6]; /* stretch along u, v; shear u+v, v-u; bend u, v */
+    float damp;
+  } grid;
 };
 
 /* Per-point adjacency in slot order: slot s of point i is spring

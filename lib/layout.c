@@ -1,7 +1,8 @@
 /* Turns a model's adjacency into device connectivity: the paper's tiled
  * connectivity texture (IMAGE2D) or slot-major buffers (BUFFER) - both list
  * a point's springs in the same slot order, so both sum forces identically -
- * or the second seed's per-spring list (EDGES). */
+ * the second seed's per-spring list (EDGES), or nothing at all for a cloth
+ * grid whose neighbours follow from its position (GRID). */
 #include "config.h"
 #include "layout.h"
 
@@ -222,6 +223,21 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
   } else if (out->kind == MSOCL_LAYOUT_BUFFER) {
     out->slots = adj->max_degree;
     rc = build_buffers(dev, m, adj, has_damping(m), out);
+  } else if (out->kind == MSOCL_LAYOUT_GRID) {
+    if (m->grid.nx < 2 || m->grid.ns != m->ns)
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "the GRID layout needs a cloth from "
+                         "msocl_model_cloth_grid with no springs added "
+                         "since (use BUFFER)");
+    out->slots = 12;
+    out->grid_nx = m->grid.nx;
+    out->grid_ny = m->grid.ny;
+    for (int q = 0; q < 3; q++)
+      out->grid_k.s[q] = m->grid.k[q];
+    out->grid_k.s[3] = m->grid.damp;
+    for (int q = 0; q < 8; q++)
+      out->grid_rest.s[q] = q < 6 ? m->grid.rest[q] : 0.0f;
+    rc = MSOCL_OK;
   } else if (out->kind == MSOCL_LAYOUT_EDGES) {
     out->slots = 0;
     rc = build_edges(dev, m, has_damping(m), out);
@@ -248,6 +264,14 @@ int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,
                            cl_uint *next)
 {
   cl_uint a = 0;
+  if (l->kind == MSOCL_LAYOUT_GRID) {
+    MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->grid_nx));
+    MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->grid_ny));
+    MSOCL__CL(clSetKernelArg(k, a++, sizeof l->grid_k, &l->grid_k));
+    MSOCL__CL(clSetKernelArg(k, a++, sizeof l->grid_rest, &l->grid_rest));
+    *next = a;
+    return MSOCL_OK;
+  }
   MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->con));
   if (l->kind == MSOCL_LAYOUT_IMAGE2D) {
     MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->tex_w));

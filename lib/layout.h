@@ -5,9 +5,12 @@
 #include "internal.h"
 
 struct msocl__layout {
-  msocl_layout kind; /* IMAGE2D, BUFFER or EDGES, never AUTO */
+  msocl_layout kind; /* IMAGE2D, BUFFER, EDGES or GRID, never AUTO */
   int slots;         /* springs a point can hold (EDGES: 0) */
   int nsprings;      /* EDGES */
+  int grid_nx, grid_ny;    /* GRID */
+  cl_float4 grid_k;        /* stretch, shear, bend stiffness; dashpot */
+  cl_float8 grid_rest;     /* the six kinds' rest lengths */
   int tex_w, tex_h;  /* IMAGE2D: point i is texel (i % tex_w, i / tex_w) */
   cl_mem con;        /* IMAGE2D: (4W)x(4H) RGBA image; BUFFER: int slots;
                         EDGES: int2 end points per spring */

@@ -2,6 +2,7 @@
  * built through the public model calls. */
 #include <limits.h>
 #include <math.h>
+#include <string.h>
 #include <stdlib.h>
 
 #include "internal.h"
@@ -92,13 +93,35 @@ static int check_desc(const msocl_cloth_desc *d) {
 /* Scratch arrays for one add_springs call, in the documented order. */
 struct springs {
   int n, *ij;
-  float *k;
+  float *k, *rest;
+  const float *rests; /* the six per-kind rest lengths, as in the model */
 };
 
-static void push(struct springs *s, int a, int b, float k) {
+static void push(struct springs *s, int a, int b, float k, int kind) {
   s->ij[2 * s->n] = a;
   s->ij[2 * s->n + 1] = b;
+  s->rest[s->n] = s->rests[kind];
   s->k[s->n++] = k;
+}
+
+/* Rest lengths by kind, from the grid's geometry in double: every spring of
+ * a kind rests at the same length (not each at its rounded distance), so
+ * the GRID layout, which stores none, sums bit for bit what the others do:
+ * stretch along u, v; shear u+v, v-u; bend along u, v. */
+static void kind_rests(const msocl_cloth_desc *d, float *rest) {
+  double du[3], dv[3], len[4] = {0, 0, 0, 0};
+  for (int c = 0; c < 3; c++) {
+    du[c] = (double)d->u[c] / (d->nx - 1);
+    dv[c] = (double)d->v[c] / (d->ny - 1);
+    len[0] += du[c] * du[c];
+    len[1] += dv[c] * dv[c];
+    len[2] += (du[c] + dv[c]) * (du[c] + dv[c]);
+    len[3] += (dv[c] - du[c]) * (dv[c] - du[c]);
+  }
+  for (int q = 0; q < 4; q++)
+    rest[q] = (float)sqrt(len[q]);
+  rest[4] = (float)(2.0 * sqrt(len[0]));
+  rest[5] = (float)(2.0 * sqrt(len[1]));
 }
 
 static void push_springs(struct springs *s, const msocl_cloth_desc *d) {
@@ -107,20 +130,20 @@ static void push_springs(struct springs *s, const msocl_cloth_desc *d) {
   if (d->k_stretch > 0)
     for (j = 0; j < ny; j++)
       for (i = 0; i < nx; i++) {
-        if (i + 1 < nx) push(s, j * nx + i, j * nx + i + 1, d->k_stretch);
-        if (j + 1 < ny) push(s, j * nx + i, (j + 1) * nx + i, d->k_stretch);
+        if (i + 1 < nx) push(s, j * nx + i, j * nx + i + 1, d->k_stretch, 0);
+        if (j + 1 < ny) push(s, j * nx + i, (j + 1) * nx + i, d->k_stretch, 1);
       }
   if (d->k_shear > 0)
     for (j = 0; j + 1 < ny; j++)
       for (i = 0; i + 1 < nx; i++) {
-        push(s, j * nx + i, (j + 1) * nx + i + 1, d->k_shear);
-        push(s, j * nx + i + 1, (j + 1) * nx + i, d->k_shear);
+        push(s, j * nx + i, (j + 1) * nx + i + 1, d->k_shear, 2);
+        push(s, j * nx + i + 1, (j + 1) * nx + i, d->k_shear, 3);
       }
   if (d->k_bend > 0)
     for (j = 0; j < ny; j++)
       for (i = 0; i < nx; i++) {
-        if (i + 2 < nx) push(s, j * nx + i, j * nx + i + 2, d->k_bend);
-        if (j + 2 < ny) push(s, j * nx + i, (j + 2) * nx + i, d->k_bend);
+        if (i + 2 < nx) push(s, j * nx + i, j * nx + i + 2, d->k_bend, 4);
+        if (j + 2 < ny) push(s, j * nx + i, (j + 2) * nx + i, d->k_bend, 5);
       }
 }
 
@@ -151,24 +174,37 @@ static int add_points(msocl_model *m, const msocl_cloth_desc *d) {
 
 static int add_springs(msocl_model *m, const msocl_cloth_desc *d) {
   long long most = all_springs(d->nx, d->ny);
-  struct springs s = {0, NULL, NULL};
+  float rests[6];
+  kind_rests(d, rests);
+  struct springs s = {0, NULL, NULL, NULL, rests};
   float *damp = NULL;
   int i, rc = MSOCL_OK;
 
   s.ij = malloc((size_t)most * 2 * sizeof *s.ij);
   s.k = malloc((size_t)most * sizeof *s.k);
+  s.rest = malloc((size_t)most * sizeof *s.rest);
   if (d->damping > 0) damp = malloc((size_t)most * sizeof *damp);
-  if (!s.ij || !s.k || (d->damping > 0 && !damp)) {
+  if (!s.ij || !s.k || !s.rest || (d->damping > 0 && !damp)) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "cloth: cannot allocate %lld springs",
                      most);
   } else {
     push_springs(&s, d);
     for (i = 0; damp && i < s.n; i++) damp[i] = d->damping;
-    /* rest NULL: each spring rests at its length in the flat grid. */
-    if (s.n > 0) rc = msocl_model_add_springs(m, s.n, s.ij, s.k, NULL, damp);
+    if (s.n > 0) rc = msocl_model_add_springs(m, s.n, s.ij, s.k, s.rest, damp);
+  }
+  if (rc == MSOCL_OK) {
+    m->grid.nx = d->nx;
+    m->grid.ny = d->ny;
+    m->grid.ns = m->ns;
+    m->grid.k[0] = d->k_stretch;
+    m->grid.k[1] = d->k_shear;
+    m->grid.k[2] = d->k_bend;
+    memcpy(m->grid.rest, rests, sizeof rests);
+    m->grid.damp = d->damping;
   }
   free(s.ij);
   free(s.k);
+  free(s.rest);
   free(damp);
   return rc;
 }

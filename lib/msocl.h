@@ -247,8 +247,11 @@ typedef enum {
   MSOCL_LAYOUT_AUTO = 0, /* the faster on the device: BUFFER on CPUs */
   MSOCL_LAYOUT_IMAGE2D,  /* the paper's connectivity texture, 16 slots */
   MSOCL_LAYOUT_BUFFER,   /* slot-major buffers, max-degree slots */
-  MSOCL_LAYOUT_EDGES     /* seed 2: a work-item per spring, float atomics
+  MSOCL_LAYOUT_EDGES,    /* seed 2: a work-item per spring, float atomics
                             into force accumulators (symplectic Euler only) */
+  MSOCL_LAYOUT_GRID      /* no stored springs: a cloth from
+                            msocl_model_cloth_grid recomputes its 12
+                            neighbours from its grid position */
 } msocl_layout;
 
 typedef enum {

@@ -16,7 +16,7 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
   if (!(o->dt > 0.0f))
     return msocl__fail(MSOCL_ERR_BAD_DT, "time step dt = %g must be > 0",
                        o->dt);
-  if (o->layout < MSOCL_LAYOUT_AUTO || o->layout > MSOCL_LAYOUT_EDGES)
+  if (o->layout < MSOCL_LAYOUT_AUTO || o->layout > MSOCL_LAYOUT_GRID)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d",
                        (int)o->layout);
   if (o->math != MSOCL_MATH_PRECISE && o->math != MSOCL_MATH_RELAXED)

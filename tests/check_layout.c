@@ -1,5 +1,5 @@
-/* IMAGE2D and BUFFER layouts: bitwise-equal results, degree limits, and the
- * texture's shape. */
+/* The gather layouts (IMAGE2D, BUFFER, GRID): bitwise-equal results,
+ * degree limits, and what GRID needs. */
 #include "scenes.h"
 
 #include <check.h>
@@ -33,21 +33,35 @@ static void run(const msocl_model *m, msocl_layout layout, float dt,
   msocl_sim_destroy(s);
 }
 
+/* IMAGE2D, BUFFER and GRID (the models here are cloth grids) after
+ * `steps` steps: bit for bit the same positions and velocities. */
 static void compare_layouts(const msocl_model *m, float dt, int steps)
 {
   int n;
   msocl_model_point_count(m, &n);
-  float *pi, *vi, *pb, *vb, *p0 = malloc(3 * (size_t)n * sizeof(float));
+  const size_t bytes = 3 * (size_t)n * sizeof(float);
+  float *p[3], *v[3], *p0 = malloc(bytes);
+  const msocl_layout lay[3] = {MSOCL_LAYOUT_BUFFER, MSOCL_LAYOUT_IMAGE2D,
+                               MSOCL_LAYOUT_GRID};
+  const char *names[3] = {"BUFFER", "IMAGE2D", "GRID"};
   msocl_model_get_positions(m, p0);
-  run(m, MSOCL_LAYOUT_IMAGE2D, dt, steps, &pi, &vi);
-  run(m, MSOCL_LAYOUT_BUFFER, dt, steps, &pb, &vb);
+  for (int q = 0; q < 3; q++)
+    run(m, lay[q], dt, steps, &p[q], &v[q]);
   /* The scene must actually have moved, or equality proves nothing. */
-  ck_assert_double_gt(scene_max_diff(p0, pb, 3 * n), 1e-3);
-  ck_assert_msg(memcmp(pi, pb, 3 * (size_t)n * sizeof(float)) == 0,
-                "positions differ: max %g", scene_max_diff(pi, pb, 3 * n));
-  ck_assert_msg(memcmp(vi, vb, 3 * (size_t)n * sizeof(float)) == 0,
-                "velocities differ: max %g", scene_max_diff(vi, vb, 3 * n));
-  free(p0); free(pi); free(vi); free(pb); free(vb);
+  ck_assert_double_gt(scene_max_diff(p0, p[0], 3 * n), 1e-3);
+  for (int q = 1; q < 3; q++) {
+    ck_assert_msg(memcmp(p[q], p[0], bytes) == 0,
+                  "%s positions differ from BUFFER: max %g", names[q],
+                  scene_max_diff(p[q], p[0], 3 * n));
+    ck_assert_msg(memcmp(v[q], v[0], bytes) == 0,
+                  "%s velocities differ from BUFFER: max %g", names[q],
+                  scene_max_diff(v[q], v[0], 3 * n));
+  }
+  for (int q = 0; q < 3; q++) {
+    free(p[q]);
+    free(v[q]);
+  }
+  free(p0);
 }
 
 START_TEST(tablecloth_bitwise)
@@ -115,6 +129,61 @@ START_TEST(degree_limit)
 }
 END_TEST
 
+/* GRID needs the grid the builder recorded: a cloth with a spring added
+ * afterwards is refused; a general model too. */
+START_TEST(grid_needs_a_cloth_grid)
+{
+  msocl_model *m = scene_tablecloth(8);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.layout = MSOCL_LAYOUT_GRID;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  msocl_layout l;
+  msocl_sim_layout(s, &l);
+  ck_assert_int_eq(l, MSOCL_LAYOUT_GRID);
+  msocl_sim_destroy(s);
+  const int ij[2] = {0, 63};
+  const float k = 1.0f;
+  ck_assert_int_eq(msocl_model_add_springs(m, 1, ij, &k, NULL, NULL), MSOCL_OK);
+  s = (msocl_sim *)&o;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_ptr_null(s);
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "GRID"));
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Every integrator sums the same slots in the same order on GRID. */
+START_TEST(grid_every_integrator)
+{
+  msocl_model *m = scene_hanging(12);
+  int n = 144;
+  for (int in = MSOCL_SYMPLECTIC_EULER; in <= MSOCL_IMPLICIT_EULER; in++) {
+    float *p[2];
+    for (int q = 0; q < 2; q++) {
+      msocl_sim_options o;
+      msocl_sim_options_init(&o);
+      o.dt = 1e-4f;
+      o.integrator = (msocl_integrator)in;
+      o.layout = q ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
+      msocl_sim *s = NULL;
+      ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+      ck_assert_int_eq(msocl_sim_step(s, 200), MSOCL_OK);
+      p[q] = malloc(3 * (size_t)n * sizeof(float));
+      msocl_sim_read_positions(s, p[q]);
+      msocl_sim_destroy(s);
+    }
+    ck_assert_msg(memcmp(p[0], p[1], 3 * (size_t)n * sizeof(float)) == 0,
+                  "integrator %d: GRID differs from BUFFER by %g", in,
+                  scene_max_diff(p[0], p[1], 3 * n));
+    free(p[0]);
+    free(p[1]);
+  }
+  msocl_model_destroy(m);
+}
+END_TEST
+
 START_TEST(auto_is_buffer_on_cpu)
 {
   msocl_model *m = scene_tablecloth(8);
@@ -140,6 +209,8 @@ int main(void)
   tcase_add_test(tc, damped_pinned_bitwise);
   tcase_add_test(tc, degree_limit);
   tcase_add_test(tc, auto_is_buffer_on_cpu);
+  tcase_add_test(tc, grid_needs_a_cloth_grid);
+  tcase_add_test(tc, grid_every_integrator);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }

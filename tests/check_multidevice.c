@@ -73,7 +73,10 @@ static void same_bits(const msocl_model *m, msocl_integrator in,
                 "%s, %s, %s, %d devices: positions differ by %g, velocities "
                 "by %g",
                 what, inames[in],
-                lay == MSOCL_LAYOUT_IMAGE2D ? "IMAGE2D" : "BUFFER", parts,
+                lay == MSOCL_LAYOUT_IMAGE2D ? "IMAGE2D"
+                : lay == MSOCL_LAYOUT_GRID  ? "GRID"
+                                            : "BUFFER",
+                parts,
                 scene_max_diff(p1, pk, 3 * n), scene_max_diff(v1, vk, 3 * n));
   free(p1); free(v1); free(pk); free(vk); free(p0);
 }
@@ -102,6 +105,18 @@ START_TEST(damped_hanging_cloth)
   float dt = in == MSOCL_EXPLICIT_EULER ? 1e-4f : 1e-3f;
   for (int parts = 2; parts <= ndev && parts <= 3; parts++)
     same_bits(m, in, lay, dt, 500, parts, NULL, "damped hanging cloth");
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* GRID recomputes neighbours from the grid: split, it still reads the
+ * exchanged halo rows. */
+START_TEST(grid_layout_split)
+{
+  msocl_model *m = scene_hanging(16);
+  for (int parts = 2; parts <= ndev && parts <= 3; parts++)
+    same_bits(m, MSOCL_RK4, MSOCL_LAYOUT_GRID, 1e-3f, 500, parts, NULL,
+              "GRID, damped hanging cloth");
   msocl_model_destroy(m);
 }
 END_TEST
@@ -418,6 +433,7 @@ int main(void)
   tcase_add_loop_test(tc, tablecloth_500_steps, 0, 8);
   tcase_add_loop_test(tc, damped_hanging_cloth, 0, 8);
   tcase_add_test(tc, uneven_weights);
+  tcase_add_test(tc, grid_layout_split);
   tcase_add_test(tc, narrower_than_halo);
   tcase_add_test(tc, split_report_and_normals);
   tcase_add_test(tc, refused);
