@@ -299,7 +299,11 @@ int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
                                                   : symplectic_velocity(s));
     } else {
       TRY(position_pass(s));
-      *exchange = MSOCL__X_POS_W | vel_w;
+      /* implicit Euler's right-hand side reads neighbours' velocities
+       * (K v) even without dashpots */
+      *exchange = MSOCL__X_POS_W |
+                  (s->o.integrator == MSOCL_IMPLICIT_EULER ? MSOCL__X_VEL_W
+                                                           : vel_w);
     }
     break;
   case MSOCL_EXPLICIT_EULER:
@@ -340,6 +344,7 @@ cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit)
   case MSOCL__X_STAGE1: return s->stage_p[1];
   case MSOCL__X_STAGEV0: return s->stage_v[0];
   case MSOCL__X_STAGEV1: return s->stage_v[1];
+  case MSOCL__X_CG_P: return s->stage_v[0];
   }
   return NULL;
 }

@@ -9,19 +9,26 @@
 
 static const size_t group = 64;
 
-/* Runs kernel k with work-groups of 64 and returns the sum of the
- * partials' first components. */
-static int reduce(msocl__engine *s, int k, double *sum)
+/* Queues kernel k over the engine's points in work-groups of 64 (the
+ * points past n, in the last group, do nothing). */
+static int launch64(msocl__engine *s, int k)
 {
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[k], 1, NULL,
-                                   &s->global, &group, 0, NULL, NULL));
+  const size_t global = 64 * s->groups;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[k], 1, &s->offset,
+                                   &global, &group, 0, NULL, NULL));
+  return MSOCL_OK;
+}
+
+/* Adds the engine's partials, group by group, to *sum: split over devices
+ * whose ranges start at multiples of 64, the additions come in the same
+ * order as on one device, and so do the bits of the sum. */
+static int collect(msocl__engine *s, double *sum)
+{
   MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->partial, CL_TRUE, 0,
                                 s->groups * sizeof(cl_float4),
                                 s->partial_host, 0, NULL, NULL));
-  double t = 0.0;
   for (size_t g = 0; g < s->groups; g++)
-    t += s->partial_host[g].s[0];
-  *sum = t;
+    *sum += s->partial_host[g].s[0];
   return MSOCL_OK;
 }
 
@@ -77,37 +84,76 @@ int msocl__implicit_setup(msocl__engine *s)
   return MSOCL_OK;
 }
 
+/* Runs kernel k on every engine, then sums their partials in order. */
+static int reduce_all(msocl__engine *const *e, int parts, int k, double *sum)
+{
+  *sum = 0.0;
+  for (int d = 0; d < parts; d++)
+    TRY(launch64(e[d], k));
+  for (int d = 0; d < parts; d++)
+    TRY(collect(e[d], sum));
+  return MSOCL_OK;
+}
+
+static int set_float_all(msocl__engine *const *e, int parts, int k,
+                         cl_uint arg, float v)
+{
+  for (int d = 0; d < parts; d++)
+    TRY(msocl__arg_float(e[d]->k[k], arg, v));
+  return MSOCL_OK;
+}
+
+/* The CG of one step over `parts` engines; between products, `exchange`
+ * brings every engine the halo of the search direction p. */
+int msocl__implicit_cg(msocl__engine *const *e, int parts,
+                       int (*exchange)(void *ctx), void *ctx)
+{
+  for (int d = 0; d < parts; d++) {
+    const cl_uint c = e[d]->nconn;
+    const int r = e[d]->r;
+    TRY(msocl__arg_mem(e[d]->k[MSOCL__K_IE_RHS], c, e[d]->pos[r]));
+    TRY(msocl__arg_mem(e[d]->k[MSOCL__K_IE_RHS], c + 1, e[d]->vel[r]));
+    TRY(msocl__arg_mem(e[d]->k[MSOCL__K_IE_APPLY], c, e[d]->pos[r]));
+  }
+  double bb, rr, pap, rr_new;
+  TRY(reduce_all(e, parts, MSOCL__K_IE_RHS, &bb));
+  if (exchange)
+    TRY(exchange(ctx));
+  rr = bb;
+  const msocl_sim_options *o = &e[0]->o;
+  const double goal = (double)o->cg_tolerance * (double)o->cg_tolerance * bb;
+  int it = 0;
+  while (rr > goal && it < o->cg_max_iterations) {
+    TRY(reduce_all(e, parts, MSOCL__K_IE_APPLY, &pap));
+    if (!(pap > 0.0))
+      break; /* p = 0 or a non-SPD round-off: x is as good as it gets */
+    TRY(set_float_all(e, parts, MSOCL__K_CG_STEP, 4, (float)(rr / pap)));
+    TRY(reduce_all(e, parts, MSOCL__K_CG_STEP, &rr_new));
+    TRY(set_float_all(e, parts, MSOCL__K_CG_DIR, 2, (float)(rr_new / rr)));
+    for (int d = 0; d < parts; d++)
+      TRY(msocl__launch(e[d], MSOCL__K_CG_DIR));
+    if (exchange)
+      TRY(exchange(ctx));
+    rr = rr_new;
+    it++;
+  }
+  for (int d = 0; d < parts; d++) {
+    msocl__engine *s = e[d];
+    const int r = s->r, w = 1 - r;
+    s->cg_iterations = it;
+    s->cg_residual = bb > 0.0 ? sqrt(rr / bb) : 0.0;
+    cl_kernel k = s->k[MSOCL__K_IE_FINISH];
+    TRY(msocl__arg_mem(k, 0, s->pos[r]));
+    TRY(msocl__arg_mem(k, 1, s->vel[r]));
+    TRY(msocl__arg_mem(k, 3, s->vel[w]));
+    TRY(msocl__launch(s, MSOCL__K_IE_FINISH));
+  }
+  return MSOCL_OK;
+}
+
 /* Writes the new velocity to vel[1 - r]; the caller's position pass moves
  * the points. */
 int msocl__implicit_velocity(msocl__engine *s)
 {
-  const cl_uint c = s->nconn;
-  const int r = s->r, w = 1 - r;
-  TRY(msocl__arg_mem(s->k[MSOCL__K_IE_RHS], c, s->pos[r]));
-  TRY(msocl__arg_mem(s->k[MSOCL__K_IE_RHS], c + 1, s->vel[r]));
-  TRY(msocl__arg_mem(s->k[MSOCL__K_IE_APPLY], c, s->pos[r]));
-  double bb, rr, pap, rr_new;
-  TRY(reduce(s, MSOCL__K_IE_RHS, &bb));
-  rr = bb;
-  const double goal = (double)s->o.cg_tolerance * (double)s->o.cg_tolerance *
-                      bb;
-  int it = 0;
-  while (rr > goal && it < s->o.cg_max_iterations) {
-    TRY(reduce(s, MSOCL__K_IE_APPLY, &pap));
-    if (!(pap > 0.0))
-      break; /* p = 0 or a non-SPD round-off: x is as good as it gets */
-    TRY(msocl__arg_float(s->k[MSOCL__K_CG_STEP], 4, (float)(rr / pap)));
-    TRY(reduce(s, MSOCL__K_CG_STEP, &rr_new));
-    TRY(msocl__arg_float(s->k[MSOCL__K_CG_DIR], 2, (float)(rr_new / rr)));
-    TRY(msocl__launch(s, MSOCL__K_CG_DIR));
-    rr = rr_new;
-    it++;
-  }
-  s->cg_iterations = it;
-  s->cg_residual = bb > 0.0 ? sqrt(rr / bb) : 0.0;
-  cl_kernel k = s->k[MSOCL__K_IE_FINISH];
-  TRY(msocl__arg_mem(k, 0, s->pos[r]));
-  TRY(msocl__arg_mem(k, 1, s->vel[r]));
-  TRY(msocl__arg_mem(k, 3, s->vel[w]));
-  return msocl__launch(s, MSOCL__K_IE_FINISH);
+  return msocl__implicit_cg(&s, 1, NULL, NULL);
 }

@@ -60,7 +60,8 @@ struct msocl__engine {
 enum {
   MSOCL__X_POS_W = 1, MSOCL__X_VEL_W = 2, MSOCL__X_VEL_R = 4,
   MSOCL__X_STAGE0 = 8, MSOCL__X_STAGE1 = 16, /* RK4 stage positions */
-  MSOCL__X_STAGEV0 = 32, MSOCL__X_STAGEV1 = 64 /* and velocities */
+  MSOCL__X_STAGEV0 = 32, MSOCL__X_STAGEV1 = 64, /* and velocities */
+  MSOCL__X_CG_P = 128                           /* implicit: CG direction */
 };
 
 struct msocl_sim {
@@ -116,6 +117,10 @@ int msocl__arg_int(cl_kernel k, cl_uint i, int v);
  * velocity into vel[1 - r]. */
 int msocl__implicit_setup(msocl__engine *s);
 int msocl__implicit_velocity(msocl__engine *s);
+/* The same over several engines; exchange(ctx) spreads the CG direction's
+ * halo between products. */
+int msocl__implicit_cg(msocl__engine *const *e, int parts,
+                       int (*exchange)(void *ctx), void *ctx);
 /* Strain limiting (strain.c): fixed arguments; the velocity correction on
  * vel[1 - r]; Provot's position correction on pos[1 - r]. */
 int msocl__strain_setup(msocl__engine *s);

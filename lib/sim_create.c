@@ -37,14 +37,12 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
       return msocl__fail(MSOCL_ERR_BAD_VALUE,
                          "weight %d is %g: weights must be finite and >= 0",
                          d, o->weights[d]);
-  if (parts > 1 && (o->integrator == MSOCL_IMPLICIT_EULER ||
-                    o->layout == MSOCL_LAYOUT_EDGES ||
+  if (parts > 1 && (o->layout == MSOCL_LAYOUT_EDGES ||
                     o->strain != MSOCL_STRAIN_NONE))
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "a model split over %d devices runs the gather layouts "
-                       "with symplectic Euler, explicit Euler, Verlet or RK4, "
-                       "without strain limiting (implicit Euler, EDGES and "
-                       "strain sweeps run on one device)",
+                       "without strain limiting (EDGES and strain sweeps run "
+                       "on one device)",
                        parts);
   if (o->integrator < MSOCL_SYMPLECTIC_EULER ||
       o->integrator > MSOCL_IMPLICIT_EULER)
@@ -155,16 +153,24 @@ static int partition(msocl_sim *s, const msocl_model *m)
   if (!(total > 0.0))
     for (int d = 0; d < s->nparts; d++)
       total += (w[d] = 1.0);
+  /* Implicit Euler's CG sums work-group partials: ranges that start at
+   * multiples of 64 keep the groups, and so the sums, of one device. */
+  const int align = s->o.integrator == MSOCL_IMPLICIT_EULER ? 64 : 1;
   double cum = 0.0;
   int lo = 0;
   for (int d = 0; d < s->nparts; d++) {
     cum += w[d];
-    int hi = d == s->nparts - 1 ? m->n : (int)llround(m->n * (cum / total));
+    int hi = d == s->nparts - 1
+                 ? m->n
+                 : align * (int)llround(m->n * (cum / total) / align);
     if (hi <= lo)
       return msocl__fail(MSOCL_ERR_BAD_VALUE,
                          "device %d would get no points of %d (weights too "
-                         "uneven, or fewer points than devices)",
-                         d, m->n);
+                         "uneven, or fewer points than devices%s)",
+                         d, m->n,
+                         align > 1 ? "; implicit Euler splits in whole "
+                                     "work-groups of 64 points"
+                                   : "");
     s->halo[d][d][0] = lo;
     s->halo[d][d][1] = hi;
     lo = hi;

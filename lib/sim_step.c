@@ -41,7 +41,7 @@ static int exchange(msocl_sim *s, unsigned mask)
     return rc;
   double t0 = now();
   int slot = 0;
-  for (unsigned bit = 1; bit <= MSOCL__X_STAGEV1 && rc == MSOCL_OK; bit <<= 1) {
+  for (unsigned bit = 1; bit <= MSOCL__X_CG_P && rc == MSOCL_OK; bit <<= 1) {
     if (!(mask & bit))
       continue;
     if (slot == 2) { /* both staging arrays in flight: let writes drain */
@@ -86,13 +86,26 @@ static int exchange(msocl_sim *s, unsigned mask)
   return rc;
 }
 
+static int exchange_cg(void *ctx)
+{
+  return exchange((msocl_sim *)ctx, MSOCL__X_CG_P);
+}
+
 /* `n` whole steps on every engine, phase by phase. */
 static int steps(msocl_sim *s, int n)
 {
   const int phases = msocl__phase_count(s->part[0]);
+  const int split_cg = s->nparts > 1 &&
+                       s->o.integrator == MSOCL_IMPLICIT_EULER;
   for (int q = 0; q < n; q++) {
     for (int ph = 0; ph < phases; ph++) {
       unsigned mask = 0;
+      if (ph == 0 && split_cg) { /* one CG over every engine */
+        int rc = msocl__implicit_cg(s->part, s->nparts, exchange_cg, s);
+        if (rc != MSOCL_OK)
+          return rc;
+        continue;
+      }
       for (int d = 0; d < s->nparts; d++) {
         int rc = msocl__phase(s->part[d], ph, &mask);
         if (rc != MSOCL_OK)
