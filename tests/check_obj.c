@@ -15,23 +15,7 @@
 #include "internal.h"
 #include "obj_parse.h"
 
-#define EXPECT(call, code)                                                     \
-  do {                                                                         \
-    int rc_ = (call);                                                          \
-    ck_assert_msg(rc_ == (code), "%s: got %s (%d), want %s; \"%s\"", #call,    \
-                  msocl_err_name(rc_), rc_, #code, msocl_last_error());        \
-  } while (0)
-
-#define OK(call) EXPECT(call, MSOCL_OK)
-
-#define SAYS(text)                                                             \
-  ck_assert_msg(strstr(msocl_last_error(), (text)) != NULL,                    \
-                "message \"%s\" does not contain \"%s\"", msocl_last_error(),  \
-                (text))
-
-#define NEAR(a, b, tol)                                                        \
-  ck_assert_msg(fabs((double)(a) - (double)(b)) <= (tol),                      \
-                "%s = %.9g, want %.9g", #a, (double)(a), (double)(b))
+#include "expect.h"
 
 #define PI 3.14159265358979323846
 
