@@ -1,5 +1,6 @@
 /* The gather layouts (IMAGE2D, BUFFER, GRID): bitwise-equal results,
  * degree limits, and what GRID needs. */
+#include "layout.h" /* msocl__image_dims */
 #include "scenes.h"
 
 #include <check.h>
@@ -184,6 +185,30 @@ START_TEST(grid_every_integrator)
 }
 END_TEST
 
+/* The texture's W x H: near-square, at most W - 1 unused texels (no
+ * power-of-two padding), within the device's limits (4W x 4H). */
+START_TEST(texture_dims)
+{
+  int w, h;
+  const int ns[] = {1, 5, 48 * 48, 1000, 1 << 20, 4095 * 4095};
+  for (size_t q = 0; q < sizeof ns / sizeof ns[0]; q++) {
+    ck_assert_int_eq(msocl__image_dims(ns[q], 65536, 65536, &w, &h), MSOCL_OK);
+    ck_assert_int_ge((long long)w * h, ns[q]);
+    ck_assert_int_lt((long long)w * h - ns[q], w);
+    ck_assert_int_le(abs(w - h), 1 + ns[q] / w / 64);
+  }
+  ck_assert_int_eq(msocl__image_dims(48 * 48, 65536, 65536, &w, &h), MSOCL_OK);
+  ck_assert_int_eq(w, 48); /* the paper padded 48 x 48 to 64 x 64 */
+  ck_assert_int_eq(h, 48);
+  /* a narrow device: W capped at max_w / 4, H grows */
+  ck_assert_int_eq(msocl__image_dims(1000, 64, 8192, &w, &h), MSOCL_OK);
+  ck_assert_int_eq(w, 16);
+  ck_assert_int_eq(h, 63);
+  ck_assert_int_eq(msocl__image_dims(1000, 64, 128, &w, &h),
+                   MSOCL_ERR_IMAGE_SIZE);
+}
+END_TEST
+
 START_TEST(auto_is_buffer_on_cpu)
 {
   msocl_model *m = scene_tablecloth(8);
@@ -209,6 +234,7 @@ int main(void)
   tcase_add_test(tc, damped_pinned_bitwise);
   tcase_add_test(tc, degree_limit);
   tcase_add_test(tc, auto_is_buffer_on_cpu);
+  tcase_add_test(tc, texture_dims);
   tcase_add_test(tc, grid_needs_a_cloth_grid);
   tcase_add_test(tc, grid_every_integrator);
   suite_add_tcase(su, tc);
