@@ -3,7 +3,8 @@
  *
  *   tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l auto|image2d|buffer|edges|grid]
  *              [-m precise|relaxed] [-i symplectic|explicit|verlet|rk4|implicit]
- *              [-S none|provot|velocity] [-p PARTS [-c STEPS]] [-o OUT.obj]
+ *              [-S none|provot|velocity] [-p PARTS [-c STEPS]] [-f]
+ *              [-o OUT.obj]
  */
 #include <msocl.h>
 
@@ -27,9 +28,10 @@ static int usage(const char *argv0)
           "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
           "[-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
-          "[-S none|provot|velocity] [-p PARTS [-c STEPS]] [-o OUT.obj]\n"
+          "[-S none|provot|velocity] [-p PARTS [-c STEPS]] [-f] [-o OUT.obj]\n"
           "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n"
-          "  -c: weigh the devices by a calibration run of STEPS steps\n",
+          "  -c: weigh the devices by a calibration run of STEPS steps\n"
+          "  -f: both passes of a step in one kernel (same result)\n",
           argv0);
   return 2;
 }
@@ -99,7 +101,7 @@ int main(int argc, char **argv)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   int in = 0, strain = 0;
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:h")) != -1) {
+  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:fh")) != -1) {
     switch (opt) {
     case 'n': n = atoi(optarg); break;
     case 's': steps = atoi(optarg); break;
@@ -124,6 +126,7 @@ int main(int argc, char **argv)
       break;
     case 'p': o.ndevices = atoi(optarg); break;
     case 'c': o.calibrate_steps = atoi(optarg); break;
+    case 'f': o.fused = 1; break;
     case 'S':
       if ((strain = pick(optarg, strains, 3)) < 0) return usage(argv[0]);
       o.strain = (msocl_strain)strain;

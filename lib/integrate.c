@@ -76,6 +76,16 @@ int msocl__integrate_setup(msocl__engine *s)
     TRY(msocl__arg_int(k, c + 9, s->ncol));
     TRY(msocl__arg_int(k, c + 10, s->n));
   }
+  if ((k = s->k[MSOCL__K_FUSED])) {
+    TRY(msocl__arg_mem(k, c + 4, s->inv_mass));
+    TRY(arg_vec(k, c + 5, &s->gravity));
+    TRY(msocl__arg_float(k, c + 6, s->viscous));
+    TRY(msocl__arg_float(k, c + 7, s->air));
+    TRY(msocl__arg_float(k, c + 8, dt));
+    TRY(msocl__arg_mem(k, c + 9, s->col));
+    TRY(msocl__arg_int(k, c + 10, s->ncol));
+    TRY(msocl__arg_int(k, c + 11, s->n));
+  }
   if ((k = s->k[MSOCL__K_POSITION])) {
     TRY(msocl__arg_float(k, 3, dt));
     TRY(msocl__arg_int(k, 4, s->n));
@@ -275,7 +285,7 @@ static int rk4_stage(msocl__engine *s, int q)
 int msocl__phase_count(const msocl__engine *s)
 {
   switch (s->o.integrator) {
-  case MSOCL_SYMPLECTIC_EULER: return 2;
+  case MSOCL_SYMPLECTIC_EULER: return s->o.fused ? 1 : 2;
   case MSOCL_EXPLICIT_EULER: return 1;
   case MSOCL_VERLET: return 2;
   case MSOCL_RK4: return 4;
@@ -291,6 +301,16 @@ int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
   const unsigned vel_w = s->damped ? MSOCL__X_VEL_W : 0;
   const int last = phase == msocl__phase_count(s) - 1;
   *exchange = 0;
+  if (s->o.fused) { /* both passes in one kernel */
+    const int r = s->r, w = 1 - r;
+    cl_mem a[4] = {s->pos[r], s->vel[r], s->pos[w], s->vel[w]};
+    TRY(mems(s->k[MSOCL__K_FUSED], s->nconn, 4, a));
+    TRY(msocl__launch(s, MSOCL__K_FUSED));
+    *exchange = MSOCL__X_POS_W | vel_w;
+    if (s->o.strain == MSOCL_STRAIN_PROVOT)
+      TRY(msocl__strain_position(s));
+    return MSOCL_OK;
+  }
   switch (s->o.integrator) {
   case MSOCL_SYMPLECTIC_EULER:
   case MSOCL_IMPLICIT_EULER:

@@ -298,6 +298,10 @@ typedef struct {
    * MSOCL_ERR_UNSTABLE with the last good state restored. */
   int check_every;
   float energy_factor;
+  /* Symplectic Euler's two passes as one kernel (bitwise the same result;
+   * gather layouts, no velocity strain limiting): one launch and one read
+   * of the state a step instead of two. */
+  int fused;
 } msocl_sim_options;
 
 MSOCL_EXTERN void msocl_sim_options_init(msocl_sim_options *o);

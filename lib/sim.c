@@ -205,14 +205,15 @@ static const char *const kernel_names[MSOCL__K_COUNT] = {
     "msocl_ie_rhs",     "msocl_ie_apply",   "msocl_cg_step",
     "msocl_cg_direction", "msocl_ie_finish", "msocl_strain_velocity",
     "msocl_strain_position", "msocl_strain_commit", "msocl_edges_force",
-    "msocl_edges_velocity", "msocl_edges_energy"};
+    "msocl_edges_velocity", "msocl_edges_energy", "msocl_fused"};
 
 /* Kernels that read a point's springs take the connectivity first. */
 static const unsigned char gathers[MSOCL__K_COUNT] = {
     [MSOCL__K_VELOCITY] = 1, [MSOCL__K_EULER] = 1,  [MSOCL__K_ACCEL] = 1,
     [MSOCL__K_KICK] = 1,     [MSOCL__K_RK4] = 1,    [MSOCL__K_ENERGY] = 1,
     [MSOCL__K_IE_RHS] = 1,   [MSOCL__K_IE_APPLY] = 1,
-    [MSOCL__K_STRAIN_VEL] = 1, [MSOCL__K_STRAIN_POS] = 1};
+    [MSOCL__K_STRAIN_VEL] = 1, [MSOCL__K_STRAIN_POS] = 1,
+    [MSOCL__K_FUSED] = 1};
 
 /* Creates just the kernels the chosen integrator and options use. */
 static int make_kernels(msocl__engine *s, cl_program prog)
@@ -224,6 +225,8 @@ static int make_kernels(msocl__engine *s, cl_program prog)
     if (s->lay.kind == MSOCL_LAYOUT_EDGES) {
       want[MSOCL__K_EDGES_FORCE] = want[MSOCL__K_EDGES_VEL] = 1;
       want[MSOCL__K_EDGES_ENERGY] = 1;
+    } else if (s->o.fused) {
+      want[MSOCL__K_FUSED] = 1;
     } else {
       want[MSOCL__K_VELOCITY] = 1;
     }

@@ -76,6 +76,13 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
                        "the EDGES layout runs symplectic Euler without strain "
                        "limiting (its per-spring pass feeds one velocity "
                        "update); use BUFFER for other methods");
+  if (o->fused && (o->integrator != MSOCL_SYMPLECTIC_EULER ||
+                   o->layout == MSOCL_LAYOUT_EDGES ||
+                   o->strain == MSOCL_STRAIN_VELOCITY))
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "fused runs symplectic Euler's two passes on a gather "
+                       "layout, without velocity strain limiting (which "
+                       "works between the passes)");
   if (o->calibrate_steps < 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "calibrate_steps %d is negative",
                        o->calibrate_steps);

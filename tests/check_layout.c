@@ -209,6 +209,50 @@ START_TEST(texture_dims)
 }
 END_TEST
 
+/* The fused kernel does both passes at once: bitwise the two passes'
+ * result, on one device and split over two; refused where a pass between
+ * them is needed. */
+START_TEST(fused_equals_two_passes)
+{
+  msocl_model *m = scene_tablecloth(24);
+  float *p[3];
+  int n = 576, parts = 1;
+  msocl_runtime *two = NULL;
+  if (msocl_runtime_create(&two, "0:0,0:1") == MSOCL_OK)
+    parts = 2;
+  for (int q = 0; q < 3; q++) {
+    msocl_sim_options o;
+    msocl_sim_options_init(&o);
+    o.dt = scene_tablecloth_dt(24);
+    o.fused = q > 0;
+    o.ndevices = q == 2 ? parts : 1;
+    msocl_sim *s = NULL;
+    ck_assert_int_eq(msocl_sim_create(&s, q == 2 && two ? two : rt, m, &o),
+                     MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_step(s, 500), MSOCL_OK);
+    p[q] = malloc(3 * (size_t)n * sizeof(float));
+    msocl_sim_read_positions(s, p[q]);
+    msocl_sim_destroy(s);
+  }
+  ck_assert(memcmp(p[0], p[1], 3 * (size_t)n * sizeof(float)) == 0);
+  ck_assert(memcmp(p[0], p[2], 3 * (size_t)n * sizeof(float)) == 0);
+  for (int q = 0; q < 3; q++)
+    free(p[q]);
+  msocl_runtime_destroy(two);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.fused = 1;
+  o.integrator = MSOCL_RK4;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  o.integrator = MSOCL_SYMPLECTIC_EULER;
+  o.strain = MSOCL_STRAIN_VELOCITY;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_ptr_null(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 START_TEST(auto_is_buffer_on_cpu)
 {
   msocl_model *m = scene_tablecloth(8);
@@ -235,6 +279,7 @@ int main(void)
   tcase_add_test(tc, degree_limit);
   tcase_add_test(tc, auto_is_buffer_on_cpu);
   tcase_add_test(tc, texture_dims);
+  tcase_add_test(tc, fused_equals_two_passes);
   tcase_add_test(tc, grid_needs_a_cloth_grid);
   tcase_add_test(tc, grid_every_integrator);
   suite_add_tcase(su, tc);
