@@ -3,8 +3,8 @@
  * with atomics; a per-point pass then integrates (symplectic Euler, like
  * msocl_velocity) and clears the accumulator for the next step. Summation
  * order depends on scheduling, so results agree with the gather layouts
- * within rounding, not bitwise. Needs common.cl before it (the library
- * builds it with the BUFFER macros and no slots). */
+ * within rounding, not bitwise. Needs common.cl and step.cl before it (the
+ * library builds it with the BUFFER macros and no slots). */
 
 /* Float add by compare-and-swap on the 32-bit word: OpenCL 1.2 has no
  * float atomics. */
@@ -70,12 +70,7 @@ __kernel void msocl_edges_velocity(__global const float4 *pos,
   f -= viscous * v;
 #endif
   (void)viscous;
-  v = v + dt * (f * inv_mass[i] + gravity.xyz);
-#ifdef MSOCL_AIR
-  v = air * v;
-#endif
-  (void)air;
-  v = msocl_collide(p4.xyz, v, dt, col, ncol, 1.0f);
+  v = msocl_kick(p4.xyz, v, f, inv_mass[i], gravity, air, dt, col, ncol);
   vel_out[i] = (float4)(v, 0.0f);
 }
 

@@ -3,6 +3,20 @@
  * velocity and answers collisions; the position pass moves the points.
  * Needs common.cl before it. */
 
+/* Symplectic Euler's new velocity of a free point from its force f
+ * (springs and viscous damping): gravity, air resistance, collisions. */
+static float3 msocl_kick(float3 p, float3 v, float3 f, float inv_m,
+                         float4 gravity, float air, float dt,
+                         __constant float4 *col, int ncol)
+{
+  v = v + dt * (f * inv_m + gravity.xyz);
+#ifdef MSOCL_AIR
+  v = air * v;
+#endif
+  (void)air;
+  return msocl_collide(p, v, dt, col, ncol, 1.0f);
+}
+
 __kernel void msocl_velocity(MSOCL_CONN, __global const float4 *pos,
                              __global const float4 *vel,
                              __global float4 *vel_out,
@@ -19,12 +33,8 @@ __kernel void msocl_velocity(MSOCL_CONN, __global const float4 *pos,
     return;
   }
   float3 f = msocl_force(MSOCL_CONN_ARGS, pos, vel, i, n, viscous);
-  float3 v = vel[i].xyz + dt * (f * inv_mass[i] + gravity.xyz);
-#ifdef MSOCL_AIR
-  v = air * v;
-#endif
-  (void)air;
-  v = msocl_collide(p4.xyz, v, dt, col, ncol, 1.0f);
+  float3 v = msocl_kick(p4.xyz, vel[i].xyz, f, inv_mass[i], gravity, air, dt,
+                        col, ncol);
   vel_out[i] = (float4)(v, 0.0f);
 }
 
@@ -64,12 +74,8 @@ __kernel void msocl_fused(MSOCL_CONN, __global const float4 *pos,
     return;
   }
   float3 f = msocl_force(MSOCL_CONN_ARGS, pos, vel, i, n, viscous);
-  float3 v = vel[i].xyz + dt * (f * inv_mass[i] + gravity.xyz);
-#ifdef MSOCL_AIR
-  v = air * v;
-#endif
-  (void)air;
-  v = msocl_collide(p4.xyz, v, dt, col, ncol, 1.0f);
+  float3 v = msocl_kick(p4.xyz, vel[i].xyz, f, inv_mass[i], gravity, air, dt,
+                        col, ncol);
   vel_out[i] = (float4)(v, 0.0f);
   pos_out[i] = (float4)(p4.xyz + dt * v, p4.w);
 }

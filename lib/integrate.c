@@ -59,6 +59,20 @@ static int mems(cl_kernel k, cl_uint first, int n, const cl_mem *args)
       return msocl__rc;                                                       \
   } while (0)
 
+/* The tail the point passes that end a symplectic or explicit Euler step
+ * share: inverse masses, gravity, viscous damping, air, dt, colliders, n. */
+static int point_pass_args(msocl__engine *s, cl_kernel k, cl_uint a)
+{
+  TRY(msocl__arg_mem(k, a, s->inv_mass));
+  TRY(arg_vec(k, a + 1, &s->gravity));
+  TRY(msocl__arg_float(k, a + 2, s->viscous));
+  TRY(msocl__arg_float(k, a + 3, s->air));
+  TRY(msocl__arg_float(k, a + 4, s->o.dt));
+  TRY(msocl__arg_mem(k, a + 5, s->col));
+  TRY(msocl__arg_int(k, a + 6, s->ncol));
+  return msocl__arg_int(k, a + 7, s->n);
+}
+
 /* Fixed arguments: everything but the state buffers that ping-pong. The
  * argument orders are those of the kernels in kernels/. */
 int msocl__integrate_setup(msocl__engine *s)
@@ -66,26 +80,10 @@ int msocl__integrate_setup(msocl__engine *s)
   const cl_uint c = s->nconn;
   const float dt = s->o.dt;
   cl_kernel k;
-  if ((k = s->k[MSOCL__K_VELOCITY])) {
-    TRY(msocl__arg_mem(k, c + 3, s->inv_mass));
-    TRY(arg_vec(k, c + 4, &s->gravity));
-    TRY(msocl__arg_float(k, c + 5, s->viscous));
-    TRY(msocl__arg_float(k, c + 6, s->air));
-    TRY(msocl__arg_float(k, c + 7, dt));
-    TRY(msocl__arg_mem(k, c + 8, s->col));
-    TRY(msocl__arg_int(k, c + 9, s->ncol));
-    TRY(msocl__arg_int(k, c + 10, s->n));
-  }
-  if ((k = s->k[MSOCL__K_FUSED])) {
-    TRY(msocl__arg_mem(k, c + 4, s->inv_mass));
-    TRY(arg_vec(k, c + 5, &s->gravity));
-    TRY(msocl__arg_float(k, c + 6, s->viscous));
-    TRY(msocl__arg_float(k, c + 7, s->air));
-    TRY(msocl__arg_float(k, c + 8, dt));
-    TRY(msocl__arg_mem(k, c + 9, s->col));
-    TRY(msocl__arg_int(k, c + 10, s->ncol));
-    TRY(msocl__arg_int(k, c + 11, s->n));
-  }
+  if ((k = s->k[MSOCL__K_VELOCITY]))
+    TRY(point_pass_args(s, k, c + 3));
+  if ((k = s->k[MSOCL__K_FUSED]))
+    TRY(point_pass_args(s, k, c + 4));
   if ((k = s->k[MSOCL__K_POSITION])) {
     TRY(msocl__arg_float(k, 3, dt));
     TRY(msocl__arg_int(k, 4, s->n));
@@ -96,16 +94,8 @@ int msocl__integrate_setup(msocl__engine *s)
     TRY(msocl__arg_mem(k, 3, s->normal));
     TRY(msocl__arg_int(k, 4, s->n));
   }
-  if ((k = s->k[MSOCL__K_EULER])) {
-    TRY(msocl__arg_mem(k, c + 4, s->inv_mass));
-    TRY(arg_vec(k, c + 5, &s->gravity));
-    TRY(msocl__arg_float(k, c + 6, s->viscous));
-    TRY(msocl__arg_float(k, c + 7, s->air));
-    TRY(msocl__arg_float(k, c + 8, dt));
-    TRY(msocl__arg_mem(k, c + 9, s->col));
-    TRY(msocl__arg_int(k, c + 10, s->ncol));
-    TRY(msocl__arg_int(k, c + 11, s->n));
-  }
+  if ((k = s->k[MSOCL__K_EULER]))
+    TRY(point_pass_args(s, k, c + 4));
   if ((k = s->k[MSOCL__K_ACCEL])) {
     TRY(msocl__arg_mem(k, c + 2, s->acc));
     TRY(msocl__arg_mem(k, c + 3, s->inv_mass));
@@ -157,14 +147,7 @@ int msocl__integrate_setup(msocl__engine *s)
   }
   if ((k = s->k[MSOCL__K_EDGES_VEL])) {
     TRY(msocl__arg_mem(k, 3, s->force));
-    TRY(msocl__arg_mem(k, 4, s->inv_mass));
-    TRY(arg_vec(k, 5, &s->gravity));
-    TRY(msocl__arg_float(k, 6, s->viscous));
-    TRY(msocl__arg_float(k, 7, s->air));
-    TRY(msocl__arg_float(k, 8, dt));
-    TRY(msocl__arg_mem(k, 9, s->col));
-    TRY(msocl__arg_int(k, 10, s->ncol));
-    TRY(msocl__arg_int(k, 11, s->n));
+    TRY(point_pass_args(s, k, 4));
   }
   if ((k = s->k[MSOCL__K_EDGES_ENERGY])) {
     TRY(msocl__arg_mem(k, 0, s->lay.con));
