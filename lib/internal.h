@@ -82,6 +82,33 @@ struct msocl__adjacency {
 int msocl__adjacency_build(const msocl_model *m, struct msocl__adjacency *a);
 void msocl__adjacency_free(struct msocl__adjacency *a);
 
+/* Point numbering (order.c), so that a model splits into contiguous index
+ * ranges with small halos and gathers stay local. */
+
+/* Reverse Cuthill-McKee numbering of m's points by springs: perm[k] is the
+ * old number of new point k. Each connected component is numbered in turn
+ * (components in order of their lowest old point number), each started
+ * from a pseudo-peripheral point (George-Liu: repeat BFS from the farthest,
+ * lowest-degree point of the last level while the eccentricity grows),
+ * neighbours visited by increasing degree, ties by old number, and the
+ * whole order then reversed. Deterministic. Isolated points are their own
+ * components. *bw_old and *bw_new receive the bandwidth max |i - j| over
+ * springs before and after (0 with no springs; either may be NULL). perm
+ * has m->n ints. */
+int msocl__order_rcm(const msocl_model *m, int *perm, int *bw_old, int *bw_new);
+
+/* A new model equal to m with its points renumbered: new point k is old
+ * point perm[k] (positions, masses, pins). Springs keep their order and
+ * coefficients with renumbered ends - so every point meets its springs in the
+ * same order as before and sums forces in the same order (bitwise equal
+ * results); triangles likewise keep their order with renumbered corners.
+ * Gravity, viscous/air damping and colliders are copied. The cloth-grid
+ * record (m->grid) is cleared (nx = ny = ns = 0) unless perm is the
+ * identity, since the GRID layout derives neighbours from the numbering.
+ * perm must be a permutation of 0..n-1 (checked: MSOCL_ERR_BAD_VALUE). */
+int msocl__model_permuted(const msocl_model *m, const int *perm,
+                          msocl_model **out);
+
 /* ---------------------------------------------------------------- runtime */
 
 struct msocl__program; /* cache entry, program.c */
