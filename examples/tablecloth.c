@@ -204,10 +204,14 @@ int main(int argc, char **argv)
            secs > 0 ? (double)steps * n * n / secs : 0.0);
     if (split.parts > 1) {
       msocl_sim_split_info(s, &split);
-      printf("exchange: %.0f bytes a step through the host; host time "
-             "%.3f s in transfers, %.3f s waiting for the devices\n",
-             split.bytes_per_step, split.exchange_seconds,
-             split.wait_seconds);
+      printf("exchange: %.0f bytes a step through the host\n",
+             split.bytes_per_step);
+      for (int d = 0; d < split.parts; d++)
+        printf("  part %d (device %d, %d points): host %.3f s in transfers, "
+               "%.3f s waiting for the device; device %.3g s in copies\n",
+               d, split.device[d], split.count[d],
+               split.part_exchange_seconds[d], split.part_wait_seconds[d],
+               split.copy_seconds[d]);
     }
     printf("wrote %s\n", out);
   } else {

@@ -348,8 +348,13 @@ typedef struct {
   float weight[16];            /* its share (given or calibrated) */
   double halo_points[16];      /* points each part receives a step */
   double bytes_per_step;       /* exchanged through the host, each way */
-  double exchange_seconds;     /* host time in reads and writes */
-  double wait_seconds;         /* host time waiting for the devices */
+  /* Each part has a host thread of its own; per part: host time reading
+   * its span and queuing writes into its halo, host time waiting for its
+   * device, and its device's time in those copies (event profiling). */
+  double part_exchange_seconds[16], part_wait_seconds[16];
+  double copy_seconds[16];
+  double exchange_seconds;     /* the largest part_exchange_seconds */
+  double wait_seconds;         /* the largest part_wait_seconds */
   long long steps;
 } msocl_split_info;
 

@@ -61,8 +61,45 @@ enum {
   MSOCL__X_POS_W = 1, MSOCL__X_VEL_W = 2, MSOCL__X_VEL_R = 4,
   MSOCL__X_STAGE0 = 8, MSOCL__X_STAGE1 = 16, /* RK4 stage positions */
   MSOCL__X_STAGEV0 = 32, MSOCL__X_STAGEV1 = 64, /* and velocities */
-  MSOCL__X_CG_P = 128                           /* implicit: CG direction */
+  MSOCL__X_CG_P = 128,                          /* implicit: CG direction */
+  MSOCL__X_LAST = MSOCL__X_CG_P
 };
+/* The most buffers one phase exchanges (positions and velocities). */
+#define MSOCL__X_SLOTS 2
+
+/* A write an engine will receive into its halos: the buffer (bound when
+ * the phase that filled the staging area ended) and the staging area. */
+struct msocl__pending {
+  cl_mem buf;
+  const cl_float4 *area;
+};
+
+/* What the exchange cost one engine. */
+struct msocl__xstat {
+  double bytes;        /* written into its halos */
+  double copy_seconds; /* device time of its reads and writes */
+  double host_seconds; /* host time queuing and reading them */
+  double wait_seconds; /* host time waiting for the device */
+};
+
+/* The exchange plan and its staging (exchange.c). */
+struct msocl__exchange {
+  int span[MSOCL__MAX_PARTS][2]; /* points of e that any other reads */
+  int base[MSOCL__MAX_PARTS];    /* where e's span sits in an area */
+  int packed;                    /* an area's length, in points */
+  cl_float4 *area[2][MSOCL__X_SLOTS]; /* [parity][slot] */
+  int parity;                    /* the set the next gather fills */
+  void *host, *heap;             /* the areas' memory: pinned or heap */
+  cl_mem pinned;
+  cl_command_queue map_queue;
+  struct msocl__pending pend[MSOCL__MAX_PARTS][MSOCL__X_SLOTS];
+  int npend[MSOCL__MAX_PARTS];
+  cl_event wev[MSOCL__MAX_PARTS][MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
+  int nwev[MSOCL__MAX_PARTS];    /* writes queued, not yet settled */
+  struct msocl__xstat stat[MSOCL__MAX_PARTS];
+};
+
+struct msocl__workers;
 
 struct msocl_sim {
   msocl_sim_options o;
@@ -71,15 +108,33 @@ struct msocl_sim {
   /* halo[d][e]: the half-open range of points of engine e that engine d's
    * springs reach (empty: first >= second) */
   int halo[MSOCL__MAX_PARTS][MSOCL__MAX_PARTS][2];
-  cl_float4 *xfer[2];     /* host staging for exchanges (n each) */
+  struct msocl__exchange x;
+  struct msocl__workers *workers; /* a host thread per engine */
   float *stage;           /* 4n floats for reads and writes */
   unsigned char *pinned;  /* writes keep pos.w */
   long long steps;
   int e0_valid;           /* baseline energy of the blow-up check */
   double e0, escale;
   double total_mass, extent;
-  double bytes_exchanged, exchange_seconds, wait_seconds;
 };
+
+/* Halo exchange (exchange.c). plan: the spans and staging, once the
+ * halos are known; gather: engine d's span of each buffer in `mask` into
+ * the current staging set (its queue must be finished), and what d will
+ * receive; scatter: queues the writes into d's halos; settle: after d's
+ * queue finished, books the writes' device time. */
+int msocl__exchange_plan(msocl_sim *s);
+void msocl__exchange_free(msocl_sim *s);
+int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask);
+int msocl__exchange_scatter(msocl_sim *s, int d);
+void msocl__exchange_settle(msocl_sim *s, int d);
+
+/* Host threads (workers.c): run calls fn(ctx, i) for i < n, i on thread
+ * i (0: the caller), and returns the first failure with its message. */
+int msocl__workers_create(struct msocl__workers **out, int n);
+int msocl__workers_run(struct msocl__workers *w, int (*fn)(void *ctx, int i),
+                       void *ctx);
+void msocl__workers_destroy(struct msocl__workers *w);
 
 /* One engine for the whole model on `dev`, advancing points [lo, hi). */
 int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,

@@ -245,9 +245,7 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
   scene_scale(s, m);
   s->stage = malloc(4 * (size_t)m->n * sizeof(float));
   s->pinned = malloc((size_t)m->n);
-  s->xfer[0] = malloc((size_t)m->n * sizeof(cl_float4));
-  s->xfer[1] = malloc((size_t)m->n * sizeof(cl_float4));
-  if (!s->stage || !s->pinned || !s->xfer[0] || !s->xfer[1]) {
+  if (!s->stage || !s->pinned) {
     msocl_sim_destroy(s);
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
   }
@@ -269,6 +267,10 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
     rc = msocl__engine_create(&s->part[d],
                               (struct msocl__device *)&rt->dev[o.device + d],
                               m, &o, s->halo[d][d][0], s->halo[d][d][1]);
+  if (rc == MSOCL_OK && s->nparts > 1)
+    rc = msocl__exchange_plan(s);
+  if (rc == MSOCL_OK && s->nparts > 1)
+    rc = msocl__workers_create(&s->workers, s->nparts);
   if (rc != MSOCL_OK) {
     msocl_sim_destroy(s);
     return rc;
@@ -281,11 +283,11 @@ void msocl_sim_destroy(msocl_sim *s)
 {
   if (!s)
     return;
+  msocl__workers_destroy(s->workers);
+  msocl__exchange_free(s);
   for (int d = 0; d < s->nparts; d++)
     msocl__engine_destroy(s->part[d]);
   free(s->stage);
   free(s->pinned);
-  free(s->xfer[0]);
-  free(s->xfer[1]);
   free(s);
 }

@@ -173,9 +173,19 @@ int msocl_sim_split_info(const msocl_sim *s, msocl_split_info *info)
         info->halo_points[d] += s->halo[d][e][1] - s->halo[d][e][0];
   }
   info->steps = s->steps;
-  info->bytes_per_step = s->steps > 0 ? s->bytes_exchanged / (double)s->steps
-                                      : 0.0;
-  info->exchange_seconds = s->exchange_seconds;
-  info->wait_seconds = s->wait_seconds;
+  double bytes = 0.0;
+  for (int d = 0; d < s->nparts; d++) {
+    const struct msocl__xstat *st = &s->x.stat[d];
+    bytes += st->bytes;
+    info->copy_seconds[d] = st->copy_seconds;
+    info->part_exchange_seconds[d] = st->host_seconds;
+    info->part_wait_seconds[d] = st->wait_seconds;
+    /* the parts work at once: the slowest one is the critical path */
+    if (st->host_seconds > info->exchange_seconds)
+      info->exchange_seconds = st->host_seconds;
+    if (st->wait_seconds > info->wait_seconds)
+      info->wait_seconds = st->wait_seconds;
+  }
+  info->bytes_per_step = s->steps > 0 ? bytes / (double)s->steps : 0.0;
   return MSOCL_OK;
 }

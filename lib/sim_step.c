@@ -15,111 +15,144 @@ static double now(void)
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static int finish_all(msocl_sim *s)
+/* Waits for engine d's queue: its kernels, and the writes into its halos
+ * (whose device time is then booked). */
+static int finish(msocl_sim *s, int d)
 {
   double t0 = now();
+  MSOCL__CL(clFinish(s->part[d]->dev->queue));
+  s->x.stat[d].wait_seconds += now() - t0;
+  if (s->nparts > 1)
+    msocl__exchange_settle(s, d);
+  return MSOCL_OK;
+}
+
+static int finish_all(msocl_sim *s)
+{
   /* flush every queue first: a queue starts its work when flushed, so
    * finishing them one by one would run the devices one after another */
   for (int d = 0; s->nparts > 1 && d < s->nparts; d++)
     MSOCL__CL(clFlush(s->part[d]->dev->queue));
-  for (int d = 0; d < s->nparts; d++)
-    MSOCL__CL(clFinish(s->part[d]->dev->queue));
-  s->wait_seconds += now() - t0;
+  for (int d = 0; d < s->nparts; d++) {
+    int rc = finish(s, d);
+    if (rc != MSOCL_OK)
+      return rc;
+  }
   return MSOCL_OK;
 }
 
-/* Moves the buffers named in `mask`: each engine's halo spans from their
- * owners, through host staging (devices may sit in different contexts and
- * platforms). Reads wait; the writes are queued ahead of the next phase's
- * kernels on each in-order queue. */
-static int exchange(msocl_sim *s, unsigned mask)
+/* Gather (after the queue finished) or scatter, timed on the host. */
+static int gather(msocl_sim *s, int d, unsigned mask)
 {
-  if (s->nparts < 2 || mask == 0)
-    return MSOCL_OK;
-  int rc = finish_all(s); /* kernels done, last exchange's writes too */
-  if (rc != MSOCL_OK)
-    return rc;
   double t0 = now();
-  int slot = 0;
-  for (unsigned bit = 1; bit <= MSOCL__X_CG_P && rc == MSOCL_OK; bit <<= 1) {
-    if (!(mask & bit))
-      continue;
-    if (slot == 2) { /* both staging arrays in flight: let writes drain */
-      if ((rc = finish_all(s)) != MSOCL_OK)
-        break;
-      slot = 0;
-    }
-    cl_float4 *host = s->xfer[slot++];
-    /* every span any engine needs, read once from its owner */
-    for (int e = 0; e < s->nparts; e++) {
-      int lo = s->n, hi = 0;
-      for (int d = 0; d < s->nparts; d++)
-        if (d != e && s->halo[d][e][0] < s->halo[d][e][1]) {
-          lo = s->halo[d][e][0] < lo ? s->halo[d][e][0] : lo;
-          hi = s->halo[d][e][1] > hi ? s->halo[d][e][1] : hi;
-        }
-      if (lo >= hi)
-        continue;
-      size_t off = (size_t)lo * sizeof(cl_float4),
-             len = (size_t)(hi - lo) * sizeof(cl_float4);
-      msocl__engine *src = s->part[e];
-      MSOCL__CL(clEnqueueReadBuffer(src->dev->queue,
-                                    msocl__exchange_buffer(src, bit), CL_TRUE,
-                                    off, len, host + lo, 0, NULL, NULL));
-    }
-    for (int d = 0; d < s->nparts; d++)
-      for (int e = 0; e < s->nparts; e++) {
-        const int *h = s->halo[d][e];
-        if (d == e || h[0] >= h[1])
-          continue;
-        size_t off = (size_t)h[0] * sizeof(cl_float4),
-               len = (size_t)(h[1] - h[0]) * sizeof(cl_float4);
-        msocl__engine *dst = s->part[d];
-        MSOCL__CL(clEnqueueWriteBuffer(dst->dev->queue,
-                                       msocl__exchange_buffer(dst, bit),
-                                       CL_FALSE, off, len, host + h[0], 0,
-                                       NULL, NULL));
-        s->bytes_exchanged += (double)len;
-      }
-  }
-  s->exchange_seconds += now() - t0;
+  int rc = msocl__exchange_gather(s, d, mask);
+  s->x.stat[d].host_seconds += now() - t0;
   return rc;
 }
 
-static int exchange_cg(void *ctx)
+static int scatter(msocl_sim *s, int d)
 {
-  return exchange((msocl_sim *)ctx, MSOCL__X_CG_P);
+  double t0 = now();
+  int rc = msocl__exchange_scatter(s, d);
+  s->x.stat[d].host_seconds += now() - t0;
+  return rc;
 }
 
-/* `n` whole steps on every engine, phase by phase. */
-static int steps(msocl_sim *s, int n)
+/* The implicit solver's exchange of the CG direction, from the caller's
+ * thread between the solver's products: every engine finished, every
+ * span read, every halo write queued ahead of the next product. */
+static int exchange_cg(void *ctx)
+{
+  msocl_sim *s = ctx;
+  int rc = finish_all(s);
+  for (int d = 0; rc == MSOCL_OK && d < s->nparts; d++)
+    rc = gather(s, d, MSOCL__X_CG_P);
+  for (int d = 0; rc == MSOCL_OK && d < s->nparts; d++)
+    rc = scatter(s, d);
+  s->x.parity ^= 1;
+  return rc;
+}
+
+/* One job of a split step, on engine d's own host thread: the writes
+ * the last exchange left for it, then phases from `ph` until one leaves
+ * data that others read; then wait, and read that data for them. */
+struct job {
+  msocl_sim *s;
+  int ph;       /* first phase; < 0: only the pending writes */
+  int end;      /* out: the phase after the last one run */
+  unsigned mask; /* out: what the last one left for the others */
+};
+
+static int job(void *ctx, int d)
+{
+  struct job *j = ctx;
+  msocl_sim *s = j->s;
+  msocl__engine *e = s->part[d];
+  const int phases = msocl__phase_count(e);
+  unsigned mask = 0;
+  int ph = j->ph < 0 ? phases : j->ph;
+  int rc = scatter(s, d);
+  while (rc == MSOCL_OK && ph < phases && mask == 0)
+    rc = msocl__phase(e, ph++, &mask);
+  if (rc == MSOCL_OK)
+    rc = finish(s, d);
+  if (rc == MSOCL_OK && mask)
+    rc = gather(s, d, mask); /* before the swap: bits name buffers by r */
+  if (rc == MSOCL_OK && j->ph >= 0 && ph == phases)
+    msocl__step_done(e);
+  if (d == 0) {
+    j->end = ph;
+    j->mask = mask;
+  }
+  return rc;
+}
+
+/* `n` whole steps of a split simulation, each engine on its own thread. */
+static int split_steps(msocl_sim *s, int n)
 {
   const int phases = msocl__phase_count(s->part[0]);
-  const int split_cg = s->nparts > 1 &&
-                       s->o.integrator == MSOCL_IMPLICIT_EULER;
+  struct job j = {s, 0, 0, 0};
   for (int q = 0; q < n; q++) {
-    for (int ph = 0; ph < phases; ph++) {
-      unsigned mask = 0;
-      if (ph == 0 && split_cg) { /* one CG over every engine */
-        int rc = msocl__implicit_cg(s->part, s->nparts, exchange_cg, s);
+    for (int ph = 0; ph < phases;) {
+      if (ph == 0 && s->o.integrator == MSOCL_IMPLICIT_EULER) {
+        /* one CG over every engine, driven from this thread */
+        j.ph = -1;
+        int rc = msocl__workers_run(s->workers, job, &j);
+        if (rc == MSOCL_OK)
+          rc = msocl__implicit_cg(s->part, s->nparts, exchange_cg, s);
         if (rc != MSOCL_OK)
           return rc;
+        ph = 1;
         continue;
       }
-      for (int d = 0; d < s->nparts; d++) {
-        int rc = msocl__phase(s->part[d], ph, &mask);
-        if (rc != MSOCL_OK)
-          return rc;
-      }
-      int rc = exchange(s, mask);
+      j.ph = ph;
+      int rc = msocl__workers_run(s->workers, job, &j);
       if (rc != MSOCL_OK)
         return rc;
+      ph = j.end;
+      if (j.mask)
+        s->x.parity ^= 1;
     }
-    for (int d = 0; d < s->nparts; d++) {
-      msocl__step_done(s->part[d]);
-      if ((q + 1) % 64 == 0)
-        MSOCL__CL(clFlush(s->part[d]->dev->queue));
-    }
+    s->steps++;
+  }
+  /* the last exchange's writes, so the halos match the state at rest */
+  j.ph = -1;
+  return msocl__workers_run(s->workers, job, &j);
+}
+
+/* `n` whole steps, phase by phase; one engine needs no exchange, and its
+ * steps are queued without waiting. */
+static int steps(msocl_sim *s, int n)
+{
+  if (s->nparts > 1)
+    return split_steps(s, n);
+  msocl__engine *e = s->part[0];
+  for (int q = 0; q < n; q++) {
+    int rc = msocl__integrate(e, 1);
+    if (rc != MSOCL_OK)
+      return rc;
+    if ((q + 1) % 64 == 0)
+      MSOCL__CL(clFlush(e->dev->queue));
     s->steps++;
   }
   return MSOCL_OK;

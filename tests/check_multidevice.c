@@ -211,7 +211,24 @@ START_TEST(split_report_and_normals)
            info.first[d] + info.count[d], info.halo_points[d]);
   }
   ck_assert_int_eq(total, 24 * 24);
-  ck_assert_double_gt(info.bytes_per_step, 0.0);
+  /* every step sends each halo its positions, and its velocities too
+   * where dashpots read them: one or two float4 a halo point */
+  double halo = 0.0;
+  for (int d = 0; d < info.parts; d++)
+    halo += info.halo_points[d];
+  double per = info.bytes_per_step / (16.0 * halo);
+  ck_assert_msg(per == 1.0 || per == 2.0, "%g float4 a halo point a step",
+                per);
+  for (int d = 0; d < info.parts; d++) {
+    /* event profiling timed the copies; the host thread timed its waits */
+    ck_assert_double_gt(info.copy_seconds[d], 0.0);
+    ck_assert_double_gt(info.part_wait_seconds[d], 0.0);
+    ck_assert_double_gt(info.part_exchange_seconds[d], 0.0);
+    printf("part %d: %.3g s device time in copies, %.4f s host time "
+           "exchanging, %.4f s waiting\n",
+           d, info.copy_seconds[d], info.part_exchange_seconds[d],
+           info.part_wait_seconds[d]);
+  }
   printf("%.0f bytes a step through the host; %.3f s exchanging, %.3f s "
          "waiting for devices over %lld steps\n",
          info.bytes_per_step, info.exchange_seconds, info.wait_seconds,

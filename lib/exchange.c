@@ -1,0 +1,161 @@
+/* Halo exchange between the engines of a split simulation, through host
+ * memory: devices may sit in different contexts and platforms, where no
+ * device-to-device copy exists. Each engine reads once the span of its
+ * points that any other engine needs (gather); each engine then writes
+ * its halos from those spans (scatter). The staging areas alternate
+ * between two sets, so one exchange's writes may still be in flight on
+ * one device while the next exchange's reads fill the other set. */
+#include "config.h"
+#include "sim.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Device time of a finished command, from its profiling info. */
+static double event_seconds(cl_event ev)
+{
+  cl_ulong t0 = 0, t1 = 0;
+  if (clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0,
+                              NULL) != CL_SUCCESS ||
+      clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1,
+                              NULL) != CL_SUCCESS || t1 < t0)
+    return 0.0;
+  return 1e-9 * (double)(t1 - t0);
+}
+
+int msocl__exchange_plan(msocl_sim *s)
+{
+  struct msocl__exchange *x = &s->x;
+  x->packed = 0;
+  for (int e = 0; e < s->nparts; e++) {
+    int lo = s->n, hi = 0;
+    for (int d = 0; d < s->nparts; d++)
+      if (d != e && s->halo[d][e][0] < s->halo[d][e][1]) {
+        lo = s->halo[d][e][0] < lo ? s->halo[d][e][0] : lo;
+        hi = s->halo[d][e][1] > hi ? s->halo[d][e][1] : hi;
+      }
+    x->span[e][0] = lo;
+    x->span[e][1] = hi > lo ? hi : lo;
+    x->base[e] = x->packed;
+    x->packed += x->span[e][1] - x->span[e][0];
+  }
+  size_t one = (size_t)(x->packed > 0 ? x->packed : 1) * sizeof(cl_float4);
+  /* Pinned (page-locked) host memory makes a GPU's transfers direct
+   * rather than staged through the driver's own bounce buffer; it belongs
+   * to one context, so a GPU's. CPU devices read host memory in place. */
+  int gpu = -1;
+  for (int d = 0; d < s->nparts && gpu < 0; d++)
+    if (s->part[d]->dev->info.type == MSOCL_DEVICE_GPU)
+      gpu = d;
+  const size_t all = 2 * MSOCL__X_SLOTS * one;
+  if (gpu >= 0) {
+    cl_int err;
+    struct msocl__device *dev = s->part[gpu]->dev;
+    x->pinned = clCreateBuffer(dev->ctx, CL_MEM_ALLOC_HOST_PTR, all, NULL,
+                               &err);
+    if (err == CL_SUCCESS) {
+      x->map_queue = dev->queue;
+      x->host = clEnqueueMapBuffer(dev->queue, x->pinned, CL_TRUE,
+                                   CL_MAP_READ | CL_MAP_WRITE, 0, all, 0,
+                                   NULL, NULL, &err);
+    }
+    if (err != CL_SUCCESS)
+      msocl__exchange_free(s); /* fall back to ordinary memory */
+  }
+  if (!x->host && !(x->host = x->heap = malloc(all)))
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "exchange staging (%zu bytes)",
+                       all);
+  for (int p = 0; p < 2; p++)
+    for (int k = 0; k < MSOCL__X_SLOTS; k++)
+      x->area[p][k] = (cl_float4 *)((char *)x->host +
+                                    (size_t)(p * MSOCL__X_SLOTS + k) * one);
+  return MSOCL_OK;
+}
+
+void msocl__exchange_free(msocl_sim *s)
+{
+  struct msocl__exchange *x = &s->x;
+  for (int d = 0; d < MSOCL__MAX_PARTS; d++) {
+    for (int i = 0; i < x->nwev[d]; i++)
+      clReleaseEvent(x->wev[d][i]);
+    x->nwev[d] = 0;
+  }
+  if (x->pinned) {
+    if (x->host) {
+      clEnqueueUnmapMemObject(x->map_queue, x->pinned, x->host, 0, NULL,
+                              NULL);
+      clFinish(x->map_queue);
+    }
+    clReleaseMemObject(x->pinned);
+  }
+  free(x->heap);
+  x->pinned = NULL;
+  x->host = x->heap = NULL;
+}
+
+int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask)
+{
+  struct msocl__exchange *x = &s->x;
+  msocl__engine *e = s->part[d];
+  const int lo = x->span[d][0], len = x->span[d][1] - lo;
+  int k = 0;
+  for (unsigned bit = 1; bit <= MSOCL__X_LAST; bit <<= 1) {
+    if (!(mask & bit))
+      continue;
+    if (k == MSOCL__X_SLOTS)
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "a phase exchanges more than %d buffers",
+                         MSOCL__X_SLOTS);
+    cl_float4 *area = x->area[x->parity][k];
+    if (len > 0) {
+      cl_event ev;
+      MSOCL__CL(clEnqueueReadBuffer(
+          e->dev->queue, msocl__exchange_buffer(e, bit), CL_TRUE,
+          (size_t)lo * sizeof(cl_float4), (size_t)len * sizeof(cl_float4),
+          area + x->base[d], 0, NULL, &ev));
+      x->stat[d].copy_seconds += event_seconds(ev);
+      clReleaseEvent(ev);
+    }
+    /* what this engine receives into its own buffer, bound now: the
+     * buffer a bit names changes when the step's ping-pong swaps */
+    x->pend[d][k].buf = msocl__exchange_buffer(e, bit);
+    x->pend[d][k].area = area;
+    k++;
+  }
+  x->npend[d] = k;
+  return MSOCL_OK;
+}
+
+int msocl__exchange_scatter(msocl_sim *s, int d)
+{
+  struct msocl__exchange *x = &s->x;
+  msocl__engine *dst = s->part[d];
+  for (int k = 0; k < x->npend[d]; k++) {
+    const struct msocl__pending *p = &x->pend[d][k];
+    for (int e = 0; e < s->nparts; e++) {
+      const int *h = s->halo[d][e];
+      if (e == d || h[0] >= h[1])
+        continue;
+      const size_t len = (size_t)(h[1] - h[0]) * sizeof(cl_float4);
+      const cl_float4 *from = p->area + x->base[e] + (h[0] - x->span[e][0]);
+      /* its time is read once the queue is done (settle) */
+      MSOCL__CL(clEnqueueWriteBuffer(dst->dev->queue, p->buf, CL_FALSE,
+                                     (size_t)h[0] * sizeof(cl_float4), len,
+                                     from, 0, NULL,
+                                     &x->wev[d][x->nwev[d]++]));
+      x->stat[d].bytes += (double)len;
+    }
+  }
+  x->npend[d] = 0;
+  return MSOCL_OK;
+}
+
+void msocl__exchange_settle(msocl_sim *s, int d)
+{
+  struct msocl__exchange *x = &s->x;
+  for (int i = 0; i < x->nwev[d]; i++) {
+    x->stat[d].copy_seconds += event_seconds(x->wev[d][i]);
+    clReleaseEvent(x->wev[d][i]);
+  }
+  x->nwev[d] = 0;
+}
