@@ -197,6 +197,31 @@ out:
   return rc;
 }
 
+
+/* The connectivity texture holds MSOCL__IMAGE_SLOTS springs a point:
+ * refuses IMAGE2D for a model with a point of more, naming the first. */
+int msocl__layout_fits(const msocl_model *m, msocl_layout kind)
+{
+  if (kind != MSOCL_LAYOUT_IMAGE2D)
+    return MSOCL_OK;
+  int *deg = calloc((size_t)m->n + 1, sizeof *deg), first = -1;
+  if (!deg)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "degree count");
+  for (int e = 0; e < 2 * m->ns; e++)
+    deg[m->ij[e]]++;
+  for (int i = 0; i < m->n && first < 0; i++)
+    if (deg[i] > MSOCL__IMAGE_SLOTS)
+      first = i;
+  int d = first >= 0 ? deg[first] : 0;
+  free(deg);
+  if (first < 0)
+    return MSOCL_OK;
+  return msocl__fail(MSOCL_ERR_DEGREE,
+                     "point %d has %d springs; the IMAGE2D layout holds %d "
+                     "(use MSOCL_LAYOUT_BUFFER)",
+                     first, d, MSOCL__IMAGE_SLOTS);
+}
+
 int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *adj,
                          msocl_layout kind, struct msocl__layout *out)
@@ -212,13 +237,8 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          "impossible (use MSOCL_LAYOUT_BUFFER)",
                          dev->info.name);
     out->slots = MSOCL__IMAGE_SLOTS;
-    for (int i = 0; i < m->n; i++)
-      if (adj->off[i + 1] - adj->off[i] > MSOCL__IMAGE_SLOTS)
-        return msocl__fail(MSOCL_ERR_DEGREE,
-                           "point %d has %d springs; the IMAGE2D layout "
-                           "holds %d (use MSOCL_LAYOUT_BUFFER)",
-                           i, adj->off[i + 1] - adj->off[i],
-                           MSOCL__IMAGE_SLOTS);
+    if ((rc = msocl__layout_fits(m, MSOCL_LAYOUT_IMAGE2D)) != MSOCL_OK)
+      return rc;
     rc = build_image(dev, m, adj, has_damping(m), out);
   } else if (out->kind == MSOCL_LAYOUT_BUFFER) {
     out->slots = adj->max_degree;

@@ -25,6 +25,10 @@ msocl_layout msocl__layout_auto(const msocl_device_info *info);
  * image limits (the texture is 4W x 4H). */
 int msocl__image_dims(int n, size_t max_w, size_t max_h, int *w, int *h);
 
+/* MSOCL_ERR_DEGREE, naming the model's first point over the limit, when
+ * the model's springs do not fit `kind`'s slots. */
+int msocl__layout_fits(const msocl_model *m, msocl_layout kind);
+
 int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *adj,
                          msocl_layout kind, struct msocl__layout *out);

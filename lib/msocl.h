@@ -302,6 +302,12 @@ typedef struct {
    * gather layouts, no velocity strain limiting): one launch and one read
    * of the state a step instead of two. */
   int fused;
+  /* 1 (default): number the points by reverse Cuthill-McKee when that
+   * narrows the springs' reach - neighbours close in memory, and narrow
+   * halos when split - unless the model is a cloth grid, which is best
+   * numbered as it is; 0: keep the model's numbering. Either way, reads
+   * and writes of the state use the model's numbering. */
+  int renumber;
 } msocl_sim_options;
 
 MSOCL_EXTERN void msocl_sim_options_init(msocl_sim_options *o);
@@ -360,6 +366,10 @@ typedef struct {
 
 MSOCL_EXTERN int msocl_sim_split_info(const msocl_sim *s,
                                       msocl_split_info *info);
+/* The simulation's own numbering, which split_info's ranges count in:
+ * order[k] is the model's number of the simulation's point k (n ints;
+ * the identity unless the points were renumbered). */
+MSOCL_EXTERN int msocl_sim_point_order(const msocl_sim *s, int *order);
 
 /* The largest stable time step of the model under an integrator, from a
  * Gershgorin bound on the highest eigenfrequency (see lib/stable_dt.c):

@@ -25,6 +25,7 @@ void msocl_sim_options_init(msocl_sim_options *o)
   o->cg_tolerance = 1e-5f;
   o->cg_max_iterations = 200;
   o->check_every = 100;
+  o->renumber = 1;
   /* Near its stability limit a symplectic method's energy swings by up to
    * 1 / (1 - h w / 2) (10x at 0.9 of the limit) without being unstable;
    * a blow-up grows exponentially and passes 100x within a few checks. */

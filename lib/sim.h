@@ -110,6 +110,7 @@ struct msocl_sim {
   int halo[MSOCL__MAX_PARTS][MSOCL__MAX_PARTS][2];
   struct msocl__exchange x;
   struct msocl__workers *workers; /* a host thread per engine */
+  int *perm;              /* point k is the model's perm[k]; NULL: same */
   float *stage;           /* 4n floats for reads and writes */
   unsigned char *pinned;  /* writes keep pos.w */
   long long steps;

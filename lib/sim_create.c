@@ -83,6 +83,9 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
                        "fused runs symplectic Euler's two passes on a gather "
                        "layout, without velocity strain limiting (which "
                        "works between the passes)");
+  if (o->renumber != 0 && o->renumber != 1)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "renumber is %d: 0 or 1",
+                       o->renumber);
   if (o->calibrate_steps < 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "calibrate_steps %d is negative",
                        o->calibrate_steps);
@@ -216,14 +219,37 @@ static void plan_halos(msocl_sim *s, const msocl_model *m)
   (void)owner_lo;
 }
 
-int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
-                     const msocl_sim_options *opts)
+/* The model the engines run: m itself, or m renumbered by reverse
+ * Cuthill-McKee where that narrows the springs' reach (s->perm records
+ * how). A cloth grid keeps its numbering: row by row it is banded
+ * already, and the GRID layout derives neighbours from it. */
+static int number_points(msocl_sim *s, const msocl_model *m,
+                         msocl_model **renumbered)
+{
+  *renumbered = NULL;
+  if (!s->o.renumber || m->n < 3 || (m->grid.nx >= 2 && m->grid.ns == m->ns))
+    return MSOCL_OK;
+  int *perm = malloc((size_t)m->n * sizeof *perm), before, after;
+  if (!perm)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "point numbering");
+  int rc = msocl__order_rcm(m, perm, &before, &after);
+  if (rc == MSOCL_OK && after < before)
+    rc = msocl__model_permuted(m, perm, renumbered);
+  if (*renumbered)
+    s->perm = perm;
+  else
+    free(perm);
+  return rc;
+}
+
+int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
+                     const msocl_model *model, const msocl_sim_options *opts)
 {
   msocl__clear_error();
   if (!out)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim out-pointer is NULL");
   *out = NULL;
-  if (!rt || !m)
+  if (!rt || !model)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
                        rt ? "model" : "runtime");
   msocl_sim_options o;
@@ -232,13 +258,22 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
     o = *opts;
   int rc = check_options(rt, &o);
   if (rc == MSOCL_OK)
-    rc = msocl_model_validate(m);
+    rc = msocl_model_validate(model);
+  /* before renumbering, so an error names the caller's point */
+  if (rc == MSOCL_OK)
+    rc = msocl__layout_fits(model, o.layout);
   if (rc != MSOCL_OK)
     return rc;
   msocl_sim *s = calloc(1, sizeof *s);
   if (!s)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
   s->o = o;
+  msocl_model *renumbered = NULL;
+  if ((rc = number_points(s, model, &renumbered)) != MSOCL_OK) {
+    msocl_sim_destroy(s);
+    return rc;
+  }
+  const msocl_model *m = renumbered ? renumbered : model;
   s->n = m->n;
   s->nparts = o.ndevices < 0 ? rt->ndev - o.device
                              : o.ndevices == 0 ? 1 : o.ndevices;
@@ -246,6 +281,7 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
   s->stage = malloc(4 * (size_t)m->n * sizeof(float));
   s->pinned = malloc((size_t)m->n);
   if (!s->stage || !s->pinned) {
+    msocl_model_destroy(renumbered);
     msocl_sim_destroy(s);
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
   }
@@ -253,14 +289,10 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
   int weighed = 0;
   for (int d = 0; d < s->nparts; d++)
     weighed |= o.weights[d] > 0.0f;
-  if (s->nparts > 1 && !weighed && o.calibrate_steps > 0) {
+  if (s->nparts > 1 && !weighed && o.calibrate_steps > 0)
     rc = calibrate(s, rt, m);
-    if (rc != MSOCL_OK) {
-      msocl_sim_destroy(s);
-      return rc;
-    }
-  }
-  rc = partition(s, m);
+  if (rc == MSOCL_OK)
+    rc = partition(s, m);
   if (rc == MSOCL_OK)
     plan_halos(s, m);
   for (int d = 0; rc == MSOCL_OK && d < s->nparts; d++)
@@ -271,6 +303,7 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt, const msocl_model *m,
     rc = msocl__exchange_plan(s);
   if (rc == MSOCL_OK && s->nparts > 1)
     rc = msocl__workers_create(&s->workers, s->nparts);
+  msocl_model_destroy(renumbered); /* the engines hold copies */
   if (rc != MSOCL_OK) {
     msocl_sim_destroy(s);
     return rc;
@@ -289,5 +322,6 @@ void msocl_sim_destroy(msocl_sim *s)
     msocl__engine_destroy(s->part[d]);
   free(s->stage);
   free(s->pinned);
+  free(s->perm);
   free(s);
 }

@@ -7,6 +7,15 @@
 #include <math.h>
 #include <string.h>
 
+/* Staged float4s (the simulation's numbering) to the caller's xyz (the
+ * model's numbering). */
+static void unstage(const msocl_sim *s, float *xyz)
+{
+  for (int i = 0; i < s->n; i++)
+    memcpy(xyz + 3 * (s->perm ? s->perm[i] : i), s->stage + 4 * i,
+           3 * sizeof(float));
+}
+
 static int read_state(msocl_sim *s, int velocities, float *xyz)
 {
   msocl__clear_error();
@@ -22,8 +31,7 @@ static int read_state(msocl_sim *s, int velocities, float *xyz)
                                   s->stage + 4 * (size_t)e->lo, 0, NULL,
                                   NULL));
   }
-  for (int i = 0; i < s->n; i++)
-    memcpy(xyz + 3 * i, s->stage + 4 * i, 3 * sizeof(float));
+  unstage(s, xyz);
   return MSOCL_OK;
 }
 
@@ -41,7 +49,8 @@ static int write_state(msocl_sim *s, int velocities, const float *xyz)
                          "point %d: coordinate %d is %g", i / 3, i % 3,
                          xyz[i]);
   for (int i = 0; i < s->n; i++) {
-    memcpy(s->stage + 4 * i, xyz + 3 * i, 3 * sizeof(float));
+    memcpy(s->stage + 4 * i, xyz + 3 * (s->perm ? s->perm[i] : i),
+           3 * sizeof(float));
     s->stage[4 * i + 3] = !velocities && s->pinned[i] ? 1.0f : 0.0f;
   }
   for (int d = 0; d < s->nparts; d++) {
@@ -101,8 +110,7 @@ int msocl_sim_read_normals(msocl_sim *s, float *xyz)
   MSOCL__CL(clEnqueueReadBuffer(e->dev->queue, e->normal, CL_TRUE, 0,
                                 4 * (size_t)s->n * sizeof(float), s->stage, 0,
                                 NULL, NULL));
-  for (int i = 0; i < s->n; i++)
-    memcpy(xyz + 3 * i, s->stage + 4 * i, 3 * sizeof(float));
+  unstage(s, xyz);
   return MSOCL_OK;
 }
 
@@ -187,5 +195,14 @@ int msocl_sim_split_info(const msocl_sim *s, msocl_split_info *info)
       info->wait_seconds = st->wait_seconds;
   }
   info->bytes_per_step = s->steps > 0 ? bytes / (double)s->steps : 0.0;
+  return MSOCL_OK;
+}
+
+int msocl_sim_point_order(const msocl_sim *s, int *order)
+{
+  if (!s || !order)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or order array is NULL");
+  for (int i = 0; i < s->n; i++)
+    order[i] = s->perm ? s->perm[i] : i;
   return MSOCL_OK;
 }

@@ -434,32 +434,13 @@ START_TEST(batch_of_64)
 }
 END_TEST
 
-/* The spec naming up to three of PoCL's CPU devices. */
-static int cpu_spec(void)
-{
-  msocl_device_info *list = NULL;
-  int count = 0, found = 0;
-  if (msocl_device_list(&list, &count) != MSOCL_OK)
-    return 0;
-  spec[0] = '\0';
-  for (int i = 0; i < count && found < 3; i++)
-    if (list[i].type == MSOCL_DEVICE_CPU) {
-      size_t len = strlen(spec);
-      snprintf(spec + len, sizeof spec - len, "%s%d:%d", found ? "," : "",
-               list[i].platform_index, list[i].device_index);
-      found++;
-    }
-  free(list);
-  return found;
-}
-
 int main(void)
 {
   /* three PoCL CPU devices unless the caller chose otherwise; must be set
    * before the first OpenCL call */
   setenv("POCL_DEVICES", "pthread pthread pthread", 0);
   scene_require_device("check_multidevice");
-  ndev = cpu_spec();
+  ndev = scene_cpu_spec(spec, sizeof spec, 3);
   if (ndev < 2) {
     printf("check_multidevice: SKIP: needs two CPU devices (POCL_DEVICES="
            "\"pthread pthread\"), found %d\n", ndev);

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define TABLE_RADIUS 0.35f
 #define K_STRETCH 50.0f
@@ -119,4 +120,22 @@ double scene_max_diff(const float *a, const float *b, int n)
       m = d; /* NaN propagates as the maximum */
   }
   return m;
+}
+
+int scene_cpu_spec(char *spec, size_t cap, int most)
+{
+  msocl_device_info *list = NULL;
+  int count = 0, found = 0;
+  spec[0] = '\0';
+  if (msocl_device_list(&list, &count) != MSOCL_OK)
+    return 0;
+  for (int i = 0; i < count && found < most; i++)
+    if (list[i].type == MSOCL_DEVICE_CPU) {
+      size_t len = strlen(spec);
+      snprintf(spec + len, cap - len, "%s%d:%d", found ? "," : "",
+               list[i].platform_index, list[i].device_index);
+      found++;
+    }
+  free(list);
+  return found;
 }

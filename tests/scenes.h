@@ -20,6 +20,11 @@ double scene_table_gap(const float *p);
  * otherwise returns. Call in main() before srunner_run_all. */
 void scene_require_device(const char *program);
 
+/* Writes into spec a device spec naming up to `most` CPU devices (PoCL's
+ * pthread devices: one spec word each); returns how many. */
+#include <stddef.h>
+int scene_cpu_spec(char *spec, size_t cap, int most);
+
 /* A runtime on the first CPU device, for checked fixtures. */
 extern msocl_runtime *scene_rt;
 void scene_setup_cpu(void);
