@@ -39,7 +39,7 @@ static int usage(const drop_options *d)
           "usage: %s [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] "
           "[-T DT]\n"
           "  [-i symplectic|verlet|rk4|implicit|explicit] "
-          "[-l auto|buffer|image2d|edges] [-o OUT.obj|OUT.ply]\n"
+          "[-l auto|buffer|image2d|edges] [-K] [-o OUT.obj|OUT.ply]\n"
           "  -n  %s (%d to %d, default %d)\n"
           "  -t  simulated seconds (default %g)\n"
           "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that "
@@ -50,6 +50,8 @@ static int usage(const drop_options *d)
           "step)\n"
           "  -i  integrator (default symplectic)\n"
           "  -l  spring layout (default auto)\n"
+          "  -K  keep the model's point numbering (default: the library "
+          "renumbers\n      the points so spring neighbours sit close)\n"
           "  -o  final mesh, OBJ or PLY by extension (default %s)\n",
           d->prog, d->size_help, d->size_min, d->size_max, d->size,
           d->seconds, (double)d->air, d->out);
@@ -84,7 +86,7 @@ int drop_parse(drop_options *d, int argc, char **argv)
 {
   int opt, k;
   double x;
-  while ((opt = getopt(argc, argv, "n:t:d:a:T:i:l:o:h")) != -1) {
+  while ((opt = getopt(argc, argv, "n:t:d:a:T:i:l:o:Kh")) != -1) {
     switch (opt) {
     case 'n':
       if (!number(optarg, &x) || x != floor(x) || x < d->size_min ||
@@ -109,6 +111,7 @@ int drop_parse(drop_options *d, int argc, char **argv)
       break;
     case 'd': d->spec = optarg; break;
     case 'o': d->out = optarg; break;
+    case 'K': d->keep_numbering = 1; break;
     case 'i':
       if ((k = pick(optarg, integrators, 5)) < 0)
         return usage(d);
@@ -278,6 +281,7 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
   msocl_sim_options_init(&o);
   o.integrator = d->integrator;
   o.layout = d->layout;
+  o.renumber = !d->keep_numbering;
   o.dt = d->dt;
   const char *why = "-T";
   int rc = d->dt > 0 ? MSOCL_OK : choose_dt(d, m, &o.dt, &why);

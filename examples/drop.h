@@ -19,6 +19,7 @@ typedef struct {
   float dashpot_ratio;
   msocl_integrator integrator; /* -i */
   msocl_layout layout;         /* -l */
+  int keep_numbering;          /* -K: no renumbering (to compare) */
 } drop_options;
 
 /* Reads argv over the defaults already in *d. Returns 0, or 2 after

@@ -219,22 +219,44 @@ static void plan_halos(msocl_sim *s, const msocl_model *m)
   (void)owner_lo;
 }
 
+/* Mean |i - j| over the springs, the points numbered new[old] (NULL:
+ * as they are). The mean, not the largest: one hub point (a solid's
+ * centre) reaches across any numbering, but the rest still gain. */
+static double mean_reach(const msocl_model *m, const int *num)
+{
+  double sum = 0.0;
+  for (int sp = 0; sp < m->ns; sp++) {
+    int i = m->ij[2 * sp], j = m->ij[2 * sp + 1];
+    if (num) {
+      i = num[i];
+      j = num[j];
+    }
+    sum += i > j ? i - j : j - i;
+  }
+  return m->ns > 0 ? sum / m->ns : 0.0;
+}
+
 /* The model the engines run: m itself, or m renumbered by reverse
- * Cuthill-McKee where that narrows the springs' reach (s->perm records
- * how). A cloth grid keeps its numbering: row by row it is banded
- * already, and the GRID layout derives neighbours from it. */
+ * Cuthill-McKee where that brings spring neighbours closer (s->perm
+ * records how). A cloth grid keeps its numbering: row by row it is
+ * banded already, and the GRID layout derives neighbours from it. */
 static int number_points(msocl_sim *s, const msocl_model *m,
                          msocl_model **renumbered)
 {
   *renumbered = NULL;
   if (!s->o.renumber || m->n < 3 || (m->grid.nx >= 2 && m->grid.ns == m->ns))
     return MSOCL_OK;
-  int *perm = malloc((size_t)m->n * sizeof *perm), before, after;
-  if (!perm)
-    return msocl__fail(MSOCL_ERR_NO_MEMORY, "point numbering");
-  int rc = msocl__order_rcm(m, perm, &before, &after);
-  if (rc == MSOCL_OK && after < before)
-    rc = msocl__model_permuted(m, perm, renumbered);
+  int *perm = malloc((size_t)m->n * sizeof *perm),
+      *num = malloc((size_t)m->n * sizeof *num);
+  int rc = perm && num ? msocl__order_rcm(m, perm, NULL, NULL)
+                       : msocl__fail(MSOCL_ERR_NO_MEMORY, "point numbering");
+  if (rc == MSOCL_OK) {
+    for (int k = 0; k < m->n; k++)
+      num[perm[k]] = k;
+    if (mean_reach(m, num) < mean_reach(m, NULL))
+      rc = msocl__model_permuted(m, perm, renumbered);
+  }
+  free(num);
   if (*renumbered)
     s->perm = perm;
   else
