@@ -23,6 +23,17 @@ static double event_seconds(cl_event ev)
   return 1e-9 * (double)(t1 - t0);
 }
 
+double msocl__event_span(cl_event a, cl_event b)
+{
+  cl_ulong t0 = 0, t1 = 0;
+  if (clGetEventProfilingInfo(a, CL_PROFILING_COMMAND_END, sizeof t0, &t0,
+                              NULL) != CL_SUCCESS ||
+      clGetEventProfilingInfo(b, CL_PROFILING_COMMAND_END, sizeof t1, &t1,
+                              NULL) != CL_SUCCESS || t1 < t0)
+    return 0.0;
+  return 1e-9 * (double)(t1 - t0);
+}
+
 int msocl__exchange_plan(msocl_sim *s)
 {
   struct msocl__exchange *x = &s->x;

@@ -80,6 +80,7 @@ struct msocl__xstat {
   double copy_seconds; /* device time of its reads and writes */
   double host_seconds; /* host time queuing and reading them */
   double wait_seconds; /* host time waiting for the device */
+  double compute_seconds; /* device time of its phases' kernels */
 };
 
 /* The exchange plan and its staging (exchange.c). */
@@ -129,6 +130,8 @@ void msocl__exchange_free(msocl_sim *s);
 int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask);
 int msocl__exchange_scatter(msocl_sim *s, int d);
 void msocl__exchange_settle(msocl_sim *s, int d);
+/* Device seconds from the end of finished command a to that of b. */
+double msocl__event_span(cl_event a, cl_event b);
 
 /* Host threads (workers.c): run calls fn(ctx, i) for i < n, i on thread
  * i (0: the caller), and returns the first failure with its message. */

@@ -186,6 +186,7 @@ int msocl_sim_split_info(const msocl_sim *s, msocl_split_info *info)
     const struct msocl__xstat *st = &s->x.stat[d];
     bytes += st->bytes;
     info->copy_seconds[d] = st->copy_seconds;
+    info->compute_seconds[d] = st->compute_seconds;
     info->part_exchange_seconds[d] = st->host_seconds;
     info->part_wait_seconds[d] = st->wait_seconds;
     /* the parts work at once: the slowest one is the critical path */

@@ -92,10 +92,25 @@ static int job(void *ctx, int d)
   unsigned mask = 0;
   int ph = j->ph < 0 ? phases : j->ph;
   int rc = scatter(s, d);
+  /* markers around the phases: their device time, from profiling */
+  cl_event mark[2] = {NULL, NULL};
+  if (rc == MSOCL_OK && ph < phases &&
+      clEnqueueMarkerWithWaitList(e->dev->queue, 0, NULL, &mark[0]) !=
+          CL_SUCCESS)
+    mark[0] = NULL;
   while (rc == MSOCL_OK && ph < phases && mask == 0)
     rc = msocl__phase(e, ph++, &mask);
+  if (rc == MSOCL_OK && mark[0] &&
+      clEnqueueMarkerWithWaitList(e->dev->queue, 0, NULL, &mark[1]) !=
+          CL_SUCCESS)
+    mark[1] = NULL;
   if (rc == MSOCL_OK)
     rc = finish(s, d);
+  if (rc == MSOCL_OK && mark[1])
+    s->x.stat[d].compute_seconds += msocl__event_span(mark[0], mark[1]);
+  for (int q = 0; q < 2; q++)
+    if (mark[q])
+      clReleaseEvent(mark[q]);
   if (rc == MSOCL_OK && mask)
     rc = gather(s, d, mask); /* before the swap: bits name buffers by r */
   if (rc == MSOCL_OK && j->ph >= 0 && ph == phases)
