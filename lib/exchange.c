@@ -11,27 +11,28 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Device time of a finished command, from its profiling info. */
-static double event_seconds(cl_event ev)
+/* Seconds from profiling stamp `from` of finished command a to stamp `to`
+ * of b (0 where the driver gives none). */
+static double stamps(cl_event a, cl_profiling_info from, cl_event b,
+                     cl_profiling_info to)
 {
   cl_ulong t0 = 0, t1 = 0;
-  if (clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_START, sizeof t0, &t0,
-                              NULL) != CL_SUCCESS ||
-      clGetEventProfilingInfo(ev, CL_PROFILING_COMMAND_END, sizeof t1, &t1,
-                              NULL) != CL_SUCCESS || t1 < t0)
+  if (clGetEventProfilingInfo(a, from, sizeof t0, &t0, NULL) != CL_SUCCESS ||
+      clGetEventProfilingInfo(b, to, sizeof t1, &t1, NULL) != CL_SUCCESS ||
+      t1 < t0)
     return 0.0;
   return 1e-9 * (double)(t1 - t0);
 }
 
+/* Device time of a finished command. */
+static double event_seconds(cl_event ev)
+{
+  return stamps(ev, CL_PROFILING_COMMAND_START, ev, CL_PROFILING_COMMAND_END);
+}
+
 double msocl__event_span(cl_event a, cl_event b)
 {
-  cl_ulong t0 = 0, t1 = 0;
-  if (clGetEventProfilingInfo(a, CL_PROFILING_COMMAND_END, sizeof t0, &t0,
-                              NULL) != CL_SUCCESS ||
-      clGetEventProfilingInfo(b, CL_PROFILING_COMMAND_END, sizeof t1, &t1,
-                              NULL) != CL_SUCCESS || t1 < t0)
-    return 0.0;
-  return 1e-9 * (double)(t1 - t0);
+  return stamps(a, CL_PROFILING_COMMAND_END, b, CL_PROFILING_COMMAND_END);
 }
 
 int msocl__exchange_plan(msocl_sim *s)
