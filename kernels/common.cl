@@ -62,10 +62,13 @@ __constant int msocl_grid_rest[12] = {1, 0, 0, 1, 2, 3, 3, 2, 5, 4, 4, 5};
 #endif
 
 /* Slot s of point i: the other end *j, rest length, stiffness and dashpot
- * coefficient; returns 0 past the last spring. The texture is the paper's:
- * 16 tiles of W x H, slot s in tile (s % 4, s / 4), entry (x, y of the
- * other end, rest, k), -1 = end; dashpots in a (4W) x H image, four slots a
- * texel. BUFFER is slot-major: slot s of point i at s * n + i. */
+ * coefficient; returns 0 past the last spring (GRID: never). The texture is
+ * the paper's: 16 tiles of W x H, slot s in tile (s % 4, s / 4), entry
+ * (x, y of the other end, rest, k), -1 = end; dashpots in a (4W) x H image,
+ * four slots a texel. BUFFER is slot-major: slot s of point i at s * n + i;
+ * a free slot holds, like GRID's missing neighbour, a spring to the point
+ * itself with rest, k and c 0 (layout.c; a model has no such spring), which
+ * adds exact zeros wherever it is summed. */
 static int msocl_slot(MSOCL_CONN, int i, int s, int n, int *j, float *rest,
                       float *k, float *c)
 {
@@ -107,12 +110,10 @@ static int msocl_slot(MSOCL_CONN, int i, int s, int n, int *j, float *rest,
 #else
   *c = 0.0f;
 #endif
+  return 1;
 #else
-  int jj = nbr[s * n + i];
-  if (jj < 0)
-    return 0;
   float2 e = rk[s * n + i];
-  *j = jj;
+  *j = nbr[s * n + i];
   *rest = e.x;
   *k = e.y;
 #ifdef MSOCL_DAMPING
@@ -120,8 +121,8 @@ static int msocl_slot(MSOCL_CONN, int i, int s, int n, int *j, float *rest,
 #else
   *c = 0.0f;
 #endif
+  return *j != i;
 #endif
-  return 1;
 }
 
 /* Force on point p from a spring to q of rest length r and stiffness k
@@ -146,29 +147,118 @@ static float3 msocl_dashpot(float3 p, float3 q, float3 vp, float3 vq, float c)
   return (float3)(0.0f);
 }
 
+/* Slots s0 .. s0 + 3 of point i (s0 a multiple of 4, unrolled) as
+ * vectors; a slot past the last is the point itself with zeros. */
+static void msocl_slot4(MSOCL_CONN, int i, int s0, int n, int4 *j,
+                        float4 *rest, float4 *k, float4 *c)
+{
+#ifdef MSOCL_LAYOUT_GRID
+  /* msocl_slot's arithmetic on four lanes at once. Each group of four
+   * neighbours is of one kind (stretch, shear, bend). */
+  int x = i % grid_nx, y = i / grid_nx, kind = msocl_grid_kind[s0];
+  int4 dx = vload4(0, msocl_grid_dx + s0), dy = vload4(0, msocl_grid_dy + s0);
+  int4 ri = vload4(0, msocl_grid_rest + s0);
+  int4 qx = x + dx, qy = y + dy;
+  float kk = kind == 0 ? grid_k.x : kind == 1 ? grid_k.y : grid_k.z;
+  int4 there = (qx >= 0) & (qx < grid_nx) & (qy >= 0) & (qy < grid_ny) &
+               (int4)(kk != 0.0f ? -1 : 0);
+  float r[4];
+#pragma unroll
+  for (int q = 0; q < 4; q++) {
+    int e = q == 0 ? ri.x : q == 1 ? ri.y : q == 2 ? ri.z : ri.w;
+    r[q] = e == 0 ? grid_rest.s0 : e == 1 ? grid_rest.s1
+         : e == 2 ? grid_rest.s2 : e == 3 ? grid_rest.s3
+         : e == 4 ? grid_rest.s4 : grid_rest.s5;
+  }
+  *j = select((int4)(i), qy * grid_nx + qx, there);
+  *rest = (float4)(r[0], r[1], r[2], r[3]);
+  *k = select((float4)(0.0f), (float4)(kk), there);
+  *c = select((float4)(0.0f), (float4)(grid_k.w), there);
+  (void)n;
+#else
+  int jq[4];
+  float rq[4], kq[4], cq[4];
+#pragma unroll
+  for (int q = 0; q < 4; q++) {
+    jq[q] = i;
+    rq[q] = kq[q] = cq[q] = 0.0f;
+    if (s0 + q < MSOCL_MAX_SLOTS)
+      msocl_slot(MSOCL_CONN_ARGS, i, s0 + q, n, &jq[q], &rq[q], &kq[q],
+                 &cq[q]);
+  }
+  *j = (int4)(jq[0], jq[1], jq[2], jq[3]);
+  *rest = (float4)(rq[0], rq[1], rq[2], rq[3]);
+  *k = (float4)(kq[0], kq[1], kq[2], kq[3]);
+  *c = (float4)(cq[0], cq[1], cq[2], cq[3]);
+#endif
+}
+
 /* Internal and viscous force on point i (not gravity): the gather over its
- * springs, in slot order. */
+ * springs, in slot order - msocl_spring and msocl_dashpot four slots at a
+ * time, so that their square roots and divisions, which bounded this loop
+ * on a CPU (PoCL runs it one work-item at a time: docs/PERFORMANCE.md),
+ * take one SIMD instruction for four springs. Each lane does the scalar
+ * arithmetic, and the sums still go slot after slot: bitwise the one-slot
+ * loop's result (and serial C's). */
 static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
                           __global const float4 *vel, int i, int n,
                           float viscous)
 {
-  float3 p = pos[i].xyz, v = vel[i].xyz, f = (float3)(0.0f);
-#ifdef MSOCL_LAYOUT_GRID
+  float4 p = pos[i], v = vel[i];
+  float fx = 0.0f, fy = 0.0f, fz = 0.0f;
 #pragma unroll
-#endif
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    int j;
-    float rest, k, c;
-    if (!msocl_slot(MSOCL_CONN_ARGS, i, s, n, &j, &rest, &k, &c))
-      break;
-    float3 q = pos[j].xyz;
-    f += msocl_spring(p, q, rest, k);
+  for (int s0 = 0; s0 < MSOCL_MAX_SLOTS; s0 += 4) {
+    int4 j;
+    float4 rest, k, c;
+    msocl_slot4(MSOCL_CONN_ARGS, i, s0, n, &j, &rest, &k, &c);
+    float4 a = pos[j.x], b = pos[j.y], e = pos[j.z], g = pos[j.w];
+    float4 dx = (float4)(a.x, b.x, e.x, g.x) - p.x;
+    float4 dy = (float4)(a.y, b.y, e.y, g.y) - p.y;
+    float4 dz = (float4)(a.z, b.z, e.z, g.z) - p.z;
+    /* dot(d, d) = (x x + y y) + z z, as msocl_spring */
+    float4 len2 = dx * dx + dy * dy + dz * dz;
+    float4 len = MSOCL_SQRT(len2);
+    float4 t = k * MSOCL_DIV(len - rest, len);
+    int4 on = len > 0.0f;
+    float4 sx = select((float4)(0.0f), t * dx, on);
+    float4 sy = select((float4)(0.0f), t * dy, on);
+    float4 sz = select((float4)(0.0f), t * dz, on);
 #ifdef MSOCL_DAMPING
-    f += msocl_dashpot(p, q, v, vel[j].xyz, c);
+    a = vel[j.x] - v;
+    b = vel[j.y] - v;
+    e = vel[j.z] - v;
+    g = vel[j.w] - v;
+    float4 u = c * MSOCL_DIV((float4)(a.x, b.x, e.x, g.x) * dx +
+                                 (float4)(a.y, b.y, e.y, g.y) * dy +
+                                 (float4)(a.z, b.z, e.z, g.z) * dz,
+                             len2);
+    on = len2 > 0.0f;
+    float4 hx = select((float4)(0.0f), u * dx, on);
+    float4 hy = select((float4)(0.0f), u * dy, on);
+    float4 hz = select((float4)(0.0f), u * dz, on);
+#define MSOCL_ADD(q)                                                          \
+  fx += sx.q; fy += sy.q; fz += sz.q;                                         \
+  fx += hx.q; fy += hy.q; fz += hz.q
+#else
+#define MSOCL_ADD(q) fx += sx.q; fy += sy.q; fz += sz.q
 #endif
+    /* slot by slot; past the last slot, nothing (not even its zeros) */
+    MSOCL_ADD(x);
+    if (s0 + 1 < MSOCL_MAX_SLOTS) {
+      MSOCL_ADD(y);
+    }
+    if (s0 + 2 < MSOCL_MAX_SLOTS) {
+      MSOCL_ADD(z);
+    }
+    if (s0 + 3 < MSOCL_MAX_SLOTS) {
+      MSOCL_ADD(w);
+    }
+#undef MSOCL_ADD
+    (void)c;
   }
+  float3 f = (float3)(fx, fy, fz);
 #ifdef MSOCL_VISCOUS
-  f -= viscous * v;
+  f -= viscous * v.xyz;
 #endif
   (void)v; (void)viscous;
   return f;

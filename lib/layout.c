@@ -139,8 +139,11 @@ static int build_buffers(struct msocl__device *dev, const msocl_model *m,
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "connectivity buffers");
     goto out;
   }
+  /* A free slot is a spring from the point to itself with rest and k 0
+   * (GRID's missing neighbour): it adds exact zeros, so msocl_force can
+   * take four slots at a time with no end test. */
   for (size_t t = 0; t < S * n; t++)
-    nbr[t] = -1;
+    nbr[t] = (int)(t % n);
   for (size_t i = 0; i < n; i++)
     for (int s = 0; s < a->off[i + 1] - a->off[i]; s++) {
       int sp = a->spring[a->off[i] + s];
