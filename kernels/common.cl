@@ -54,11 +54,27 @@ __constant int msocl_grid_dx[12] = {0, -1, 1, 0, -1, 1, -1, 1, 0, -2, 2, 0};
 __constant int msocl_grid_dy[12] = {-1, 0, 0, 1, -1, -1, 1, 1, -2, 0, 0, 2};
 __constant int msocl_grid_kind[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
 __constant int msocl_grid_rest[12] = {1, 0, 0, 1, 2, 3, 3, 2, 5, 4, 4, 5};
+#elif defined(MSOCL_SPILL)
+/* BUFFER with a spill: MSOCL_SLOTS slots a point in the table, the rest of
+ * a point's springs (only a few points have more) listed after the table,
+ * point i's from spill[i] to spill[i + 1]; MSOCL_DEGREE: the most any
+ * point has. */
+#define MSOCL_MAX_SLOTS MSOCL_DEGREE
+#define MSOCL_CONN                                                            \
+  __global const int *nbr, __global const float2 *rk,                        \
+      __global const float *dmp, __global const int *spill
+#define MSOCL_CONN_ARGS nbr, rk, dmp, spill
 #else
 #define MSOCL_MAX_SLOTS MSOCL_SLOTS
 #define MSOCL_CONN                                                            \
   __global const int *nbr, __global const float2 *rk, __global const float *dmp
 #define MSOCL_CONN_ARGS nbr, rk, dmp
+#endif
+/* The slots msocl_force takes four at a time (BUFFER: the table's). */
+#if defined(MSOCL_LAYOUT_IMAGE2D) || defined(MSOCL_LAYOUT_GRID)
+#define MSOCL_TABLE_SLOTS MSOCL_MAX_SLOTS
+#else
+#define MSOCL_TABLE_SLOTS MSOCL_SLOTS
 #endif
 
 /* Slot s of point i: the other end *j, rest length, stiffness and dashpot
@@ -112,12 +128,21 @@ static int msocl_slot(MSOCL_CONN, int i, int s, int n, int *j, float *rest,
 #endif
   return 1;
 #else
-  float2 e = rk[s * n + i];
-  *j = nbr[s * n + i];
+  int at = s * n + i;
+#ifdef MSOCL_SPILL
+  if (s >= MSOCL_SLOTS) {
+    int o = spill[i] + (s - MSOCL_SLOTS);
+    if (o >= spill[i + 1])
+      return 0;
+    at = MSOCL_SLOTS * n + o;
+  }
+#endif
+  float2 e = rk[at];
+  *j = nbr[at];
   *rest = e.x;
   *k = e.y;
 #ifdef MSOCL_DAMPING
-  *c = dmp[s * n + i];
+  *c = dmp[at];
 #else
   *c = 0.0f;
 #endif
@@ -182,7 +207,7 @@ static void msocl_slot4(MSOCL_CONN, int i, int s0, int n, int4 *j,
   for (int q = 0; q < 4; q++) {
     jq[q] = i;
     rq[q] = kq[q] = cq[q] = 0.0f;
-    if (s0 + q < MSOCL_MAX_SLOTS)
+    if (s0 + q < MSOCL_TABLE_SLOTS)
       msocl_slot(MSOCL_CONN_ARGS, i, s0 + q, n, &jq[q], &rq[q], &kq[q],
                  &cq[q]);
   }
@@ -207,7 +232,7 @@ static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
   float4 p = pos[i], v = vel[i];
   float fx = 0.0f, fy = 0.0f, fz = 0.0f;
 #pragma unroll
-  for (int s0 = 0; s0 < MSOCL_MAX_SLOTS; s0 += 4) {
+  for (int s0 = 0; s0 < MSOCL_TABLE_SLOTS; s0 += 4) {
     int4 j;
     float4 rest, k, c;
     msocl_slot4(MSOCL_CONN_ARGS, i, s0, n, &j, &rest, &k, &c);
@@ -244,18 +269,41 @@ static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
 #endif
     /* slot by slot; past the last slot, nothing (not even its zeros) */
     MSOCL_ADD(x);
-    if (s0 + 1 < MSOCL_MAX_SLOTS) {
+    if (s0 + 1 < MSOCL_TABLE_SLOTS) {
       MSOCL_ADD(y);
     }
-    if (s0 + 2 < MSOCL_MAX_SLOTS) {
+    if (s0 + 2 < MSOCL_TABLE_SLOTS) {
       MSOCL_ADD(z);
     }
-    if (s0 + 3 < MSOCL_MAX_SLOTS) {
+    if (s0 + 3 < MSOCL_TABLE_SLOTS) {
       MSOCL_ADD(w);
     }
 #undef MSOCL_ADD
     (void)c;
   }
+#ifdef MSOCL_SPILL
+  /* the springs past the table, one at a time in one lane's arithmetic:
+   * the same sums, in the same order, as a table long enough for all */
+  for (int o = spill[i]; o < spill[i + 1]; o++) {
+    const int at = MSOCL_SLOTS * n + o;
+    const float2 e = rk[at];
+    const float4 q = pos[nbr[at]];
+    float dx = q.x - p.x, dy = q.y - p.y, dz = q.z - p.z;
+    float len2 = dx * dx + dy * dy + dz * dz, len = MSOCL_SQRT(len2);
+    float t = e.y * MSOCL_DIV(len - e.x, len);
+    /* adding the zero too, as a lane does: -0 + 0 is +0 */
+    fx += len > 0.0f ? t * dx : 0.0f;
+    fy += len > 0.0f ? t * dy : 0.0f;
+    fz += len > 0.0f ? t * dz : 0.0f;
+#ifdef MSOCL_DAMPING
+    const float4 w = vel[nbr[at]] - v;
+    float u = dmp[at] * MSOCL_DIV(w.x * dx + w.y * dy + w.z * dz, len2);
+    fx += len2 > 0.0f ? u * dx : 0.0f;
+    fy += len2 > 0.0f ? u * dy : 0.0f;
+    fz += len2 > 0.0f ? u * dz : 0.0f;
+#endif
+  }
+#endif
   float3 f = (float3)(fx, fy, fz);
 #ifdef MSOCL_VISCOUS
   f -= viscous * v.xyz;

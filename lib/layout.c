@@ -124,19 +124,51 @@ static int build_image(struct msocl__device *dev, const msocl_model *m,
   return rc;
 }
 
+int msocl__table_slots(const struct msocl__adjacency *adj, int want)
+{
+  const int n = adj->n, top = adj->max_degree;
+  if (want > 0)
+    return want < top ? want : top;
+  /* a table of up to 32 slots costs little whatever the spread */
+  if (top <= 32 || n == 0)
+    return top;
+  int *count = calloc((size_t)top + 1, sizeof *count);
+  if (!count)
+    return top; /* the caller's own allocation reports the shortage */
+  for (int i = 0; i < n; i++)
+    count[adj->off[i + 1] - adj->off[i]]++;
+  int width = 0, within = 0;
+  while (width < top && within + count[width] < n - n / 100)
+    within += count[width++];
+  free(count);
+  width = (width + 3) / 4 * 4; /* msocl_force takes four at a time */
+  return width < top ? width : top;
+}
+
 /* Slot-major arrays: slot s of point i at s * n + i, so neighbouring work
- * items read neighbouring words. */
+ * items read neighbouring words; past l->slots, a point's further springs
+ * follow the table, point i's from spill[i] on. */
 static int build_buffers(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *a, int damped,
                          struct msocl__layout *l)
 {
   const size_t n = (size_t)m->n, S = (size_t)(l->slots > 0 ? l->slots : 1);
-  int *nbr = malloc(S * n * sizeof *nbr);
-  float *rk = calloc(2 * S * n, sizeof *rk);
-  float *dmp = calloc(damped ? S * n : 1, sizeof *dmp);
+  int *spill = malloc((n + 1) * sizeof *spill);
+  if (!spill)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "connectivity buffers");
+  spill[0] = 0;
+  for (size_t i = 0; i < n; i++) {
+    int d = a->off[i + 1] - a->off[i];
+    spill[i + 1] = spill[i] + (d > (int)S ? d - (int)S : 0);
+  }
+  const size_t total = S * n + (size_t)spill[n];
+  int *nbr = malloc(total * sizeof *nbr);
+  float *rk = calloc(2 * total, sizeof *rk);
+  float *dmp = calloc(damped ? total : 1, sizeof *dmp);
   int rc = MSOCL_OK;
   if (!nbr || !rk || !dmp) {
-    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "connectivity buffers");
+    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "connectivity buffers (%zu slots)",
+                     total);
     goto out;
   }
   /* A free slot is a spring from the point to itself with rest and k 0
@@ -147,19 +179,23 @@ static int build_buffers(struct msocl__device *dev, const msocl_model *m,
   for (size_t i = 0; i < n; i++)
     for (int s = 0; s < a->off[i + 1] - a->off[i]; s++) {
       int sp = a->spring[a->off[i] + s];
-      size_t at = (size_t)s * n + i;
+      size_t at = (size_t)s < S ? (size_t)s * n + i
+                                : S * n + (size_t)spill[i] + (size_t)s - S;
       nbr[at] = a->other[a->off[i] + s];
       rk[2 * at] = m->rest[sp];
       rk[2 * at + 1] = m->k[sp];
       if (damped)
         dmp[at] = m->damp[sp];
     }
-  l->con = make_buffer(dev, S * n * sizeof *nbr, nbr, &rc);
+  l->con = make_buffer(dev, total * sizeof *nbr, nbr, &rc);
   if (rc == MSOCL_OK)
-    l->rk = make_buffer(dev, 2 * S * n * sizeof *rk, rk, &rc);
+    l->rk = make_buffer(dev, 2 * total * sizeof *rk, rk, &rc);
   if (rc == MSOCL_OK)
-    l->damp = make_buffer(dev, (damped ? S * n : 1) * sizeof *dmp, dmp, &rc);
+    l->damp = make_buffer(dev, (damped ? total : 1) * sizeof *dmp, dmp, &rc);
+  if (rc == MSOCL_OK && spill[n] > 0)
+    l->spill = make_buffer(dev, (n + 1) * sizeof *spill, spill, &rc);
 out:
+  free(spill);
   free(nbr);
   free(rk);
   free(dmp);
@@ -227,7 +263,8 @@ int msocl__layout_fits(const msocl_model *m, msocl_layout kind)
 
 int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *adj,
-                         msocl_layout kind, struct msocl__layout *out)
+                         msocl_layout kind, int table_slots,
+                         struct msocl__layout *out)
 {
   memset(out, 0, sizeof *out);
   out->kind = kind == MSOCL_LAYOUT_AUTO ? msocl__layout_auto(&dev->info)
@@ -244,7 +281,8 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
       return rc;
     rc = build_image(dev, m, adj, has_damping(m), out);
   } else if (out->kind == MSOCL_LAYOUT_BUFFER) {
-    out->slots = adj->max_degree;
+    out->degree = adj->max_degree;
+    out->slots = msocl__table_slots(adj, table_slots);
     rc = build_buffers(dev, m, adj, has_damping(m), out);
   } else if (out->kind == MSOCL_LAYOUT_GRID) {
     if (m->grid.nx < 2 || m->grid.ns != m->ns)
@@ -280,7 +318,9 @@ void msocl__layout_release(struct msocl__layout *l)
     clReleaseMemObject(l->rk);
   if (l->damp)
     clReleaseMemObject(l->damp);
-  l->con = l->rk = l->damp = NULL;
+  if (l->spill)
+    clReleaseMemObject(l->spill);
+  l->con = l->rk = l->damp = l->spill = NULL;
 }
 
 int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,
@@ -303,6 +343,8 @@ int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,
     MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->rk));
   }
   MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->damp));
+  if (l->spill)
+    MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->spill));
   *next = a;
   return MSOCL_OK;
 }

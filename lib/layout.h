@@ -6,7 +6,12 @@
 
 struct msocl__layout {
   msocl_layout kind; /* IMAGE2D, BUFFER, EDGES or GRID, never AUTO */
-  int slots;         /* springs a point can hold (EDGES: 0) */
+  int slots;         /* springs a point can hold (EDGES: 0); BUFFER with
+                        a spill: in the table */
+  int degree;        /* BUFFER: the most springs any point has */
+  cl_mem spill;      /* BUFFER: per point, where its springs past the
+                        table start in the list after it (n + 1 ints);
+                        NULL: none spill */
   int nsprings;      /* EDGES */
   int grid_nx, grid_ny;    /* GRID */
   cl_float4 grid_k;        /* stretch, shear, bend stiffness; dashpot */
@@ -29,9 +34,17 @@ int msocl__image_dims(int n, size_t max_w, size_t max_h, int *w, int *h);
  * the model's springs do not fit `kind`'s slots. */
 int msocl__layout_fits(const msocl_model *m, msocl_layout kind);
 
+/* BUFFER's table width for these degrees: all of a point's springs,
+ * unless a few points (a hub such as a solid's centre) have far more than
+ * the rest - then a width that holds 99% of the points' springs, the rest
+ * spilling into per-point lists, so the table is not the hub's degree
+ * times every point. `want` > 0 chooses (capped at the largest degree). */
+int msocl__table_slots(const struct msocl__adjacency *adj, int want);
+
 int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *adj,
-                         msocl_layout kind, struct msocl__layout *out);
+                         msocl_layout kind, int table_slots,
+                         struct msocl__layout *out);
 void msocl__layout_release(struct msocl__layout *l);
 
 /* Sets the velocity kernel's first arguments (its connectivity); *next

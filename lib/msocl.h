@@ -308,6 +308,11 @@ typedef struct {
    * numbered as it is; 0: keep the model's numbering. Either way, reads
    * and writes of the state use the model's numbering. */
   int renumber;
+  /* BUFFER: slots a point in the slot table; a point's springs past them
+   * go in a list of its own after the table (bitwise the same sums).
+   * 0 (default): every spring in the table unless a few points (a
+   * solid's centre) have far more than the rest. */
+  int buffer_slots;
 } msocl_sim_options;
 
 MSOCL_EXTERN void msocl_sim_options_init(msocl_sim_options *o);

@@ -49,12 +49,13 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
   /* EDGES shares the BUFFER macros with no slots: the gathering kernels
    * it does not use still compile, to nothing. */
   int len = snprintf(
-      buf, cap, "%s -DMSOCL_SLOTS=%d%s%s%s%s%s%s%s%s",
+      buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s",
       s->lay.kind == MSOCL_LAYOUT_IMAGE2D ? "-DMSOCL_LAYOUT_IMAGE2D"
       : s->lay.kind == MSOCL_LAYOUT_GRID  ? "-DMSOCL_LAYOUT_GRID"
                                           : "-DMSOCL_LAYOUT_BUFFER",
       s->lay.kind == MSOCL_LAYOUT_EDGES ? 0
                                         : s->lay.slots > 0 ? s->lay.slots : 1,
+      s->lay.degree, s->lay.spill ? " -DMSOCL_SPILL" : "",
       damped ? " -DMSOCL_DAMPING" : "",
       m->viscous != 0.0f ? " -DMSOCL_VISCOUS" : "",
       m->air != 1.0f ? " -DMSOCL_AIR" : "",
@@ -314,7 +315,8 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
   }
   rc = msocl__adjacency_build(m, &adj);
   if (rc == MSOCL_OK)
-    rc = msocl__layout_create(s->dev, m, &adj, o->layout, &s->lay);
+    rc = msocl__layout_create(s->dev, m, &adj, o->layout, o->buffer_slots,
+                              &s->lay);
   if (rc == MSOCL_OK)
     rc = make_buffers(s, m);
   char opt[512];

@@ -1,0 +1,214 @@
+/* BUFFER's slot table and its spill: a point's springs past the table's
+ * width go in a list of its own, summed in the same order, so any width
+ * gives bitwise the same motion; a hub point (a solid's centre, joined to
+ * every surface point) no longer makes the table hub-degree x points. */
+#include "layout.h" /* msocl__table_slots */
+#include "scenes.h"
+
+#include <check.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define rt scene_rt
+
+static void add_ground(msocl_model *m)
+{
+  const float up[3] = {0.0f, 1.0f, 0.0f};
+  ck_assert_int_eq(msocl_model_add_plane(m, up, 0.0f, 0.5f), MSOCL_OK);
+}
+
+/* The default soft ball (162 surface points and a centre joined to all),
+ * dropped on the ground. */
+static msocl_model *ball(void)
+{
+  msocl_solid_desc d;
+  msocl_solid_desc_init(&d);
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_solid(&m, &d), MSOCL_OK);
+  add_ground(m);
+  return m;
+}
+
+/* A small damped jello cube: degree 24, dashpots on every spring. */
+static msocl_model *jello(void)
+{
+  msocl_lattice_desc d;
+  msocl_lattice_desc_init(&d);
+  d.nx = d.ny = d.nz = 5;
+  d.damping = 0.05f;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_lattice(&m, &d), MSOCL_OK);
+  add_ground(m);
+  return m;
+}
+
+struct state {
+  int n;
+  float *pos, *vel;
+};
+
+static struct state run(const msocl_model *m, msocl_integrator in,
+                        int table, int steps)
+{
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.layout = MSOCL_LAYOUT_BUFFER;
+  o.integrator = in;
+  o.buffer_slots = table;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &o.dt),
+                   MSOCL_OK);
+  float edt;
+  /* forward Euler's own, tighter limit (dashpots make it finite) */
+  if (in == MSOCL_EXPLICIT_EULER &&
+      msocl_stable_dt(m, MSOCL_EXPLICIT_EULER, &edt) == MSOCL_OK && edt < o.dt)
+    o.dt = edt;
+  o.dt *= 0.5f;
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, rt, m, &o);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  rc = msocl_sim_step(s, steps);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  struct state st;
+  msocl_sim_point_count(s, &st.n);
+  st.pos = malloc(3 * (size_t)st.n * sizeof(float));
+  st.vel = malloc(3 * (size_t)st.n * sizeof(float));
+  ck_assert_int_eq(msocl_sim_read_positions(s, st.pos), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_read_velocities(s, st.vel), MSOCL_OK);
+  msocl_sim_destroy(s);
+  return st;
+}
+
+static void same(struct state a, struct state b, const char *what)
+{
+  const size_t bytes = 3 * (size_t)a.n * sizeof(float);
+  ck_assert_msg(memcmp(a.pos, b.pos, bytes) == 0 &&
+                    memcmp(a.vel, b.vel, bytes) == 0,
+                "%s: positions differ by %g, velocities by %g", what,
+                scene_max_diff(a.pos, b.pos, 3 * a.n),
+                scene_max_diff(a.vel, b.vel, 3 * a.n));
+  free(b.pos);
+  free(b.vel);
+}
+
+static const char *const names[] = {"symplectic Euler", "explicit Euler",
+                                    "Verlet", "RK4", "implicit Euler"};
+
+/* _i: the integrator. Every kernel that walks a point's springs (forces,
+ * implicit Euler's products, energy for the blow-up check) reads the
+ * spill. */
+START_TEST(any_width_is_bitwise_the_full_table)
+{
+  msocl_integrator in = (msocl_integrator)_i;
+  if (in == MSOCL_EXPLICIT_EULER)
+    return; /* undamped ball: forward Euler grows; the jello covers it */
+  msocl_model *m = ball();
+  int n, top;
+  msocl_model_point_count(m, &n);
+  msocl_model_max_degree(m, &top);
+  struct state full = run(m, in, top, 200);
+  float *p0 = malloc(3 * (size_t)n * sizeof(float));
+  msocl_model_get_positions(m, p0);
+  ck_assert(scene_max_diff(p0, full.pos, 3 * n) > 1e-3); /* it fell */
+  free(p0);
+  const int widths[] = {0, 1, 4, 7, 8};
+  for (int w = 0; w < 5; w++) {
+    char what[96];
+    snprintf(what, sizeof what, "ball, %s, table of %d", names[in],
+             widths[w]);
+    same(full, run(m, in, widths[w], 200), what);
+  }
+  free(full.pos);
+  free(full.vel);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Dashpots read the neighbours' velocities from the spill too. */
+START_TEST(damped_lattice_spills_bitwise)
+{
+  msocl_integrator in = (msocl_integrator)_i;
+  msocl_model *m = jello();
+  struct state full = run(m, in, 0, 300);
+  for (int w = 1; w <= 20; w += 19) {
+    char what[96];
+    snprintf(what, sizeof what, "jello, %s, table of %d", names[in], w);
+    same(full, run(m, in, w, 300), what);
+  }
+  free(full.pos);
+  free(full.vel);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* The width chosen from the degrees: the whole table where degrees are
+ * alike; past a hub, the 99% of points' width. */
+START_TEST(width_from_degrees)
+{
+  msocl_model *m = ball();
+  struct msocl__adjacency a;
+  ck_assert_int_eq(msocl__adjacency_build(m, &a), MSOCL_OK);
+  int w = msocl__table_slots(&a, 0);
+  printf("ball: %d points, largest degree %d (the centre), table of %d\n",
+         a.n, a.max_degree, w);
+  ck_assert_int_eq(a.max_degree, a.n - 1);
+  ck_assert_int_eq(w % 4, 0);
+  ck_assert(w >= 6 && w <= 12); /* a surface point: ~6 edges + centre */
+  ck_assert_int_eq(msocl__table_slots(&a, 3), 3);
+  ck_assert_int_eq(msocl__table_slots(&a, 100000), a.max_degree);
+  msocl__adjacency_free(&a);
+  msocl_model_destroy(m);
+
+  m = jello();
+  ck_assert_int_eq(msocl__adjacency_build(m, &a), MSOCL_OK);
+  ck_assert_int_eq(msocl__table_slots(&a, 0), a.max_degree); /* 24 */
+  msocl__adjacency_free(&a);
+
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  ck_assert_int_eq(o.buffer_slots, 0);
+  o.dt = 1e-4f;
+  o.buffer_slots = -1;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_ptr_null(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Before the spill a 40962-point ball asked for a 40962-slot table: 6.7
+ * GB of connectivity, refused by the device. */
+START_TEST(big_ball_fits)
+{
+  msocl_solid_desc d;
+  msocl_solid_desc_init(&d);
+  d.subdivisions = 6;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_solid(&m, &d), MSOCL_OK);
+  add_ground(m);
+  struct state st = run(m, MSOCL_SYMPLECTIC_EULER, 0, 5);
+  printf("ball of %d points: 5 steps run\n", st.n);
+  for (int i = 0; i < 3 * st.n; i++)
+    ck_assert(st.pos[i] == st.pos[i]); /* finite, not NaN */
+  free(st.pos);
+  free(st.vel);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+int main(void)
+{
+  scene_require_device("check_spill");
+  Suite *su = suite_create("spill");
+  TCase *tc = tcase_create("spill");
+  tcase_add_checked_fixture(tc, scene_setup_cpu, scene_teardown);
+  tcase_set_timeout(tc, 300);
+  tcase_add_test(tc, width_from_degrees);
+  tcase_add_loop_test(tc, any_width_is_bitwise_the_full_table,
+                      MSOCL_SYMPLECTIC_EULER, MSOCL_IMPLICIT_EULER + 1);
+  tcase_add_loop_test(tc, damped_lattice_spills_bitwise,
+                      MSOCL_SYMPLECTIC_EULER, MSOCL_IMPLICIT_EULER + 1);
+  tcase_add_test(tc, big_ball_fits);
+  suite_add_tcase(su, tc);
+  return scene_run(su);
+}
