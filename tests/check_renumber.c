@@ -51,7 +51,7 @@ static msocl_model *shuffled_tablecloth(void)
 }
 
 struct result {
-  float pos[3 * N * N], vel[3 * N * N];
+  float pos[3 * N * N], vel[3 * N * N], nrm[3 * N * N];
   int order[N * N];
   msocl_split_info split;
 };
@@ -74,6 +74,7 @@ static void run(const msocl_model *m, int renumber, int parts,
   ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
   ck_assert_int_eq(msocl_sim_read_positions(s, r->pos), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_read_velocities(s, r->vel), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_read_normals(s, r->nrm), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_point_order(s, r->order), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_split_info(s, &r->split), MSOCL_OK);
   msocl_sim_destroy(s);
@@ -95,6 +96,10 @@ static void same_bits(const struct result *a, const struct result *b,
                 "%s: positions differ by %g, velocities by %g", what,
                 scene_max_diff(a->pos, b->pos, 3 * N * N),
                 scene_max_diff(a->vel, b->vel, 3 * N * N));
+  /* a point meets its triangles in the same order too */
+  ck_assert_msg(memcmp(a->nrm, b->nrm, sizeof a->nrm) == 0,
+                "%s: normals differ by %g", what,
+                scene_max_diff(a->nrm, b->nrm, 3 * N * N));
 }
 
 static struct result given, renumbered, split_given, split_renumbered;
@@ -151,6 +156,32 @@ START_TEST(split_halos_narrow)
 }
 END_TEST
 
+/* Writes and reads use the model's numbering, whatever the simulation's. */
+START_TEST(state_round_trip)
+{
+  msocl_model *m = shuffled_tablecloth();
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = scene_tablecloth_dt(N);
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_point_order(s, given.order), MSOCL_OK);
+  ck_assert(!is_identity(given.order));
+  for (int i = 0; i < 3 * N * N; i++) {
+    given.pos[i] = (float)i;          /* point i's own values */
+    given.vel[i] = -0.5f * (float)i;
+  }
+  ck_assert_int_eq(msocl_sim_write_positions(s, given.pos), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_write_velocities(s, given.vel), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_read_positions(s, renumbered.pos), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_read_velocities(s, renumbered.vel), MSOCL_OK);
+  ck_assert(memcmp(given.pos, renumbered.pos, sizeof given.pos) == 0);
+  ck_assert(memcmp(given.vel, renumbered.vel, sizeof given.vel) == 0);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 START_TEST(grid_and_option)
 {
   /* a cloth grid keeps its numbering: banded, and GRID needs it */
@@ -187,6 +218,7 @@ int main(void)
   tcase_add_loop_test(tc, renumbered_is_bitwise_the_given_numbering,
                       MSOCL_SYMPLECTIC_EULER, MSOCL_RK4 + 1);
   tcase_add_test(tc, split_halos_narrow);
+  tcase_add_test(tc, state_round_trip);
   tcase_add_test(tc, grid_and_option);
   suite_add_tcase(su, tc);
   return scene_run(su);
