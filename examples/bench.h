@@ -37,6 +37,8 @@ struct bench_opts {
   double from;                    /* --from: largest dt / stable step */
   int copy_mib;                   /* --copy-mib: copy buffer size */
   int quick;                      /* --quick */
+  int fused;                      /* --fused: also each gather layout's
+                                     one-kernel step (table1) */
   const char *csv;                /* --csv */
 };
 

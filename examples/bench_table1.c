@@ -33,18 +33,26 @@ static const char *const paper_cols[4] = {"CPU 1", "CPU 2", "GPU 1",
  * point pass reads pos, vel, force, inv_mass (52 B), writes vel and clears
  * force (32 B). GRID: as BUFFER with no connectivity at all. All: the
  * position pass reads pos and vel (32 B) and writes pos (16 B). */
-static double bytes_model(int layout, int slots, double springs_per_point)
+static double bytes_model(int layout, int slots, double springs_per_point,
+                          int fused)
 {
   if (layout == MSOCL_LAYOUT_EDGES)
     return 16.0 * springs_per_point + 32 + (52 + 32) + (32 + 16);
   double conn = layout == MSOCL_LAYOUT_IMAGE2D ? 16.0 * 16.0
                 : layout == MSOCL_LAYOUT_GRID  ? 0.0
                                                : 12.0 * slots;
+  /* fused: one pass reads the state once and writes both halves */
+  if (fused)
+    return 16 + 16 + 4 + conn + 16 + 16;
   return (16 + 16 + 4 + conn + 16) + (32 + 16);
 }
 
-static const char *layout_name(int layout)
+static const char *layout_name(int layout, int fused)
 {
+  if (fused)
+    return layout == MSOCL_LAYOUT_IMAGE2D ? "image2d+fused"
+           : layout == MSOCL_LAYOUT_GRID  ? "grid+fused"
+                                          : "buffer+fused";
   return layout == MSOCL_LAYOUT_IMAGE2D ? "image2d"
          : layout == MSOCL_LAYOUT_EDGES ? "edges"
          : layout == MSOCL_LAYOUT_GRID  ? "grid"
@@ -206,14 +214,14 @@ static int run_serial(struct ctx *c, int n, float dt, int steps,
 }
 
 static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
-                       int steps, int dev, int layout, int math,
-                       const float *serial_pos, double serial_ips)
+                       int steps, int dev, int layout, int fused,
+                       int math, const float *serial_pos, double serial_ips)
 {
   const msocl_device_info *info = &c->info[dev];
   struct bench_row r;
   bench_row_init(&r);
   bench_device_label(r.device, sizeof r.device, info);
-  r.layout = layout_name(layout);
+  r.layout = layout_name(layout, fused);
   r.integrator = "symplectic";
   r.math = math == MSOCL_MATH_RELAXED ? "relaxed" : "precise";
   r.grid = n;
@@ -223,7 +231,8 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   int slots = 0, ns = 0;
   msocl_model_max_degree(m, &slots);
   msocl_model_spring_count(m, &ns);
-  r.bytes_per_vertex_step = bytes_model(layout, slots, (double)ns / (n * n));
+  r.bytes_per_vertex_step =
+      bytes_model(layout, slots, (double)ns / (n * n), fused);
   char engine[64];
   snprintf(engine, sizeof engine, "%d:%d %s %s", info->platform_index,
            info->device_index, r.layout, r.math);
@@ -248,6 +257,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
     so.math = (msocl_math)math;
     so.device = dev;
     so.check_every = 0;
+    so.fused = fused;
     rc = msocl_sim_create(&s, c->rt, m, &so);
     if (rc == MSOCL_OK)
       rc = msocl_sim_step(s, 1); /* warm-up */
@@ -274,6 +284,12 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   print_row(&r, engine, serial_ips);
   bench_csv_row(c->csv, &r);
   keep(c, &r, engine);
+}
+
+/* 1 where --fused asks for a layout's one-kernel step too. */
+static int fusable(const struct bench_opts *o, int layout)
+{
+  return o->fused && layout != MSOCL_LAYOUT_EDGES;
 }
 
 /* The paper's numbers beside ours, grid by grid. */
@@ -324,7 +340,10 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
   if (rc != MSOCL_OK)
     return bench_fail("choosing devices", rc);
   msocl_runtime_device_count(c.rt, &c.ndev);
-  int per_grid = 1 + c.ndev * o->nlayouts * o->nmaths, ngrids = 0, big = 0;
+  int engines = 0;
+  for (int l = 0; l < o->nlayouts; l++)
+    engines += 1 + fusable(o, o->layouts[l]);
+  int per_grid = 1 + c.ndev * engines * o->nmaths, ngrids = 0, big = 0;
   for (int g = 0; g < o->ngrids; g++)
     if (!o->max_grid || o->grids[g] <= o->max_grid)
       ngrids++;
@@ -393,9 +412,10 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
     run_serial(&c, n, dt, steps, &spos, &s, &sips);
     for (int d = 0; d < c.ndev; d++)
       for (int l = 0; l < o->nlayouts; l++)
-        for (int k = 0; k < o->nmaths; k++)
-          run_device(&c, m, n, dt, steps, d, o->layouts[l], o->maths[k], spos,
-                     sips);
+        for (int f = 0; f <= fusable(o, o->layouts[l]); f++)
+          for (int k = 0; k < o->nmaths; k++)
+            run_device(&c, m, n, dt, steps, d, o->layouts[l], f,
+                       o->maths[k], spos, sips);
     bench_serial_destroy(s);
     msocl_model_destroy(m);
   }

@@ -52,6 +52,8 @@ static int usage(FILE *f, int code)
 "                 symplectic stable step (precision, default 16)\n"
 "  --levels N     dt values, halving from there (precision, default 11)\n"
 "  --copy-mib N   copy-bandwidth buffer size in MiB (default 256)\n"
+"  --fused        table1: also each gather layout with symplectic Euler's\n"
+"                 two passes as one kernel (layout name +fused)\n"
 "  --quick        tiny sizes and few steps: a smoke test\n"
 "  --csv FILE     also write one CSV row per run to FILE\n"
 "  -h, --help     this text\n");
@@ -123,6 +125,8 @@ int main(int argc, char **argv)
       mode = 0, takes = 0;
     } else if (!strcmp(w, "precision") && a == 1) {
       mode = 1, takes = 0;
+    } else if (!strcmp(w, "--fused")) {
+      o.fused = 1, takes = 0;
     } else if (!strcmp(w, "--quick")) {
       o.quick = 1, takes = 0;
     } else if (!v) {

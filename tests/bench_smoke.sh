@@ -16,6 +16,15 @@ rows=$(tail -n +2 "$tmp/t1.csv" | wc -l)
 [ "$rows" -ge 3 ] || fail "table1 CSV has $rows rows"
 if tail -n +2 "$tmp/t1.csv" | grep -v ',ok$'; then fail "table1 run not ok"; fi
 
+# --fused adds a one-kernel row for each gather layout, bitwise the same
+# final positions as serial C (error column 0)
+./examples/msocl-bench table1 --quick -g 8 -s 5 -l buffer,grid --fused \
+  --csv "$tmp/f.csv" >/dev/null || fail "table1 --fused exited $?"
+for l in buffer+fused grid+fused; do
+  grep -q ",$l,symplectic,precise,8,.*,0,ok\$" "$tmp/f.csv" ||
+    fail "no $l row with error 0"
+done
+
 ./examples/msocl-bench precision --quick -g 5 -i symplectic,implicit \
   -m precise --levels 2 --csv "$tmp/p.csv" || fail "precision exited $?"
 [ "$(head -n 1 "$tmp/p.csv")" = "$header" ] || fail "precision CSV header"
