@@ -1,0 +1,86 @@
+#!/bin/sh
+# Every GPU measurement the benchmarks still lack, in stages that each fit
+# the GPU machine's 10-minute command limit. Run it in the build directory
+# of a release tarball on the GPU machine (../shared/gpu/README.md), after
+# `. .gpu/env.sh`:
+#
+#   bench/gpu.sh OUTDIR [STAGE ...]
+#
+# Stages (default: all, in this order):
+#   devices    msocl-devices: what the machine offers
+#   table1     Table 1 on the GPU: 48..2048 per layout, with the one-kernel
+#              step (--fused), serial C beside it       (about 5 min)
+#   precision  the work-precision data on the GPU, both math modes (1 min)
+#   split      the tablecloth at 1024^2: GPU alone, PoCL's CPU alone, and
+#              split over both with calibrated weights  (about 2 min)
+# Each stage writes STAGE.txt (and .csv) under OUTDIR with the command at
+# the top. Back on the build machine: bench/plot.sh OUTDIR/precision.csv
+# OUTDIR/precision.png, then commit OUTDIR as bench/results/<gpu>/.
+set -eu
+[ $# -ge 1 ] || { sed -n '2,19p' "$0"; exit 2; }
+out=$1
+shift
+stages=${*:-devices table1 precision split}
+mkdir -p "$out"
+bench=./examples/msocl-bench
+[ -x "$bench" ] || { echo "$0: build first ($bench missing)" >&2; exit 1; }
+
+# Runs a command, its output and the command itself into OUTDIR/NAME.txt.
+record() {
+  name=$1
+  shift
+  { echo "# $*"; echo "# $(date -u '+%F %T') UTC, $(uname -n)"; } > "$out/$name.txt"
+  "$@" >> "$out/$name.txt" 2>&1 || echo "# exit status $?" >> "$out/$name.txt"
+}
+
+for stage in $stages; do
+  echo "== $stage"
+  case $stage in
+  devices)
+    record devices ./examples/msocl-devices
+    ;;
+  table1)
+    record table1 env MSOCL_DEVICE=gpu $bench table1 --big-steps 200 \
+      --repeat 3 --fused --csv "$out/table1.csv"
+    ;;
+  precision)
+    record precision env MSOCL_DEVICE=gpu $bench precision \
+      --csv "$out/precision.csv"
+    ;;
+  split)
+    # one file, each run after the other: the ratios are same-run
+    : > "$out/split.txt"
+    for run in "gpu 1 gpu" "cpu 1 cpu" "gpu,cpu 2 both -c 20" "gpu 1 gpu" \
+      "gpu,cpu 2 both -c 20"; do
+      set -- $run
+      spec=$1 parts=$2 tag=$3
+      shift 3
+      echo "# MSOCL_DEVICE=$spec ./examples/tablecloth -n 1024 -s 500 -p $parts $*" \
+        >> "$out/split.txt"
+      MSOCL_DEVICE=$spec ./examples/tablecloth -n 1024 -s 500 -p "$parts" "$@" \
+        -o "$out/split_$tag.obj" >> "$out/split.txt" 2>&1 ||
+        echo "# exit status $?" >> "$out/split.txt"
+    done
+    # The GPU and the CPU round differently (NVIDIA's sqrt and division
+    # are correctly rounded only when asked, fma, ...): the split is
+    # compared with each device alone by the largest coordinate difference.
+    for alone in gpu cpu; do
+      if [ -f "$out/split_$alone.obj" ] && [ -f "$out/split_both.obj" ]; then
+        awk -v a="$alone" '
+          FNR == 1 { f++ }
+          $1 == "v" { k = FNR; if (f == 1) { x[k] = $2; y[k] = $3; z[k] = $4 }
+            else { d = $2 - x[k]; if (d < 0) d = -d; if (d > m) m = d
+                   d = $3 - y[k]; if (d < 0) d = -d; if (d > m) m = d
+                   d = $4 - z[k]; if (d < 0) d = -d; if (d > m) m = d } }
+          END { printf "# split vs %s alone after 500 steps: max |dx| %.3g m\n", a, m }
+        ' "$out/split_$alone.obj" "$out/split_both.obj" >> "$out/split.txt"
+      fi
+    done
+    rm -f "$out"/split_*.obj
+    ;;
+  *)
+    echo "$0: unknown stage '$stage'" >&2
+    exit 2
+    ;;
+  esac
+done
