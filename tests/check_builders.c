@@ -905,11 +905,5 @@ static Suite *builders_suite(void) {
 }
 
 int main(void) {
-  SRunner *sr = srunner_create(builders_suite());
-  int failed;
-
-  srunner_run_all(sr, CK_NORMAL);
-  failed = srunner_ntests_failed(sr);
-  srunner_free(sr);
-  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+  return expect_run(builders_suite());
 }

@@ -496,11 +496,5 @@ static Suite *order_suite(void) {
 }
 
 int main(void) {
-  SRunner *sr = srunner_create(order_suite());
-  int failed;
-
-  srunner_run_all(sr, CK_NORMAL);
-  failed = srunner_ntests_failed(sr);
-  srunner_free(sr);
-  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+  return expect_run(order_suite());
 }

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "msocl.h"
+#include "expect.h"
 
 /* Two CPUs on one platform, a GPU on another, an accelerator on a third:
  * the GPU is not first, so the default's preference shows. */
@@ -378,10 +379,5 @@ static Suite *select_suite(void) {
 }
 
 int main(void) {
-  SRunner *sr = srunner_create(select_suite());
-  int failed;
-  srunner_run_all(sr, CK_NORMAL);
-  failed = srunner_ntests_failed(sr);
-  srunner_free(sr);
-  return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+  return expect_run(select_suite());
 }

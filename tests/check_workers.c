@@ -106,9 +106,5 @@ int main(void)
   tcase_add_test(tc, failure_reaches_the_caller);
   tcase_add_test(tc, bad_counts);
   suite_add_tcase(su, tc);
-  SRunner *sr = srunner_create(su);
-  srunner_run_all(sr, CK_NORMAL);
-  int failed = srunner_ntests_failed(sr);
-  srunner_free(sr);
-  return failed ? 1 : 0;
+  return expect_run(su);
 }

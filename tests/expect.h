@@ -28,4 +28,15 @@
   ck_assert_msg(fabs((double)(a) - (double)(b)) <= (tol),                      \
                 "%s = %.9g, want %.9g", #a, (double)(a), (double)(b))
 
+/* Runs a host-side suite (forking: no OpenCL in these programs); the exit
+ * status for automake. */
+static inline int expect_run(Suite *su)
+{
+  SRunner *sr = srunner_create(su);
+  srunner_run_all(sr, CK_NORMAL);
+  int failed = srunner_ntests_failed(sr);
+  srunner_free(sr);
+  return failed ? 1 : 0;
+}
+
 #endif
