@@ -231,7 +231,11 @@ static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
 {
   float4 p = pos[i], v = vel[i];
   float fx = 0.0f, fy = 0.0f, fz = 0.0f;
+  /* unrolled for a mesh's few slots; a wide table (options.buffer_slots)
+   * would only bloat the code */
+#if MSOCL_TABLE_SLOTS <= 64
 #pragma unroll
+#endif
   for (int s0 = 0; s0 < MSOCL_TABLE_SLOTS; s0 += 4) {
     int4 j;
     float4 rest, k, c;
