@@ -1,8 +1,8 @@
 /* Halo exchange between the engines of a split simulation, through host
  * memory: devices may sit in different contexts and platforms, where no
- * device-to-device copy exists. Each engine reads once the span of its
- * points that any other engine needs (gather); each engine then writes
- * its halos from those spans (scatter). The staging areas alternate
+ * device-to-device copy exists. Each engine reads the slice of its points
+ * that each other engine needs (gather); each engine then writes its halos
+ * from those slices (scatter). The staging areas alternate
  * between two sets, so one exchange's writes may still be in flight on
  * one device while the next exchange's reads fill the other set. */
 #include "config.h"
@@ -38,19 +38,16 @@ double msocl__event_span(cl_event a, cl_event b)
 int msocl__exchange_plan(msocl_sim *s)
 {
   struct msocl__exchange *x = &s->x;
+  /* one slice an ordered pair: a middle device's two neighbours read
+   * opposite ends of its range, not all that lies between */
   x->packed = 0;
-  for (int e = 0; e < s->nparts; e++) {
-    int lo = s->n, hi = 0;
-    for (int d = 0; d < s->nparts; d++)
-      if (d != e && s->halo[d][e][0] < s->halo[d][e][1]) {
-        lo = s->halo[d][e][0] < lo ? s->halo[d][e][0] : lo;
-        hi = s->halo[d][e][1] > hi ? s->halo[d][e][1] : hi;
-      }
-    x->span[e][0] = lo;
-    x->span[e][1] = hi > lo ? hi : lo;
-    x->base[e] = x->packed;
-    x->packed += x->span[e][1] - x->span[e][0];
-  }
+  for (int d = 0; d < s->nparts; d++)
+    for (int e = 0; e < s->nparts; e++) {
+      const int *h = s->halo[d][e];
+      x->base[d][e] = x->packed;
+      if (d != e && h[0] < h[1])
+        x->packed += h[1] - h[0];
+    }
   size_t one = (size_t)(x->packed > 0 ? x->packed : 1) * sizeof(cl_float4);
   /* Pinned (page-locked) host memory makes a GPU's transfers direct
    * rather than staged through the driver's own bounce buffer; it belongs
@@ -109,8 +106,8 @@ int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask)
 {
   struct msocl__exchange *x = &s->x;
   msocl__engine *e = s->part[d];
-  const int lo = x->span[d][0], len = x->span[d][1] - lo;
-  int k = 0;
+  cl_event ev[MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
+  int k = 0, nev = 0;
   for (unsigned bit = 1; bit <= MSOCL__X_LAST; bit <<= 1) {
     if (!(mask & bit))
       continue;
@@ -119,14 +116,16 @@ int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask)
                          "a phase exchanges more than %d buffers",
                          MSOCL__X_SLOTS);
     cl_float4 *area = x->area[x->parity][k];
-    if (len > 0) {
-      cl_event ev;
+    /* the slice of d's points each other engine r reads */
+    for (int r = 0; r < s->nparts; r++) {
+      const int *h = s->halo[r][d];
+      if (r == d || h[0] >= h[1])
+        continue;
       MSOCL__CL(clEnqueueReadBuffer(
-          e->dev->queue, msocl__exchange_buffer(e, bit), CL_TRUE,
-          (size_t)lo * sizeof(cl_float4), (size_t)len * sizeof(cl_float4),
-          area + x->base[d], 0, NULL, &ev));
-      x->stat[d].copy_seconds += event_seconds(ev);
-      clReleaseEvent(ev);
+          e->dev->queue, msocl__exchange_buffer(e, bit), CL_FALSE,
+          (size_t)h[0] * sizeof(cl_float4),
+          (size_t)(h[1] - h[0]) * sizeof(cl_float4), area + x->base[r][d], 0,
+          NULL, &ev[nev++]));
     }
     /* what this engine receives into its own buffer, bound now: the
      * buffer a bit names changes when the step's ping-pong swaps */
@@ -135,6 +134,12 @@ int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask)
     k++;
   }
   x->npend[d] = k;
+  cl_int err = nev > 0 ? clWaitForEvents((cl_uint)nev, ev) : CL_SUCCESS;
+  for (int i = 0; i < nev; i++) {
+    x->stat[d].copy_seconds += event_seconds(ev[i]);
+    clReleaseEvent(ev[i]);
+  }
+  MSOCL__CL(err);
   return MSOCL_OK;
 }
 
@@ -149,11 +154,10 @@ int msocl__exchange_scatter(msocl_sim *s, int d)
       if (e == d || h[0] >= h[1])
         continue;
       const size_t len = (size_t)(h[1] - h[0]) * sizeof(cl_float4);
-      const cl_float4 *from = p->area + x->base[e] + (h[0] - x->span[e][0]);
       /* its time is read once the queue is done (settle) */
       MSOCL__CL(clEnqueueWriteBuffer(dst->dev->queue, p->buf, CL_FALSE,
                                      (size_t)h[0] * sizeof(cl_float4), len,
-                                     from, 0, NULL,
+                                     p->area + x->base[d][e], 0, NULL,
                                      &x->wev[d][x->nwev[d]++]));
       x->stat[d].bytes += (double)len;
     }

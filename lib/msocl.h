@@ -360,9 +360,9 @@ typedef struct {
   double halo_points[16];      /* points each part receives a step */
   double bytes_per_step;       /* exchanged through the host, each way */
   /* Each part has a host thread of its own; per part: host time reading
-   * its span and queuing writes into its halo, host time waiting for its
-   * device, and from event profiling its device's time in those copies
-   * and in the kernels of its steps. */
+   * the slices others read and queuing writes into its halo, host time
+   * waiting for its device, and from event profiling its device's time
+   * in those copies and in the kernels of its steps. */
   double part_exchange_seconds[16], part_wait_seconds[16];
   double copy_seconds[16], compute_seconds[16];
   double exchange_seconds;     /* the largest part_exchange_seconds */

@@ -85,9 +85,10 @@ struct msocl__xstat {
 
 /* The exchange plan and its staging (exchange.c). */
 struct msocl__exchange {
-  int span[MSOCL__MAX_PARTS][2]; /* points of e that any other reads */
-  int base[MSOCL__MAX_PARTS];    /* where e's span sits in an area */
-  int packed;                    /* an area's length, in points */
+  /* where the slice of e's points that d reads (halo[d][e]) sits in an
+   * area, and an area's length, in points */
+  int base[MSOCL__MAX_PARTS][MSOCL__MAX_PARTS];
+  int packed;
   cl_float4 *area[2][MSOCL__X_SLOTS]; /* [parity][slot] */
   int parity;                    /* the set the next gather fills */
   void *host, *heap;             /* the areas' memory: pinned or heap */
@@ -120,11 +121,12 @@ struct msocl_sim {
   double total_mass, extent;
 };
 
-/* Halo exchange (exchange.c). plan: the spans and staging, once the
- * halos are known; gather: engine d's span of each buffer in `mask` into
- * the current staging set (its queue must be finished), and what d will
- * receive; scatter: queues the writes into d's halos; settle: after d's
- * queue finished, books the writes' device time. */
+/* Halo exchange (exchange.c). plan: the slices and staging, once the
+ * halos are known; gather: the slices of engine d's points that others
+ * read, of each buffer in `mask`, into the current staging set (d's queue
+ * must be finished), and what d will receive; scatter: queues the writes
+ * into d's halos; settle: after d's queue finished, books the writes'
+ * device time. */
 int msocl__exchange_plan(msocl_sim *s);
 void msocl__exchange_free(msocl_sim *s);
 int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask);

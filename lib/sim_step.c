@@ -60,7 +60,7 @@ static int scatter(msocl_sim *s, int d)
 
 /* The implicit solver's exchange of the CG direction, from the caller's
  * thread between the solver's products: every engine finished, every
- * span read, every halo write queued ahead of the next product. */
+ * slice read, every halo write queued ahead of the next product. */
 static int exchange_cg(void *ctx)
 {
   msocl_sim *s = ctx;
