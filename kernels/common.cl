@@ -200,6 +200,33 @@ static void msocl_slot4(MSOCL_CONN, int i, int s0, int n, int4 *j,
   *k = select((float4)(0.0f), (float4)(kk), there);
   *c = select((float4)(0.0f), (float4)(grid_k.w), there);
   (void)n;
+#elif defined(MSOCL_LAYOUT_IMAGE2D)
+  /* msocl_slot's reads, but the group's four dashpots share one texel:
+   * one read for them, not four (a free slot's is 0, and its spring to
+   * the point itself adds zeros whatever c is) */
+  const sampler_t smp =
+      CLK_NORMALIZED_COORDS_FALSE | CLK_ADDRESS_NONE | CLK_FILTER_NEAREST;
+  int x = i % tex_w, y = i / tex_w;
+  int jq[4];
+  float rq[4], kq[4];
+#pragma unroll
+  for (int q = 0; q < 4; q++) {
+    float4 e = read_imagef(con, smp, (int2)(x + q * tex_w,
+                                            y + (s0 >> 2) * tex_h));
+    bool on = e.x >= 0.0f;
+    jq[q] = on ? (int)e.y * tex_w + (int)e.x : i;
+    rq[q] = on ? e.z : 0.0f;
+    kq[q] = on ? e.w : 0.0f;
+  }
+  *j = (int4)(jq[0], jq[1], jq[2], jq[3]);
+  *rest = (float4)(rq[0], rq[1], rq[2], rq[3]);
+  *k = (float4)(kq[0], kq[1], kq[2], kq[3]);
+#ifdef MSOCL_DAMPING
+  *c = read_imagef(dmp, smp, (int2)(x + (s0 >> 2) * tex_w, y));
+#else
+  *c = (float4)(0.0f);
+#endif
+  (void)n;
 #else
   int jq[4];
   float rq[4], kq[4], cq[4];
