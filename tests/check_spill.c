@@ -176,6 +176,54 @@ START_TEST(width_from_degrees)
 }
 END_TEST
 
+/* The ball split over two devices: the hub's springs spill, the points
+ * are renumbered, and the hub's halo reaches every point - bitwise the
+ * one-device run all the same. */
+START_TEST(split_ball_bitwise)
+{
+  char spec[128];
+  if (scene_cpu_spec(spec, sizeof spec, 2) < 2) {
+    printf("split_ball_bitwise: one CPU device only; not split\n");
+    return;
+  }
+  msocl_runtime *two = NULL;
+  ck_assert_int_eq(msocl_runtime_create(&two, spec), MSOCL_OK);
+  msocl_model *m = ball();
+  int n;
+  msocl_model_point_count(m, &n);
+  const size_t bytes = 3 * (size_t)n * sizeof(float);
+  float *p[2], *v[2];
+  for (int parts = 1; parts <= 2; parts++) {
+    msocl_sim_options o;
+    msocl_sim_options_init(&o);
+    o.layout = MSOCL_LAYOUT_BUFFER;
+    o.ndevices = parts;
+    ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &o.dt),
+                     MSOCL_OK);
+    o.dt *= 0.5f;
+    msocl_sim *s = NULL;
+    int rc = msocl_sim_create(&s, two, m, &o);
+    ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+    ck_assert_int_eq(msocl_sim_step(s, 200), MSOCL_OK);
+    p[parts - 1] = malloc(bytes);
+    v[parts - 1] = malloc(bytes);
+    ck_assert_int_eq(msocl_sim_read_positions(s, p[parts - 1]), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_read_velocities(s, v[parts - 1]), MSOCL_OK);
+    msocl_sim_destroy(s);
+  }
+  ck_assert_msg(memcmp(p[0], p[1], bytes) == 0 && memcmp(v[0], v[1], bytes) == 0,
+                "split ball differs: positions by %g, velocities by %g",
+                scene_max_diff(p[0], p[1], 3 * n),
+                scene_max_diff(v[0], v[1], 3 * n));
+  for (int q = 0; q < 2; q++) {
+    free(p[q]);
+    free(v[q]);
+  }
+  msocl_model_destroy(m);
+  msocl_runtime_destroy(two);
+}
+END_TEST
+
 /* Before the spill a 40962-point ball asked for a 40962-slot table: 6.7
  * GB of connectivity, refused by the device. */
 START_TEST(big_ball_fits)
@@ -208,6 +256,7 @@ int main(void)
                       MSOCL_SYMPLECTIC_EULER, MSOCL_IMPLICIT_EULER + 1);
   tcase_add_loop_test(tc, damped_lattice_spills_bitwise,
                       MSOCL_SYMPLECTIC_EULER, MSOCL_IMPLICIT_EULER + 1);
+  tcase_add_test(tc, split_ball_bitwise);
   tcase_add_test(tc, big_ball_fits);
   suite_add_tcase(su, tc);
   return scene_run(su);
