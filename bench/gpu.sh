@@ -8,6 +8,10 @@
 #
 # Stages (default: all, in this order):
 #   devices    msocl-devices: what the machine offers
+#   verify     the kernels on the GPU agree with themselves: the tablecloth
+#              at 128^2 with BUFFER, GRID, IMAGE2D and the fused step,
+#              final meshes compared bit for bit (as make check does on
+#              PoCL; the GPU machine has no Check)            (seconds)
 #   table1     Table 1 on the GPU: 48..2048 per layout, with the one-kernel
 #              step (--fused), serial C beside it       (about 5 min)
 #   precision  the work-precision data on the GPU, both math modes (1 min)
@@ -17,13 +21,23 @@
 # the top. Back on the build machine: bench/plot.sh OUTDIR/precision.csv
 # OUTDIR/precision.png, then commit OUTDIR as bench/results/<gpu>/.
 set -eu
-[ $# -ge 1 ] || { sed -n '2,19p' "$0"; exit 2; }
+[ $# -ge 1 ] || { sed -n '2,23p' "$0"; exit 2; }
 out=$1
 shift
-stages=${*:-devices table1 precision split}
+stages=${*:-devices verify table1 precision split}
 mkdir -p "$out"
 bench=./examples/msocl-bench
 [ -x "$bench" ] || { echo "$0: build first ($bench missing)" >&2; exit 1; }
+
+# Largest coordinate difference between the vertices of two OBJ files.
+maxdiff() {
+  awk 'FNR == 1 { f++ }
+    $1 == "v" { k = FNR; if (f == 1) { x[k] = $2; y[k] = $3; z[k] = $4 }
+      else { d = $2 - x[k]; if (d < 0) d = -d; if (d > m) m = d
+             d = $3 - y[k]; if (d < 0) d = -d; if (d > m) m = d
+             d = $4 - z[k]; if (d < 0) d = -d; if (d > m) m = d } }
+    END { printf "%.3g", m }' "$1" "$2"
+}
 
 # Runs a command, its output and the command itself into OUTDIR/NAME.txt.
 record() {
@@ -38,6 +52,31 @@ for stage in $stages; do
   case $stage in
   devices)
     record devices ./examples/msocl-devices
+    ;;
+  verify)
+    : > "$out/verify.txt"
+    for run in "buffer -l buffer" "grid -l grid" "image2d -l image2d" \
+      "fused -l buffer -f"; do
+      set -- $run
+      tag=$1
+      shift
+      echo "# MSOCL_DEVICE=gpu ./examples/tablecloth -n 128 -s 500 $*" \
+        >> "$out/verify.txt"
+      MSOCL_DEVICE=gpu ./examples/tablecloth -n 128 -s 500 "$@" \
+        -o "$out/verify_$tag.obj" >> "$out/verify.txt" 2>&1 ||
+        echo "# exit status $?" >> "$out/verify.txt"
+    done
+    for tag in grid image2d fused; do
+      a=$out/verify_buffer.obj b=$out/verify_$tag.obj
+      [ -f "$a" ] && [ -f "$b" ] || continue
+      if cmp -s "$a" "$b"; then
+        echo "# $tag: bitwise the BUFFER run" >> "$out/verify.txt"
+      else
+        echo "# $tag: DIFFERS from BUFFER by $(maxdiff "$a" "$b") m" \
+          >> "$out/verify.txt"
+      fi
+    done
+    rm -f "$out"/verify_*.obj
     ;;
   table1)
     record table1 env MSOCL_DEVICE=gpu $bench table1 --big-steps 200 \
@@ -65,16 +104,10 @@ for stage in $stages; do
     # are correctly rounded only when asked, fma, ...): the split is
     # compared with each device alone by the largest coordinate difference.
     for alone in gpu cpu; do
-      if [ -f "$out/split_$alone.obj" ] && [ -f "$out/split_both.obj" ]; then
-        awk -v a="$alone" '
-          FNR == 1 { f++ }
-          $1 == "v" { k = FNR; if (f == 1) { x[k] = $2; y[k] = $3; z[k] = $4 }
-            else { d = $2 - x[k]; if (d < 0) d = -d; if (d > m) m = d
-                   d = $3 - y[k]; if (d < 0) d = -d; if (d > m) m = d
-                   d = $4 - z[k]; if (d < 0) d = -d; if (d > m) m = d } }
-          END { printf "# split vs %s alone after 500 steps: max |dx| %.3g m\n", a, m }
-        ' "$out/split_$alone.obj" "$out/split_both.obj" >> "$out/split.txt"
-      fi
+      a=$out/split_$alone.obj b=$out/split_both.obj
+      [ -f "$a" ] && [ -f "$b" ] || continue
+      echo "# split vs $alone alone after 500 steps: max |dx| $(maxdiff "$a" "$b") m" \
+        >> "$out/split.txt"
     done
     rm -f "$out"/split_*.obj
     ;;
