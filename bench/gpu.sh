@@ -21,7 +21,7 @@
 # the top. Back on the build machine: bench/plot.sh OUTDIR/precision.csv
 # OUTDIR/precision.png, then commit OUTDIR as bench/results/<gpu>/.
 set -eu
-[ $# -ge 1 ] || { sed -n '2,23p' "$0"; exit 2; }
+[ $# -ge 1 ] || { sed -n '2,22p' "$0"; exit 2; }
 out=$1
 shift
 stages=${*:-devices verify table1 precision split}
