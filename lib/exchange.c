@@ -1,14 +1,14 @@
 /* Halo exchange between the engines of a split simulation, through host
  * memory: devices may sit in different contexts and platforms, where no
  * device-to-device copy exists. Each engine reads the slice of its points
- * that each other engine needs (gather); each engine then writes its halos
- * from those slices (scatter). The staging areas alternate
- * between two sets, so one exchange's writes may still be in flight on
- * one device while the next exchange's reads fill the other set. */
+ * that each other engine needs (gather, or send without waiting); each
+ * engine then writes its halos from those slices (scatter). The staging
+ * areas alternate between two sets, so one exchange's writes may still be
+ * in flight on one device while the next exchange's reads fill the other
+ * set. */
 #include "config.h"
 #include "sim.h"
 
-#include <stdlib.h>
 #include <string.h>
 
 /* Seconds from profiling stamp `from` of finished command a to stamp `to`
@@ -35,71 +35,29 @@ double msocl__event_span(cl_event a, cl_event b)
   return stamps(a, CL_PROFILING_COMMAND_END, b, CL_PROFILING_COMMAND_END);
 }
 
-int msocl__exchange_plan(msocl_sim *s)
+/* The exchange slots of `mask`'s buffers, in bit order: *n of them. */
+static int slots(unsigned mask, unsigned *bit, int *n)
 {
-  struct msocl__exchange *x = &s->x;
-  /* one slice an ordered pair: a middle device's two neighbours read
-   * opposite ends of its range, not all that lies between */
-  x->packed = 0;
-  for (int d = 0; d < s->nparts; d++)
-    for (int e = 0; e < s->nparts; e++) {
-      const int *h = s->halo[d][e];
-      x->base[d][e] = x->packed;
-      if (d != e && h[0] < h[1])
-        x->packed += h[1] - h[0];
-    }
-  size_t one = (size_t)(x->packed > 0 ? x->packed : 1) * sizeof(cl_float4);
-  /* Pinned (page-locked) host memory makes a GPU's transfers direct
-   * rather than staged through the driver's own bounce buffer; it belongs
-   * to one context, so a GPU's. CPU devices read host memory in place. */
-  int gpu = -1;
-  for (int d = 0; d < s->nparts && gpu < 0; d++)
-    if (s->part[d]->dev->info.type == MSOCL_DEVICE_GPU)
-      gpu = d;
-  const size_t all = 2 * MSOCL__X_SLOTS * one;
-  if (gpu >= 0) {
-    cl_int err;
-    struct msocl__device *dev = s->part[gpu]->dev;
-    x->pinned = clCreateBuffer(dev->ctx, CL_MEM_ALLOC_HOST_PTR, all, NULL,
-                               &err);
-    if (err == CL_SUCCESS) {
-      x->map_queue = dev->queue;
-      x->host = clEnqueueMapBuffer(dev->queue, x->pinned, CL_TRUE,
-                                   CL_MAP_READ | CL_MAP_WRITE, 0, all, 0,
-                                   NULL, NULL, &err);
-    }
-    if (err != CL_SUCCESS)
-      msocl__exchange_free(s); /* fall back to ordinary memory */
+  *n = 0;
+  for (unsigned b = 1; b <= MSOCL__X_LAST; b <<= 1) {
+    if (!(mask & b))
+      continue;
+    if (*n == MSOCL__X_SLOTS)
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "a phase exchanges more than %d buffers",
+                         MSOCL__X_SLOTS);
+    bit[(*n)++] = b;
   }
-  if (!x->host && !(x->host = x->heap = malloc(all)))
-    return msocl__fail(MSOCL_ERR_NO_MEMORY, "exchange staging (%zu bytes)",
-                       all);
-  for (int p = 0; p < 2; p++)
-    for (int k = 0; k < MSOCL__X_SLOTS; k++)
-      x->area[p][k] = (cl_float4 *)((char *)x->host +
-                                    (size_t)(p * MSOCL__X_SLOTS + k) * one);
   return MSOCL_OK;
 }
 
-void msocl__exchange_free(msocl_sim *s)
+/* Books and releases finished copies. */
+static void book(msocl_sim *s, int d, cl_event *ev, int n)
 {
-  struct msocl__exchange *x = &s->x;
-  for (int d = 0; d < MSOCL__MAX_PARTS; d++) {
-    for (int i = 0; i < x->nwev[d]; i++)
-      clReleaseEvent(x->wev[d][i]);
-    x->nwev[d] = 0;
+  for (int i = 0; i < n; i++) {
+    s->x.stat[d].copy_seconds += event_seconds(ev[i]);
+    clReleaseEvent(ev[i]);
   }
-  if (x->pinned) {
-    if (x->host) {
-      clEnqueueUnmapMemObject(x->map_queue, x->pinned, x->host, 0, NULL,
-                              NULL);
-      clFinish(x->map_queue);
-    }
-    clReleaseMemObject(x->pinned);
-  }
-  free(x->heap);
-  x->pinned = NULL;
-  x->host = x->heap = NULL;
 }
 
 int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask)
@@ -107,71 +65,163 @@ int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask)
   struct msocl__exchange *x = &s->x;
   msocl__engine *e = s->part[d];
   cl_event ev[MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
-  int k = 0, nev = 0;
-  for (unsigned bit = 1; bit <= MSOCL__X_LAST; bit <<= 1) {
-    if (!(mask & bit))
-      continue;
-    if (k == MSOCL__X_SLOTS)
-      return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                         "a phase exchanges more than %d buffers",
-                         MSOCL__X_SLOTS);
+  unsigned bit[MSOCL__X_SLOTS];
+  int nk, nev = 0, rc = slots(mask, bit, &nk);
+  if (rc != MSOCL_OK)
+    return rc;
+  for (int k = 0; k < nk; k++) {
     cl_float4 *area = x->area[x->parity][k];
+    cl_mem buf = msocl__exchange_buffer(e, bit[k]);
     /* the slice of d's points each other engine r reads */
     for (int r = 0; r < s->nparts; r++) {
       const int *h = s->halo[r][d];
       if (r == d || h[0] >= h[1])
         continue;
       MSOCL__CL(clEnqueueReadBuffer(
-          e->dev->queue, msocl__exchange_buffer(e, bit), CL_FALSE,
-          (size_t)h[0] * sizeof(cl_float4),
+          e->dev->queue, buf, CL_FALSE, (size_t)h[0] * sizeof(cl_float4),
           (size_t)(h[1] - h[0]) * sizeof(cl_float4), area + x->base[r][d], 0,
           NULL, &ev[nev++]));
     }
     /* what this engine receives into its own buffer, bound now: the
      * buffer a bit names changes when the step's ping-pong swaps */
-    x->pend[d][k].buf = msocl__exchange_buffer(e, bit);
+    x->pend[d][k].buf = buf;
     x->pend[d][k].area = area;
-    k++;
   }
-  x->npend[d] = k;
+  x->npend[d] = nk;
   cl_int err = nev > 0 ? clWaitForEvents((cl_uint)nev, ev) : CL_SUCCESS;
-  for (int i = 0; i < nev; i++) {
-    x->stat[d].copy_seconds += event_seconds(ev[i]);
-    clReleaseEvent(ev[i]);
-  }
+  book(s, d, ev, nev);
   MSOCL__CL(err);
   return MSOCL_OK;
 }
 
+/* Boundary first: the slices are copied on the device into `send` behind
+ * the phases queued so far, and read from there on the copy queue, so
+ * the kernels queued next (the interior) overwrite nothing being read. */
+int msocl__exchange_send(msocl_sim *s, int d, unsigned mask)
+{
+  struct msocl__exchange *x = &s->x;
+  msocl__engine *e = s->part[d];
+  cl_command_queue q = e->dev->queue;
+  unsigned bit[MSOCL__X_SLOTS];
+  int nk, rc = slots(mask, bit, &nk);
+  if (rc != MSOCL_OK)
+    return rc;
+  for (int k = 0; k < nk; k++) {
+    cl_mem buf = msocl__exchange_buffer(e, bit[k]);
+    for (int r = 0; r < s->nparts; r++) {
+      const int *h = s->halo[r][d];
+      if (r == d || h[0] >= h[1])
+        continue;
+      MSOCL__CL(clEnqueueCopyBuffer(
+          q, buf, x->send[d][k], (size_t)h[0] * sizeof(cl_float4),
+          (size_t)x->base[r][d] * sizeof(cl_float4),
+          (size_t)(h[1] - h[0]) * sizeof(cl_float4), 0, NULL, NULL));
+    }
+    x->pend[d][k].buf = buf;
+    x->pend[d][k].area = x->area[x->parity][k];
+  }
+  x->npend[d] = nk;
+  cl_event ready;
+  MSOCL__CL(clEnqueueMarkerWithWaitList(q, 0, NULL, &ready));
+  cl_int err = clFlush(q);
+  for (int k = 0; err == CL_SUCCESS && k < nk; k++)
+    for (int r = 0; err == CL_SUCCESS && r < s->nparts; r++) {
+      const int *h = s->halo[r][d];
+      if (r == d || h[0] >= h[1])
+        continue;
+      const size_t at = (size_t)x->base[r][d];
+      err = clEnqueueReadBuffer(x->xq[d], x->send[d][k], CL_FALSE,
+                                at * sizeof(cl_float4),
+                                (size_t)(h[1] - h[0]) * sizeof(cl_float4),
+                                x->area[x->parity][k] + at, 1, &ready,
+                                &x->rev[d][x->nrev[d]++]);
+      if (err != CL_SUCCESS)
+        x->nrev[d]--;
+    }
+  clReleaseEvent(ready);
+  if (err == CL_SUCCESS)
+    err = clFlush(x->xq[d]);
+  MSOCL__CL(err);
+  return MSOCL_OK;
+}
+
+int msocl__exchange_wait(msocl_sim *s, int d)
+{
+  struct msocl__exchange *x = &s->x;
+  const int n = x->nrev[d];
+  cl_int err = n > 0 ? clWaitForEvents((cl_uint)n, x->rev[d]) : CL_SUCCESS;
+  book(s, d, x->rev[d], n);
+  x->nrev[d] = 0;
+  MSOCL__CL(err);
+  return MSOCL_OK;
+}
+
+/* Boundary first, a write goes into `recv` on the copy queue (while the
+ * device may still run the last interior), then into the halo on the
+ * device's queue once written; otherwise straight into the halo. */
 int msocl__exchange_scatter(msocl_sim *s, int d)
 {
   struct msocl__exchange *x = &s->x;
   msocl__engine *dst = s->part[d];
+  msocl__exchange_settle(s, d);
   for (int k = 0; k < x->npend[d]; k++) {
     const struct msocl__pending *p = &x->pend[d][k];
     for (int e = 0; e < s->nparts; e++) {
       const int *h = s->halo[d][e];
       if (e == d || h[0] >= h[1])
         continue;
-      const size_t len = (size_t)(h[1] - h[0]) * sizeof(cl_float4);
-      /* its time is read once the queue is done (settle) */
-      MSOCL__CL(clEnqueueWriteBuffer(dst->dev->queue, p->buf, CL_FALSE,
-                                     (size_t)h[0] * sizeof(cl_float4), len,
-                                     p->area + x->base[d][e], 0, NULL,
-                                     &x->wev[d][x->nwev[d]++]));
+      const size_t len = (size_t)(h[1] - h[0]) * sizeof(cl_float4),
+                   to = (size_t)h[0] * sizeof(cl_float4),
+                   at = (size_t)x->base[d][e] * sizeof(cl_float4);
+      cl_event *w = &x->wev[d][x->nwev[d]];
+      /* its time is booked once it is done (settle) */
+      if (!x->overlap) {
+        MSOCL__CL(clEnqueueWriteBuffer(dst->dev->queue, p->buf, CL_FALSE, to,
+                                       len, p->area + x->base[d][e], 0, NULL,
+                                       w));
+        x->nwev[d]++;
+      } else {
+        MSOCL__CL(clEnqueueWriteBuffer(x->xq[d], x->recv[d][k], CL_FALSE, at,
+                                       len, p->area + x->base[d][e], 0, NULL,
+                                       w));
+        x->nwev[d]++;
+        MSOCL__CL(clEnqueueCopyBuffer(dst->dev->queue, x->recv[d][k], p->buf,
+                                      at, to, len, 1, w, NULL));
+      }
       x->stat[d].bytes += (double)len;
     }
   }
   x->npend[d] = 0;
+  if (x->overlap)
+    MSOCL__CL(clFlush(x->xq[d]));
   return MSOCL_OK;
 }
 
 void msocl__exchange_settle(msocl_sim *s, int d)
 {
   struct msocl__exchange *x = &s->x;
-  for (int i = 0; i < x->nwev[d]; i++) {
-    x->stat[d].copy_seconds += event_seconds(x->wev[d][i]);
-    clReleaseEvent(x->wev[d][i]);
-  }
+  if (x->nwev[d] > 0)
+    clWaitForEvents((cl_uint)x->nwev[d], x->wev[d]);
+  book(s, d, x->wev[d], x->nwev[d]);
   x->nwev[d] = 0;
+}
+
+void msocl__exchange_marks(msocl_sim *s, int d, int keep)
+{
+  struct msocl__exchange *x = &s->x;
+  const int n = x->nmark[d] - keep;
+  for (int i = 0; i < n; i++) {
+    cl_event *m = x->mark[d][i];
+    if (m[1] && clWaitForEvents(1, &m[1]) == CL_SUCCESS)
+      x->stat[d].compute_seconds += msocl__event_span(m[0], m[1]);
+    for (int q = 0; q < 2; q++)
+      if (m[q])
+        clReleaseEvent(m[q]);
+  }
+  for (int i = 0; n > 0 && i < keep; i++) {
+    x->mark[d][i][0] = x->mark[d][n + i][0];
+    x->mark[d][i][1] = x->mark[d][n + i][1];
+  }
+  if (n > 0)
+    x->nmark[d] = keep;
 }

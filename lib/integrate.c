@@ -42,6 +42,15 @@ static const size_t *group(const msocl__engine *s, size_t global)
 
 int msocl__launch(msocl__engine *s, int k)
 {
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[k], 1, &s->run_offset,
+                                   &s->run_global, group(s, s->run_global), 0,
+                                   NULL, NULL));
+  return MSOCL_OK;
+}
+
+/* Over the engine's whole range, whatever span the phase runs on. */
+static int launch_range(msocl__engine *s, int k)
+{
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[k], 1, &s->offset,
                                    &s->global, group(s, s->global), 0, NULL,
                                    NULL));
@@ -234,14 +243,17 @@ static int explicit_euler(msocl__engine *s)
 /* Verlet, kick-drift-kick. Drift: turns vel[r] into the half-step velocity
  * in place and writes pos[w] (first computing the acceleration, when the
  * state is new). Kick: gathers at (pos[w], v+), writes vel[w] and the
- * acceleration the next step starts from. */
+ * acceleration the next step starts from. The acceleration covers the
+ * whole range before any drift: its dashpots read the velocities that
+ * drift changes in place, so a drift run span by span must not precede
+ * it anywhere. */
 static int verlet_drift(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
   if (!s->acc_valid) {
     cl_mem a[2] = {s->pos[r], s->vel[r]};
     TRY(mems(s->k[MSOCL__K_ACCEL], s->nconn, 2, a));
-    TRY(msocl__launch(s, MSOCL__K_ACCEL));
+    TRY(launch_range(s, MSOCL__K_ACCEL));
     s->acc_valid = 1;
   }
   cl_mem d[2] = {s->pos[r], s->vel[r]};
@@ -293,18 +305,47 @@ int msocl__phase_count(const msocl__engine *s)
 }
 
 /* What the other engines must receive after each phase: the positions
- * every gather reads, and the velocities too when dashpots read them. */
-int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
+ * every gather reads, and the velocities too when dashpots read them
+ * (implicit Euler's right-hand side reads neighbours' velocities, K v,
+ * even without). */
+unsigned msocl__phase_mask(const msocl__engine *s, int phase)
 {
   const unsigned vel_w = s->damped ? MSOCL__X_VEL_W : 0;
+  if (s->o.fused)
+    return MSOCL__X_POS_W | vel_w;
+  switch (s->o.integrator) {
+  case MSOCL_SYMPLECTIC_EULER:
+    return phase == 0 ? 0 : MSOCL__X_POS_W | vel_w;
+  case MSOCL_IMPLICIT_EULER:
+    return phase == 0 ? 0 : MSOCL__X_POS_W | MSOCL__X_VEL_W;
+  case MSOCL_EXPLICIT_EULER:
+    return MSOCL__X_POS_W | vel_w;
+  case MSOCL_VERLET:
+    return phase == 0 ? MSOCL__X_POS_W | (s->damped ? MSOCL__X_VEL_R : 0)
+                      : vel_w;
+  case MSOCL_RK4:
+    if (phase == 3)
+      return MSOCL__X_POS_W | vel_w;
+    if (phase & 1)
+      return MSOCL__X_STAGE1 | (s->damped ? MSOCL__X_STAGEV1 : 0);
+    return MSOCL__X_STAGE0 | (s->damped ? MSOCL__X_STAGEV0 : 0);
+  }
+  return 0;
+}
+
+/* Within a phase, only the first kernel reads other points (a gather);
+ * the rest read their own point's results, so a phase may run span by
+ * span (the one exception, Verlet's first acceleration, covers the whole
+ * range itself). */
+int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
+{
   const int last = phase == msocl__phase_count(s) - 1;
-  *exchange = 0;
+  *exchange = msocl__phase_mask(s, phase);
   if (s->o.fused) { /* both passes in one kernel */
     const int r = s->r, w = 1 - r;
     cl_mem a[4] = {s->pos[r], s->vel[r], s->pos[w], s->vel[w]};
     TRY(mems(s->k[MSOCL__K_FUSED], s->nconn, 4, a));
     TRY(msocl__launch(s, MSOCL__K_FUSED));
-    *exchange = MSOCL__X_POS_W | vel_w;
     if (s->o.strain == MSOCL_STRAIN_PROVOT)
       TRY(msocl__strain_position(s));
     return MSOCL_OK;
@@ -312,39 +353,20 @@ int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
   switch (s->o.integrator) {
   case MSOCL_SYMPLECTIC_EULER:
   case MSOCL_IMPLICIT_EULER:
-    if (phase == 0) {
+    if (phase == 0)
       TRY(s->o.integrator == MSOCL_IMPLICIT_EULER ? implicit_velocity(s)
                                                   : symplectic_velocity(s));
-    } else {
+    else
       TRY(position_pass(s));
-      /* implicit Euler's right-hand side reads neighbours' velocities
-       * (K v) even without dashpots */
-      *exchange = MSOCL__X_POS_W |
-                  (s->o.integrator == MSOCL_IMPLICIT_EULER ? MSOCL__X_VEL_W
-                                                           : vel_w);
-    }
     break;
   case MSOCL_EXPLICIT_EULER:
     TRY(explicit_euler(s));
-    *exchange = MSOCL__X_POS_W | vel_w;
     break;
   case MSOCL_VERLET:
-    if (phase == 0) {
-      TRY(verlet_drift(s));
-      *exchange = MSOCL__X_POS_W | (s->damped ? MSOCL__X_VEL_R : 0);
-    } else {
-      TRY(verlet_kick(s));
-      *exchange = vel_w;
-    }
+    TRY(phase == 0 ? verlet_drift(s) : verlet_kick(s));
     break;
   case MSOCL_RK4:
     TRY(rk4_stage(s, phase));
-    if (phase == 3)
-      *exchange = MSOCL__X_POS_W | vel_w;
-    else if (phase & 1)
-      *exchange = MSOCL__X_STAGE1 | (s->damped ? MSOCL__X_STAGEV1 : 0);
-    else
-      *exchange = MSOCL__X_STAGE0 | (s->damped ? MSOCL__X_STAGEV0 : 0);
     break;
   }
   if (last && s->o.strain == MSOCL_STRAIN_PROVOT)

@@ -313,6 +313,11 @@ typedef struct {
    * 0 (default): every spring in the table unless a few points (a
    * solid's centre) have far more than the rest. */
   int buffer_slots;
+  /* Split over several devices, 1 (default): each step's phases run first
+   * on the points other devices read, whose copies to and from host
+   * memory then overlap the kernels on the rest (bitwise the same
+   * result); 0: all the kernels, then the copies. */
+  int overlap;
 } msocl_sim_options;
 
 MSOCL_EXTERN void msocl_sim_options_init(msocl_sim_options *o);
@@ -365,6 +370,10 @@ typedef struct {
    * in those copies and in the kernels of its steps. */
   double part_exchange_seconds[16], part_wait_seconds[16];
   double copy_seconds[16], compute_seconds[16];
+  /* Boundary first (options.overlap): the points of each part that others
+   * read, which its phases run on before the rest; 0 when off. */
+  int overlap;
+  double boundary_points[16];
   double exchange_seconds;     /* the largest part_exchange_seconds */
   double wait_seconds;         /* the largest part_wait_seconds */
   long long steps;

@@ -26,6 +26,7 @@ void msocl_sim_options_init(msocl_sim_options *o)
   o->cg_max_iterations = 200;
   o->check_every = 100;
   o->renumber = 1;
+  o->overlap = 1;
   /* Near its stability limit a symplectic method's energy swings by up to
    * 1 / (1 - h w / 2) (10x at 0.9 of the limit) without being unstable;
    * a blow-up grows exponentially and passes 100x within a few checks. */
@@ -295,6 +296,8 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     s->offset = (size_t)lo;
     s->global = (size_t)(hi - lo);
   }
+  s->run_offset = s->offset;
+  s->run_global = s->global;
   s->groups = ((size_t)(hi - lo) + 63) / 64;
   s->gravity.s[0] = m->gravity[0];
   s->gravity.s[1] = m->gravity[1];

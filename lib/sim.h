@@ -42,6 +42,9 @@ struct msocl__engine {
   int lo, hi;             /* the points this engine advances */
   size_t offset, global;  /* its launches: from lo, (hi - lo) work-items
                              (one engine: 0 and n rounded up to 64) */
+  size_t run_offset, run_global; /* what msocl__launch covers now: the
+                             above, or one span of it while a split job
+                             runs its boundary first */
   size_t groups;          /* reductions: work-groups of 64 over [lo, hi) */
   size_t full_global;     /* n rounded up to 64 */
   int cg_iterations;
@@ -83,7 +86,11 @@ struct msocl__xstat {
   double compute_seconds; /* device time of its phases' kernels */
 };
 
-/* The exchange plan and its staging (exchange.c). */
+/* Compute spans of a job's markers kept before their device time is read
+ * (reading it waits for them). */
+#define MSOCL__MARKS 8
+
+/* The exchange plan and its staging (exchange_plan.c, exchange.c). */
 struct msocl__exchange {
   /* where the slice of e's points that d reads (halo[d][e]) sits in an
    * area, and an area's length, in points */
@@ -99,6 +106,22 @@ struct msocl__exchange {
   cl_event wev[MSOCL__MAX_PARTS][MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
   int nwev[MSOCL__MAX_PARTS];    /* writes queued, not yet settled */
   struct msocl__xstat stat[MSOCL__MAX_PARTS];
+  /* Boundary first (options.overlap): an engine's range as spans, those
+   * other engines read (nbound) first, then the interior; the slices
+   * leave through `send` and arrive through `recv` (buffers of `packed`
+   * points, at the slices' area offsets), copied on a second queue `xq`
+   * while the first runs the interior: OpenCL leaves two queues' commands
+   * on one buffer object undefined, so they never share one. */
+  int overlap;
+  int span[MSOCL__MAX_PARTS][2 * MSOCL__MAX_PARTS][2];
+  int nbound[MSOCL__MAX_PARTS], nspan[MSOCL__MAX_PARTS];
+  cl_command_queue xq[MSOCL__MAX_PARTS];
+  cl_mem send[MSOCL__MAX_PARTS][MSOCL__X_SLOTS];
+  cl_mem recv[MSOCL__MAX_PARTS][MSOCL__X_SLOTS];
+  cl_event rev[MSOCL__MAX_PARTS][MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
+  int nrev[MSOCL__MAX_PARTS];    /* reads in flight */
+  cl_event mark[MSOCL__MAX_PARTS][MSOCL__MARKS][2];
+  int nmark[MSOCL__MAX_PARTS];   /* compute spans not yet booked */
 };
 
 struct msocl__workers;
@@ -121,17 +144,23 @@ struct msocl_sim {
   double total_mass, extent;
 };
 
-/* Halo exchange (exchange.c). plan: the slices and staging, once the
- * halos are known; gather: the slices of engine d's points that others
- * read, of each buffer in `mask`, into the current staging set (d's queue
- * must be finished), and what d will receive; scatter: queues the writes
- * into d's halos; settle: after d's queue finished, books the writes'
- * device time. */
+/* Halo exchange. plan (exchange_plan.c): the slices, spans, staging and
+ * buffers, once the halos are known. exchange.c: gather: the slices of
+ * engine d's points that others read, of each buffer in `mask`, into the
+ * current staging set (d's queue must be finished), and what d will
+ * receive; send: the same queued behind d's work so far, without waiting
+ * (boundary first); wait: waits for send's reads; scatter: queues the
+ * writes into d's halos; settle: waits for the writes and books their
+ * device time; marks: books the compute spans of finished jobs, all but
+ * the last `keep`. */
 int msocl__exchange_plan(msocl_sim *s);
 void msocl__exchange_free(msocl_sim *s);
 int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask);
+int msocl__exchange_send(msocl_sim *s, int d, unsigned mask);
+int msocl__exchange_wait(msocl_sim *s, int d);
 int msocl__exchange_scatter(msocl_sim *s, int d);
 void msocl__exchange_settle(msocl_sim *s, int d);
+void msocl__exchange_marks(msocl_sim *s, int d, int keep);
 /* Device seconds from the end of finished command a to that of b. */
 double msocl__event_span(cl_event a, cl_event b);
 
@@ -153,6 +182,8 @@ int msocl__integrate_setup(msocl__engine *s);
  * must reach the other engines before the next phase reads them. */
 int msocl__phase_count(const msocl__engine *s);
 int msocl__phase(msocl__engine *s, int phase, unsigned *exchange);
+/* That mask, without queuing anything. */
+unsigned msocl__phase_mask(const msocl__engine *s, int phase);
 /* Ends a step: swaps the ping-pong buffers. */
 void msocl__step_done(msocl__engine *s);
 /* The buffer an exchange bit names, at this point of the step. */
@@ -187,7 +218,8 @@ int msocl__implicit_cg(msocl__engine *const *e, int parts,
 int msocl__strain_setup(msocl__engine *s);
 int msocl__strain_velocity(msocl__engine *s);
 int msocl__strain_position(msocl__engine *s);
-/* Enqueues kernel k over the engine's points; _all: over every point. */
+/* Enqueues kernel k over the engine's current span (run_offset,
+ * run_global); _all: over every point. */
 int msocl__launch(msocl__engine *s, int k);
 int msocl__launch_all(msocl__engine *s, int k);
 

@@ -181,6 +181,7 @@ int msocl_sim_split_info(const msocl_sim *s, msocl_split_info *info)
         info->halo_points[d] += s->halo[d][e][1] - s->halo[d][e][0];
   }
   info->steps = s->steps;
+  info->overlap = s->x.overlap;
   double bytes = 0.0;
   for (int d = 0; d < s->nparts; d++) {
     const struct msocl__xstat *st = &s->x.stat[d];
@@ -189,6 +190,8 @@ int msocl_sim_split_info(const msocl_sim *s, msocl_split_info *info)
     info->compute_seconds[d] = st->compute_seconds;
     info->part_exchange_seconds[d] = st->host_seconds;
     info->part_wait_seconds[d] = st->wait_seconds;
+    for (int q = 0; s->x.overlap && q < s->x.nbound[d]; q++)
+      info->boundary_points[d] += s->x.span[d][q][1] - s->x.span[d][q][0];
     /* the parts work at once: the slowest one is the critical path */
     if (st->host_seconds > info->exchange_seconds)
       info->exchange_seconds = st->host_seconds;

@@ -15,15 +15,19 @@ static double now(void)
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* Waits for engine d's queue: its kernels, and the writes into its halos
- * (whose device time is then booked). */
+/* Waits for engine d's queues: its kernels, and the copies into and out
+ * of its halos (whose device time is then booked). */
 static int finish(msocl_sim *s, int d)
 {
   double t0 = now();
   MSOCL__CL(clFinish(s->part[d]->dev->queue));
+  if (s->nparts > 1 && s->x.xq[d])
+    MSOCL__CL(clFinish(s->x.xq[d]));
   s->x.stat[d].wait_seconds += now() - t0;
-  if (s->nparts > 1)
+  if (s->nparts > 1) {
     msocl__exchange_settle(s, d);
+    msocl__exchange_marks(s, d, 0);
+  }
   return MSOCL_OK;
 }
 
@@ -75,7 +79,7 @@ static int exchange_cg(void *ctx)
 
 /* One job of a split step, on engine d's own host thread: the writes
  * the last exchange left for it, then phases from `ph` until one leaves
- * data that others read; then wait, and read that data for them. */
+ * data that others read, and that data read for them. */
 struct job {
   msocl_sim *s;
   int ph;       /* first phase; < 0: only the pending writes */
@@ -83,40 +87,92 @@ struct job {
   unsigned mask; /* out: what the last one left for the others */
 };
 
+/* Phases [from, to) over span sp of the engine's range (NULL: all). */
+static int run_span(msocl__engine *e, const int *sp, int from, int to)
+{
+  int rc = MSOCL_OK;
+  if (sp) {
+    e->run_offset = (size_t)sp[0];
+    e->run_global = (size_t)(sp[1] - sp[0]);
+  }
+  for (int ph = from; rc == MSOCL_OK && ph < to; ph++) {
+    unsigned mask;
+    rc = msocl__phase(e, ph, &mask);
+  }
+  e->run_offset = e->offset;
+  e->run_global = e->global;
+  return rc;
+}
+
+/* Boundary first: the phases over the spans others read, their slices
+ * sent, then the phases over the interior - the device may still be at
+ * the interior when the job ends. Only a phase's first kernel reads other
+ * points, so every point's result is the one a whole-range launch gives. */
+static int boundary_first(msocl_sim *s, int d, int from, int to,
+                          unsigned mask)
+{
+  struct msocl__exchange *x = &s->x;
+  msocl__engine *e = s->part[d];
+  int rc = MSOCL_OK;
+  for (int q = 0; rc == MSOCL_OK && q < x->nbound[d]; q++)
+    rc = run_span(e, x->span[d][q], from, to);
+  if (rc == MSOCL_OK)
+    rc = msocl__exchange_send(s, d, mask);
+  for (int q = x->nbound[d]; rc == MSOCL_OK && q < x->nspan[d]; q++)
+    rc = run_span(e, x->span[d][q], from, to);
+  return rc;
+}
+
 static int job(void *ctx, int d)
 {
   struct job *j = ctx;
   msocl_sim *s = j->s;
+  struct msocl__exchange *x = &s->x;
   msocl__engine *e = s->part[d];
   const int phases = msocl__phase_count(e);
+  const int ph = j->ph < 0 ? phases : j->ph;
+  const int ahead = x->overlap; /* boundary first */
   unsigned mask = 0;
-  int ph = j->ph < 0 ? phases : j->ph;
+  int end = ph;
+  while (end < phases && mask == 0)
+    mask = msocl__phase_mask(e, end++);
   int rc = scatter(s, d);
-  /* markers around the phases: their device time, from profiling */
-  cl_event mark[2] = {NULL, NULL};
-  if (rc == MSOCL_OK && ph < phases &&
-      clEnqueueMarkerWithWaitList(e->dev->queue, 0, NULL, &mark[0]) !=
+  /* markers around the phases: their device time, from profiling, read
+   * once the device is done with them */
+  if (x->nmark[d] == MSOCL__MARKS)
+    msocl__exchange_marks(s, d, 1);
+  cl_event *mark = x->mark[d][x->nmark[d]];
+  mark[0] = mark[1] = NULL;
+  if (rc == MSOCL_OK && ph < end &&
+      clEnqueueMarkerWithWaitList(e->dev->queue, 0, NULL, &mark[0]) ==
           CL_SUCCESS)
-    mark[0] = NULL;
-  while (rc == MSOCL_OK && ph < phases && mask == 0)
-    rc = msocl__phase(e, ph++, &mask);
-  if (rc == MSOCL_OK && mark[0] &&
+    x->nmark[d]++;
+  if (rc == MSOCL_OK)
+    rc = ahead && mask ? boundary_first(s, d, ph, end, mask)
+                       : run_span(e, NULL, ph, end);
+  if (mark[0] &&
       clEnqueueMarkerWithWaitList(e->dev->queue, 0, NULL, &mark[1]) !=
           CL_SUCCESS)
     mark[1] = NULL;
-  if (rc == MSOCL_OK)
+  if (rc == MSOCL_OK && ahead) {
+    /* only the reads are waited for; the rest queues on */
+    double t0 = now();
+    cl_int err = clFlush(e->dev->queue);
+    if (err != CL_SUCCESS)
+      rc = msocl__fail(err, "clFlush failed: %s (%d)", msocl_err_name(err),
+                       (int)err);
+    if (rc == MSOCL_OK)
+      rc = msocl__exchange_wait(s, d);
+    x->stat[d].wait_seconds += now() - t0;
+  } else if (rc == MSOCL_OK) {
     rc = finish(s, d);
-  if (rc == MSOCL_OK && mark[1])
-    s->x.stat[d].compute_seconds += msocl__event_span(mark[0], mark[1]);
-  for (int q = 0; q < 2; q++)
-    if (mark[q])
-      clReleaseEvent(mark[q]);
-  if (rc == MSOCL_OK && mask)
-    rc = gather(s, d, mask); /* before the swap: bits name buffers by r */
-  if (rc == MSOCL_OK && j->ph >= 0 && ph == phases)
+    if (rc == MSOCL_OK && mask)
+      rc = gather(s, d, mask); /* before the swap: bits name buffers by r */
+  }
+  if (rc == MSOCL_OK && j->ph >= 0 && end == phases)
     msocl__step_done(e);
   if (d == 0) {
-    j->end = ph;
+    j->end = end;
     j->mask = mask;
   }
   return rc;

@@ -14,6 +14,7 @@
 static msocl_runtime *rt;
 static int ndev;
 static char spec[256];
+static int overlap = 1; /* options.overlap of the split runs */
 
 static void setup(void)
 {
@@ -42,6 +43,7 @@ static void run(const msocl_model *m, msocl_integrator in, msocl_layout lay,
   o.layout = lay;
   o.ndevices = parts;
   o.check_every = 0;
+  o.overlap = overlap;
   for (int d = 0; weights && d < parts; d++)
     o.weights[d] = weights[d];
   msocl_sim *s = NULL;
@@ -135,6 +137,35 @@ START_TEST(implicit_split)
 }
 END_TEST
 
+/* options.overlap = 0: every kernel, then every copy - bitwise the same
+ * as boundary first, and reported as off. _i: the integrator. */
+START_TEST(kernels_then_copies)
+{
+  msocl_integrator in = (msocl_integrator)_i;
+  msocl_model *m = scene_hanging(in == MSOCL_IMPLICIT_EULER ? 24 : 16);
+  float dt = in == MSOCL_EXPLICIT_EULER ? 1e-4f : 1e-3f;
+  overlap = 0;
+  same_bits(m, in, MSOCL_LAYOUT_BUFFER, dt, 200, ndev < 3 ? ndev : 3, NULL,
+            "kernels then copies, damped hanging cloth");
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = dt;
+  o.ndevices = 2;
+  o.overlap = 0;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, 10), MSOCL_OK);
+  msocl_split_info info;
+  ck_assert_int_eq(msocl_sim_split_info(s, &info), MSOCL_OK);
+  ck_assert_int_eq(info.overlap, 0);
+  ck_assert_double_eq(info.boundary_points[0], 0.0);
+  ck_assert_double_gt(info.compute_seconds[0], 0.0);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+  overlap = 1;
+}
+END_TEST
+
 /* GRID recomputes neighbours from the grid: split, it still reads the
  * exchanged halo rows. */
 START_TEST(grid_layout_split)
@@ -206,6 +237,12 @@ START_TEST(split_report_and_normals)
     ck_assert_int_eq(info.first[d], total);
     total += info.count[d];
     ck_assert_double_ge(info.halo_points[d], 24); /* a row at least */
+    /* boundary first: a part's phases run first on the points others
+     * read - on an evenly split grid, as many as its halo holds - and
+     * there is an interior left for the copies to overlap */
+    ck_assert_int_eq(info.overlap, 1);
+    ck_assert_double_eq(info.boundary_points[d], info.halo_points[d]);
+    ck_assert_double_lt(info.boundary_points[d], info.count[d]);
     printf("part %d: device %d, points [%d, %d), receives %.0f points a "
            "phase\n", d, info.device[d], info.first[d],
            info.first[d] + info.count[d], info.halo_points[d]);
@@ -454,6 +491,7 @@ int main(void)
   tcase_set_timeout(tc, 600);
   tcase_add_loop_test(tc, tablecloth_500_steps, 0, 8);
   tcase_add_loop_test(tc, damped_hanging_cloth, 0, 8);
+  tcase_add_loop_test(tc, kernels_then_copies, 0, 5);
   tcase_add_test(tc, uneven_weights);
   tcase_add_test(tc, grid_layout_split);
   tcase_add_test(tc, implicit_split);
