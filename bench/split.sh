@@ -1,8 +1,9 @@
 #!/bin/sh
 # One model on one device and split over two, side by side in one run:
-# the tablecloth at a few sizes, each pair run back to back (this machine
-# is noisy: read the ratio of neighbouring lines), the two final meshes
-# compared byte for byte.
+# the tablecloth at a few sizes, one device, then two boundary first (the
+# default: copies beside the interior's kernels), then two with -O (all
+# kernels, then all copies), back to back (this machine is noisy: read the
+# ratio of neighbouring lines); the final meshes compared byte for byte.
 #
 #   bench/split.sh [SPEC] [SIZES] [REPEATS]   (run from the build root)
 #
@@ -25,17 +26,22 @@ for n in $sizes; do
   steps=$((20000000 / (n * n)))
   r=1
   while [ "$r" -le "$repeats" ]; do
-    for p in 1 2; do
-      echo "== $prog -n $n -s $steps -p $p $extra"
+    for run in "1" "2" "2 -O"; do
+      set -- $run
+      p=$1
+      tag=$(echo "$run" | tr -d ' -')
+      echo "== $prog -n $n -s $steps -p $run $extra"
       # shellcheck disable=SC2086
-      MSOCL_DEVICE=$spec $prog -n "$n" -s "$steps" -p "$p" $extra \
-        -o "$tmp/split_$p.obj" | grep -v '^wrote\|^grid\|^device'
+      MSOCL_DEVICE=$spec $prog -n "$n" -s "$steps" -p $run $extra \
+        -o "$tmp/split_$tag.obj" | grep -v '^wrote\|^grid\|^device'
     done
-    if cmp -s "$tmp/split_1.obj" "$tmp/split_2.obj"; then
-      echo "   final meshes identical: the split is bitwise the one-device run"
-    else
-      echo "   final meshes DIFFER"
-    fi
+    for tag in 2 2O; do
+      if cmp -s "$tmp/split_1.obj" "$tmp/split_$tag.obj"; then
+        echo "   final meshes 1 and $tag identical: bitwise the one-device run"
+      else
+        echo "   final meshes 1 and $tag DIFFER"
+      fi
+    done
     r=$((r + 1))
   done
 done

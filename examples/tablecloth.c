@@ -28,9 +28,12 @@ static int usage(const char *argv0)
           "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
           "[-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
-          "[-S none|provot|velocity] [-p PARTS [-c STEPS]] [-f] [-o OUT.obj]\n"
+          "[-S none|provot|velocity] [-p PARTS [-c STEPS] [-O]] [-f] "
+          "[-o OUT.obj]\n"
           "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n"
           "  -c: weigh the devices by a calibration run of STEPS steps\n"
+          "  -O: split, all kernels then all copies (default: the points\n"
+          "      other devices read first, their copies beside the rest)\n"
           "  -f: both passes of a step in one kernel (same result)\n",
           argv0);
   return 2;
@@ -101,7 +104,7 @@ int main(int argc, char **argv)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   int in = 0, strain = 0;
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:fh")) != -1) {
+  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:fOh")) != -1) {
     switch (opt) {
     case 'n': n = atoi(optarg); break;
     case 's': steps = atoi(optarg); break;
@@ -127,6 +130,7 @@ int main(int argc, char **argv)
     case 'p': o.ndevices = atoi(optarg); break;
     case 'c': o.calibrate_steps = atoi(optarg); break;
     case 'f': o.fused = 1; break;
+    case 'O': o.overlap = 0; break;
     case 'S':
       if ((strain = pick(optarg, strains, 3)) < 0) return usage(argv[0]);
       o.strain = (msocl_strain)strain;
@@ -173,9 +177,9 @@ int main(int argc, char **argv)
   msocl_split_info split;
   msocl_sim_split_info(s, &split);
   for (int d = 0; split.parts > 1 && d < split.parts; d++)
-    printf("part %d: device %d, weight %.3g, points [%d, %d)\n", d,
-           split.device[d], (double)split.weight[d], split.first[d],
-           split.first[d] + split.count[d]);
+    printf("part %d: device %d, weight %.3g, points [%d, %d), %.0f first\n",
+           d, split.device[d], (double)split.weight[d], split.first[d],
+           split.first[d] + split.count[d], split.boundary_points[d]);
 
   /* One warm-up step keeps first-launch costs out of the timing. */
   rc = msocl_sim_step(s, 1);
