@@ -145,12 +145,27 @@ int msocl__exchange_send(msocl_sim *s, int d, unsigned mask)
   return MSOCL_OK;
 }
 
-int msocl__exchange_wait(msocl_sim *s, int d)
+/* Device stamp `what` of a finished command (0 where none is given). */
+static cl_ulong stamp(cl_event ev, cl_profiling_info what)
+{
+  cl_ulong t = 0;
+  if (clGetEventProfilingInfo(ev, what, sizeof t, &t, NULL) != CL_SUCCESS)
+    return 0;
+  return t;
+}
+
+int msocl__exchange_wait(msocl_sim *s, int d, struct msocl__mark *m)
 {
   struct msocl__exchange *x = &s->x;
   const int n = x->nrev[d];
   cl_int err = n > 0 ? clWaitForEvents((cl_uint)n, x->rev[d]) : CL_SUCCESS;
-  book(s, d, x->rev[d], n);
+  if (m && err == CL_SUCCESS) {
+    for (int i = 0; i < n; i++)
+      m->read[i] = x->rev[d][i];
+    m->nread = n;
+  } else {
+    book(s, d, x->rev[d], n);
+  }
   x->nrev[d] = 0;
   MSOCL__CL(err);
   return MSOCL_OK;
@@ -211,17 +226,29 @@ void msocl__exchange_marks(msocl_sim *s, int d, int keep)
   struct msocl__exchange *x = &s->x;
   const int n = x->nmark[d] - keep;
   for (int i = 0; i < n; i++) {
-    cl_event *m = x->mark[d][i];
-    if (m[1] && clWaitForEvents(1, &m[1]) == CL_SUCCESS)
-      x->stat[d].compute_seconds += msocl__event_span(m[0], m[1]);
+    struct msocl__mark *m = &x->mark[d][i];
+    cl_ulong end = 0;
+    if (m->ev[1] && clWaitForEvents(1, &m->ev[1]) == CL_SUCCESS) {
+      x->stat[d].compute_seconds += msocl__event_span(m->ev[0], m->ev[1]);
+      end = stamp(m->ev[1], CL_PROFILING_COMMAND_END);
+    }
+    /* each read's time before the interior's end ran beside it */
+    for (int r = 0; r < m->nread; r++) {
+      cl_ulong a = stamp(m->read[r], CL_PROFILING_COMMAND_START),
+               b = stamp(m->read[r], CL_PROFILING_COMMAND_END);
+      if (b > end)
+        b = end;
+      if (b > a)
+        x->stat[d].hidden_seconds += 1e-9 * (double)(b - a);
+    }
+    book(s, d, m->read, m->nread);
+    m->nread = 0;
     for (int q = 0; q < 2; q++)
-      if (m[q])
-        clReleaseEvent(m[q]);
+      if (m->ev[q])
+        clReleaseEvent(m->ev[q]);
   }
-  for (int i = 0; n > 0 && i < keep; i++) {
-    x->mark[d][i][0] = x->mark[d][n + i][0];
-    x->mark[d][i][1] = x->mark[d][n + i][1];
-  }
+  for (int i = 0; n > 0 && i < keep; i++)
+    x->mark[d][i] = x->mark[d][n + i];
   if (n > 0)
     x->nmark[d] = keep;
 }

@@ -134,16 +134,22 @@ void msocl__exchange_free(msocl_sim *s)
 {
   struct msocl__exchange *x = &s->x;
   for (int d = 0; d < MSOCL__MAX_PARTS; d++) {
-    cl_event *ev[3] = {x->wev[d], x->rev[d], &x->mark[d][0][0]};
+    cl_event *ev[2] = {x->wev[d], x->rev[d]};
     int *nev[2] = {&x->nwev[d], &x->nrev[d]};
     for (int q = 0; q < 2; q++) {
       for (int i = 0; i < *nev[q]; i++)
         clReleaseEvent(ev[q][i]);
       *nev[q] = 0;
     }
-    for (int i = 0; i < 2 * x->nmark[d]; i++)
-      if (ev[2][i])
-        clReleaseEvent(ev[2][i]);
+    for (int i = 0; i < x->nmark[d]; i++) {
+      struct msocl__mark *m = &x->mark[d][i];
+      for (int q = 0; q < 2; q++)
+        if (m->ev[q])
+          clReleaseEvent(m->ev[q]);
+      for (int r = 0; r < m->nread; r++)
+        clReleaseEvent(m->read[r]);
+      m->nread = 0;
+    }
     x->nmark[d] = 0;
     if (x->xq[d]) {
       clFinish(x->xq[d]);

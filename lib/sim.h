@@ -84,6 +84,15 @@ struct msocl__xstat {
   double host_seconds; /* host time queuing and reading them */
   double wait_seconds; /* host time waiting for the device */
   double compute_seconds; /* device time of its phases' kernels */
+  double hidden_seconds;  /* boundary first: its reads' device time
+                             while its interior still ran */
+};
+
+/* A job's markers around its phases, and its reads (booked with them). */
+struct msocl__mark {
+  cl_event ev[2];
+  cl_event read[MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
+  int nread;
 };
 
 /* Compute spans of a job's markers kept before their device time is read
@@ -120,7 +129,7 @@ struct msocl__exchange {
   cl_mem recv[MSOCL__MAX_PARTS][MSOCL__X_SLOTS];
   cl_event rev[MSOCL__MAX_PARTS][MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
   int nrev[MSOCL__MAX_PARTS];    /* reads in flight */
-  cl_event mark[MSOCL__MAX_PARTS][MSOCL__MARKS][2];
+  struct msocl__mark mark[MSOCL__MAX_PARTS][MSOCL__MARKS];
   int nmark[MSOCL__MAX_PARTS];   /* compute spans not yet booked */
 };
 
@@ -149,15 +158,16 @@ struct msocl_sim {
  * engine d's points that others read, of each buffer in `mask`, into the
  * current staging set (d's queue must be finished), and what d will
  * receive; send: the same queued behind d's work so far, without waiting
- * (boundary first); wait: waits for send's reads; scatter: queues the
+ * (boundary first); wait: waits for send's reads, then books them or,
+ * given a job's mark, leaves them to it; scatter: queues the
  * writes into d's halos; settle: waits for the writes and books their
  * device time; marks: books the compute spans of finished jobs, all but
- * the last `keep`. */
+ * the last `keep`, and how much of their reads ran beside them. */
 int msocl__exchange_plan(msocl_sim *s);
 void msocl__exchange_free(msocl_sim *s);
 int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask);
 int msocl__exchange_send(msocl_sim *s, int d, unsigned mask);
-int msocl__exchange_wait(msocl_sim *s, int d);
+int msocl__exchange_wait(msocl_sim *s, int d, struct msocl__mark *m);
 int msocl__exchange_scatter(msocl_sim *s, int d);
 void msocl__exchange_settle(msocl_sim *s, int d);
 void msocl__exchange_marks(msocl_sim *s, int d, int keep);

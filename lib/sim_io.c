@@ -190,6 +190,7 @@ int msocl_sim_split_info(const msocl_sim *s, msocl_split_info *info)
     info->compute_seconds[d] = st->compute_seconds;
     info->part_exchange_seconds[d] = st->host_seconds;
     info->part_wait_seconds[d] = st->wait_seconds;
+    info->hidden_copy_seconds[d] = st->hidden_seconds;
     for (int q = 0; s->x.overlap && q < s->x.nbound[d]; q++)
       info->boundary_points[d] += s->x.span[d][q][1] - s->x.span[d][q][0];
     /* the parts work at once: the slowest one is the critical path */

@@ -141,8 +141,10 @@ static int job(void *ctx, int d)
    * once the device is done with them */
   if (x->nmark[d] == MSOCL__MARKS)
     msocl__exchange_marks(s, d, 1);
-  cl_event *mark = x->mark[d][x->nmark[d]];
+  struct msocl__mark *m = &x->mark[d][x->nmark[d]];
+  cl_event *mark = m->ev;
   mark[0] = mark[1] = NULL;
+  m->nread = 0;
   if (rc == MSOCL_OK && ph < end &&
       clEnqueueMarkerWithWaitList(e->dev->queue, 0, NULL, &mark[0]) ==
           CL_SUCCESS)
@@ -161,8 +163,8 @@ static int job(void *ctx, int d)
     if (err != CL_SUCCESS)
       rc = msocl__fail(err, "clFlush failed: %s (%d)", msocl_err_name(err),
                        (int)err);
-    if (rc == MSOCL_OK)
-      rc = msocl__exchange_wait(s, d);
+    if (rc == MSOCL_OK) /* the reads go with the markers, if any */
+      rc = msocl__exchange_wait(s, d, mark[1] ? m : NULL);
     x->stat[d].wait_seconds += now() - t0;
   } else if (rc == MSOCL_OK) {
     rc = finish(s, d);
