@@ -9,11 +9,13 @@
 # Stages (default: all, in this order):
 #   devices    msocl-devices: what the machine offers
 #   verify     the kernels on the GPU agree with themselves: the tablecloth
-#              at 128^2 with BUFFER, GRID, IMAGE2D and the fused step,
+#              at 128^2 with BUFFER, GRID, IMAGE2D, the fused step and
+#              BUFFER with values in every slot (-V),
 #              final meshes compared bit for bit (as make check does on
 #              PoCL; the GPU machine has no Check)            (seconds)
 #   table1     Table 1 on the GPU: 48..2048 per layout, with the one-kernel
-#              step (--fused), serial C beside it       (about 5 min)
+#              step (--fused) and BUFFER's values rows (--values), serial
+#              C beside it                              (about 6 min)
 #   precision  the work-precision data on the GPU, both math modes (1 min)
 #   split      the tablecloth at 1024^2: GPU alone, PoCL's CPU alone, and
 #              split over both with calibrated weights, boundary first
@@ -22,7 +24,7 @@
 # the top. Back on the build machine: bench/plot.sh OUTDIR/precision.csv
 # OUTDIR/precision.png, then commit OUTDIR as bench/results/<gpu>/.
 set -eu
-[ $# -ge 1 ] || { sed -n '2,22p' "$0"; exit 2; }
+[ $# -ge 1 ] || { awk 'NR > 1 && !/^#/ { exit } NR > 1' "$0"; exit 2; }
 out=$1
 shift
 stages=${*:-devices verify table1 precision split}
@@ -57,7 +59,7 @@ for stage in $stages; do
   verify)
     : > "$out/verify.txt"
     for run in "buffer -l buffer" "grid -l grid" "image2d -l image2d" \
-      "fused -l buffer -f"; do
+      "fused -l buffer -f" "values -l buffer -V"; do
       set -- $run
       tag=$1
       shift
@@ -67,7 +69,7 @@ for stage in $stages; do
         -o "$out/verify_$tag.obj" >> "$out/verify.txt" 2>&1 ||
         echo "# exit status $?" >> "$out/verify.txt"
     done
-    for tag in grid image2d fused; do
+    for tag in grid image2d fused values; do
       a=$out/verify_buffer.obj b=$out/verify_$tag.obj
       [ -f "$a" ] && [ -f "$b" ] || continue
       if cmp -s "$a" "$b"; then
@@ -81,7 +83,7 @@ for stage in $stages; do
     ;;
   table1)
     record table1 env MSOCL_DEVICE=gpu $bench table1 --big-steps 200 \
-      --repeat 3 --fused --csv "$out/table1.csv"
+      --repeat 3 --fused --values --csv "$out/table1.csv"
     ;;
   precision)
     record precision env MSOCL_DEVICE=gpu $bench precision \

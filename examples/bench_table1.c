@@ -26,30 +26,38 @@ static const char *const paper_cols[4] = {"CPU 1", "CPU 2", "GPU 1",
 
 /* Bytes a vertex-step moves under this model. BUFFER and IMAGE2D: the
  * velocity pass reads pos, vel (16 B each), inv_mass (4 B) and the point's
- * connectivity (BUFFER: max-degree slots of 12 B; IMAGE2D: 16 texels of
- * 16 B), neighbour positions counted as cached (0), and writes vel (16 B).
+ * connectivity (BUFFER: its table's slots of 5 B with spring classes - a
+ * neighbour index and a class byte - or 12 B with the values; IMAGE2D: 16
+ * texels of 16 B), neighbour positions counted as cached (0), and writes
+ * vel (16 B).
  * EDGES: the spring pass reads 16 B a spring (ends, rest, k), end positions
  * cached, and each point's force accumulator once (read + write, 32 B); the
  * point pass reads pos, vel, force, inv_mass (52 B), writes vel and clears
  * force (32 B). GRID: as BUFFER with no connectivity at all. All: the
  * position pass reads pos and vel (32 B) and writes pos (16 B). */
-static double bytes_model(int layout, int slots, double springs_per_point,
-                          int fused)
+static double bytes_model(int layout, int slots, int classes,
+                          double springs_per_point, int fused)
 {
   if (layout == MSOCL_LAYOUT_EDGES)
     return 16.0 * springs_per_point + 32 + (52 + 32) + (32 + 16);
   double conn = layout == MSOCL_LAYOUT_IMAGE2D ? 16.0 * 16.0
                 : layout == MSOCL_LAYOUT_GRID  ? 0.0
-                                               : 12.0 * slots;
+                                               : (classes ? 5.0 : 12.0) * slots;
   /* fused: one pass reads the state once and writes both halves */
   if (fused)
     return 16 + 16 + 4 + conn + 16 + 16;
   return (16 + 16 + 4 + conn + 16) + (32 + 16);
 }
 
-static const char *layout_name(int layout, int fused)
+/* A row's variant of its layout: the two-pass step, the one-kernel step
+ * (--fused), or BUFFER with values in every slot (--values). */
+enum { PLAIN, FUSED, VALUES, VARIANTS };
+
+static const char *layout_name(int layout, int variant)
 {
-  if (fused)
+  if (variant == VALUES)
+    return "buffer-values";
+  if (variant == FUSED)
     return layout == MSOCL_LAYOUT_IMAGE2D ? "image2d+fused"
            : layout == MSOCL_LAYOUT_GRID  ? "grid+fused"
                                           : "buffer+fused";
@@ -214,14 +222,15 @@ static int run_serial(struct ctx *c, int n, float dt, int steps,
 }
 
 static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
-                       int steps, int dev, int layout, int fused,
+                       int steps, int dev, int layout, int variant,
                        int math, const float *serial_pos, double serial_ips)
 {
   const msocl_device_info *info = &c->info[dev];
+  const int fused = variant == FUSED;
   struct bench_row r;
   bench_row_init(&r);
   bench_device_label(r.device, sizeof r.device, info);
-  r.layout = layout_name(layout, fused);
+  r.layout = layout_name(layout, variant);
   r.integrator = "symplectic";
   r.math = math == MSOCL_MATH_RELAXED ? "relaxed" : "precise";
   r.grid = n;
@@ -231,8 +240,9 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   int slots = 0, ns = 0;
   msocl_model_max_degree(m, &slots);
   msocl_model_spring_count(m, &ns);
+  /* until the sim says what its table holds: a slot per spring, values */
   r.bytes_per_vertex_step =
-      bytes_model(layout, slots, (double)ns / (n * n), fused);
+      bytes_model(layout, slots, 0, (double)ns / (n * n), fused);
   char engine[64];
   snprintf(engine, sizeof engine, "%d:%d %s %s", info->platform_index,
            info->device_index, r.layout, r.math);
@@ -258,7 +268,14 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
     so.device = dev;
     so.check_every = 0;
     so.fused = fused;
+    so.classes = variant != VALUES;
     rc = msocl_sim_create(&s, c->rt, m, &so);
+    int table = slots, classes = 0;
+    if (rc == MSOCL_OK)
+      rc = msocl_sim_connectivity(s, &table, &classes);
+    if (rc == MSOCL_OK)
+      r.bytes_per_vertex_step = bytes_model(
+          layout, table, classes, (double)ns / (n * n), fused);
     if (rc == MSOCL_OK)
       rc = msocl_sim_step(s, 1); /* warm-up */
     r.seconds = INFINITY;
@@ -286,10 +303,15 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   keep(c, &r, engine);
 }
 
-/* 1 where --fused asks for a layout's one-kernel step too. */
-static int fusable(const struct bench_opts *o, int layout)
+/* 1 where a layout runs in this variant: every layout plain, the gather
+ * layouts fused with --fused, BUFFER with values with --values. */
+static int wanted(const struct bench_opts *o, int layout, int variant)
 {
-  return o->fused && layout != MSOCL_LAYOUT_EDGES;
+  if (variant == FUSED)
+    return o->fused && layout != MSOCL_LAYOUT_EDGES;
+  if (variant == VALUES)
+    return o->values && layout == MSOCL_LAYOUT_BUFFER;
+  return 1;
 }
 
 /* The paper's numbers beside ours, grid by grid. */
@@ -342,7 +364,8 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
   msocl_runtime_device_count(c.rt, &c.ndev);
   int engines = 0;
   for (int l = 0; l < o->nlayouts; l++)
-    engines += 1 + fusable(o, o->layouts[l]);
+    for (int v = 0; v < VARIANTS; v++)
+      engines += wanted(o, o->layouts[l], v);
   int per_grid = 1 + c.ndev * engines * o->nmaths, ngrids = 0, big = 0;
   for (int g = 0; g < o->ngrids; g++)
     if (!o->max_grid || o->grids[g] <= o->max_grid)
@@ -377,8 +400,9 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
       printf("not measured (%s)\n", msocl_err_name(e));
   }
   printf("bytes per vertex-step: velocity pass reads pos 16 + vel 16 + "
-         "inv_mass 4 + connectivity\n(BUFFER: max degree x 12 B; IMAGE2D: "
-         "16 x 16 B), neighbours cached (0), writes vel 16; EDGES:\n16 B a "
+         "inv_mass 4 + connectivity\n(BUFFER: table slots x 5 B with spring "
+         "classes, x 12 B with values; IMAGE2D:\n16 x 16 B), neighbours "
+         "cached (0), writes vel 16; EDGES:\n16 B a "
          "spring + force accumulator 32 + point pass 84; position pass reads "
          "pos + vel 32,\nwrites pos 16. GB/s = bytes x vertex-steps/s; %%copy "
          "= GB/s over the copy bandwidth.\n\n");
@@ -412,9 +436,9 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
     run_serial(&c, n, dt, steps, &spos, &s, &sips);
     for (int d = 0; d < c.ndev; d++)
       for (int l = 0; l < o->nlayouts; l++)
-        for (int f = 0; f <= fusable(o, o->layouts[l]); f++)
-          for (int k = 0; k < o->nmaths; k++)
-            run_device(&c, m, n, dt, steps, d, o->layouts[l], f,
+        for (int v = 0; v < VARIANTS; v++)
+          for (int k = 0; k < o->nmaths && wanted(o, o->layouts[l], v); k++)
+            run_device(&c, m, n, dt, steps, d, o->layouts[l], v,
                        o->maths[k], spos, sips);
     bench_serial_destroy(s);
     msocl_model_destroy(m);

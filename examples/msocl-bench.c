@@ -54,6 +54,8 @@ static int usage(FILE *f, int code)
 "  --copy-mib N   copy-bandwidth buffer size in MiB (default 256)\n"
 "  --fused        table1: also each gather layout with symplectic Euler's\n"
 "                 two passes as one kernel (layout name +fused)\n"
+"  --values       table1: also BUFFER with (rest, k) in every slot rather\n"
+"                 than a spring-class byte (layout name buffer-values)\n"
 "  --quick        tiny sizes and few steps: a smoke test\n"
 "  --csv FILE     also write one CSV row per run to FILE\n"
 "  -h, --help     this text\n");
@@ -127,6 +129,8 @@ int main(int argc, char **argv)
       mode = 1, takes = 0;
     } else if (!strcmp(w, "--fused")) {
       o.fused = 1, takes = 0;
+    } else if (!strcmp(w, "--values")) {
+      o.values = 1, takes = 0;
     } else if (!strcmp(w, "--quick")) {
       o.quick = 1, takes = 0;
     } else if (!v) {

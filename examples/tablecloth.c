@@ -28,13 +28,15 @@ static int usage(const char *argv0)
           "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
           "[-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
-          "[-S none|provot|velocity] [-p PARTS [-c STEPS] [-O]] [-f] "
+          "[-S none|provot|velocity] [-p PARTS [-c STEPS] [-O]] [-f] [-V] "
           "[-o OUT.obj]\n"
           "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n"
           "  -c: weigh the devices by a calibration run of STEPS steps\n"
           "  -O: split, all kernels then all copies (default: the points\n"
           "      other devices read first, their copies beside the rest)\n"
-          "  -f: both passes of a step in one kernel (same result)\n",
+          "  -f: both passes of a step in one kernel (same result)\n"
+          "  -V: BUFFER with rest length and stiffness in every slot, not a\n"
+          "      spring-class byte (same result)\n",
           argv0);
   return 2;
 }
@@ -104,7 +106,7 @@ int main(int argc, char **argv)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   int in = 0, strain = 0;
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:fOh")) != -1) {
+  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:fOVh")) != -1) {
     switch (opt) {
     case 'n': n = atoi(optarg); break;
     case 's': steps = atoi(optarg); break;
@@ -131,6 +133,7 @@ int main(int argc, char **argv)
     case 'c': o.calibrate_steps = atoi(optarg); break;
     case 'f': o.fused = 1; break;
     case 'O': o.overlap = 0; break;
+    case 'V': o.classes = 0; break;
     case 'S':
       if ((strain = pick(optarg, strains, 3)) < 0) return usage(argv[0]);
       o.strain = (msocl_strain)strain;

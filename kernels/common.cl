@@ -5,6 +5,8 @@
  *   MSOCL_LAYOUT_IMAGE2D | MSOCL_LAYOUT_BUFFER | MSOCL_LAYOUT_GRID
  *                          where the springs live
  *   MSOCL_SLOTS=n          slots per point (BUFFER)
+ *   MSOCL_CLASSES          BUFFER: a class byte per slot (rk) naming a
+ *                          (rest, k, dashpot) float4 (dmp), not values
  *   MSOCL_DAMPING          per-spring dashpots (a slot table of coefficients)
  *   MSOCL_VISCOUS          viscous damping -c v
  *   MSOCL_AIR              air resistance: velocity times a factor a step
@@ -34,6 +36,13 @@
 #define MSOCL_PINNED(p4) 0
 #endif
 
+/* BUFFER's per-slot values, or class bytes and the classes' values */
+#ifdef MSOCL_CLASSES
+#define MSOCL_RK __global const uchar *rk, __global const float4 *dmp
+#else
+#define MSOCL_RK __global const float2 *rk, __global const float *dmp
+#endif
+
 /* Connectivity parameters of every gathering kernel, and the same names to
  * pass them on. */
 #if defined(MSOCL_LAYOUT_IMAGE2D)
@@ -60,14 +69,11 @@ __constant int msocl_grid_rest[12] = {1, 0, 0, 1, 2, 3, 3, 2, 5, 4, 4, 5};
  * point i's from spill[i] to spill[i + 1]; MSOCL_DEGREE: the most any
  * point has. */
 #define MSOCL_MAX_SLOTS MSOCL_DEGREE
-#define MSOCL_CONN                                                            \
-  __global const int *nbr, __global const float2 *rk,                        \
-      __global const float *dmp, __global const int *spill
+#define MSOCL_CONN __global const int *nbr, MSOCL_RK, __global const int *spill
 #define MSOCL_CONN_ARGS nbr, rk, dmp, spill
 #else
 #define MSOCL_MAX_SLOTS MSOCL_SLOTS
-#define MSOCL_CONN                                                            \
-  __global const int *nbr, __global const float2 *rk, __global const float *dmp
+#define MSOCL_CONN __global const int *nbr, MSOCL_RK
 #define MSOCL_CONN_ARGS nbr, rk, dmp
 #endif
 /* The slots msocl_force takes four at a time (BUFFER: the table's). */
@@ -75,6 +81,29 @@ __constant int msocl_grid_rest[12] = {1, 0, 0, 1, 2, 3, 3, 2, 5, 4, 4, 5};
 #define MSOCL_TABLE_SLOTS MSOCL_MAX_SLOTS
 #else
 #define MSOCL_TABLE_SLOTS MSOCL_SLOTS
+#endif
+
+#if !defined(MSOCL_LAYOUT_IMAGE2D) && !defined(MSOCL_LAYOUT_GRID)
+/* BUFFER: rest length, stiffness and dashpot of table entry `at` (the
+ * class's values are the very floats a slot would hold). */
+static void msocl_values(MSOCL_RK, int at, float *rest, float *k, float *c)
+{
+#ifdef MSOCL_CLASSES
+  float4 v = dmp[rk[at]];
+  *rest = v.x;
+  *k = v.y;
+  *c = v.z;
+#else
+  float2 e = rk[at];
+  *rest = e.x;
+  *k = e.y;
+#ifdef MSOCL_DAMPING
+  *c = dmp[at];
+#else
+  *c = 0.0f;
+#endif
+#endif
+}
 #endif
 
 /* Slot s of point i: the other end *j, rest length, stiffness and dashpot
@@ -137,15 +166,8 @@ static int msocl_slot(MSOCL_CONN, int i, int s, int n, int *j, float *rest,
     at = MSOCL_SLOTS * n + o;
   }
 #endif
-  float2 e = rk[at];
   *j = nbr[at];
-  *rest = e.x;
-  *k = e.y;
-#ifdef MSOCL_DAMPING
-  *c = dmp[at];
-#else
-  *c = 0.0f;
-#endif
+  msocl_values(rk, dmp, at, rest, k, c);
   return *j != i;
 #endif
 }
@@ -317,18 +339,19 @@ static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
    * the same sums, in the same order, as a table long enough for all */
   for (int o = spill[i]; o < spill[i + 1]; o++) {
     const int at = MSOCL_SLOTS * n + o;
-    const float2 e = rk[at];
+    float rest, k, c;
+    msocl_values(rk, dmp, at, &rest, &k, &c);
     const float4 q = pos[nbr[at]];
     float dx = q.x - p.x, dy = q.y - p.y, dz = q.z - p.z;
     float len2 = dx * dx + dy * dy + dz * dz, len = MSOCL_SQRT(len2);
-    float t = e.y * MSOCL_DIV(len - e.x, len);
+    float t = k * MSOCL_DIV(len - rest, len);
     /* adding the zero too, as a lane does: -0 + 0 is +0 */
     fx += len > 0.0f ? t * dx : 0.0f;
     fy += len > 0.0f ? t * dy : 0.0f;
     fz += len > 0.0f ? t * dz : 0.0f;
 #ifdef MSOCL_DAMPING
     const float4 w = vel[nbr[at]] - v;
-    float u = dmp[at] * MSOCL_DIV(w.x * dx + w.y * dy + w.z * dz, len2);
+    float u = c * MSOCL_DIV(w.x * dx + w.y * dy + w.z * dz, len2);
     fx += len2 > 0.0f ? u * dx : 0.0f;
     fy += len2 > 0.0f ? u * dy : 0.0f;
     fz += len2 > 0.0f ? u * dz : 0.0f;

@@ -103,6 +103,11 @@ int msocl__device_query(cl_platform_id p, cl_device_id d,
   else info->type = MSOCL_DEVICE_OTHER;
   info->compute_units = units;
   info->global_mem = mem;
+  cl_ulong cache = 0;
+  if (clGetDeviceInfo(d, CL_DEVICE_GLOBAL_MEM_CACHE_SIZE, sizeof cache,
+                      &cache, NULL) != CL_SUCCESS)
+    cache = 0; /* not given: no cache assumed */
+  info->cache = cache;
   info->image_support = images != CL_FALSE;
   info->image2d_max_width = info->image2d_max_height = 0;
   if (info->image_support) {

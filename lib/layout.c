@@ -7,6 +7,7 @@
 #include "layout.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -145,12 +146,55 @@ int msocl__table_slots(const struct msocl__adjacency *adj, int want)
   return width < top ? width : top;
 }
 
+/* The springs' distinct (rest, k, dashpot) classes, compared bit for bit
+ * so a class holds exactly the floats its slots would: tab[0] is a free
+ * slot's zeros, cls[sp] spring sp's class. Returns how many, or 0 past
+ * 256 (a mesh whose every edge has its own rest length). */
+static int spring_classes(const msocl_model *m, int damped, cl_float4 *tab,
+                          unsigned char *cls)
+{
+  enum { BUCKETS = 1024 }; /* open addressing, at most a quarter full */
+  int bucket[BUCKETS], nc = 0;
+  for (int b = 0; b < BUCKETS; b++)
+    bucket[b] = -1;
+  for (int sp = -1; sp < m->ns; sp++) {
+    float v[3] = {0.0f, 0.0f, 0.0f};
+    if (sp >= 0) {
+      v[0] = m->rest[sp];
+      v[1] = m->k[sp];
+      v[2] = damped ? m->damp[sp] : 0.0f;
+    }
+    uint32_t w[3];
+    memcpy(w, v, sizeof w);
+    uint32_t h = (w[0] * 2654435761u) ^ (w[1] * 2246822519u) ^
+                 (w[2] * 3266489917u);
+    int b = (int)((h ^ (h >> 15)) % BUCKETS), c = -1;
+    for (; bucket[b] >= 0; b = (b + 1) % BUCKETS)
+      if (!memcmp(tab[bucket[b]].s, v, sizeof v)) {
+        c = bucket[b];
+        break;
+      }
+    if (c < 0) {
+      if (nc == 256)
+        return 0;
+      c = bucket[b] = nc++;
+      memcpy(tab[c].s, v, sizeof v);
+      tab[c].s[3] = 0.0f;
+    }
+    if (sp >= 0)
+      cls[sp] = (unsigned char)c;
+  }
+  return nc;
+}
+
 /* Slot-major arrays: slot s of point i at s * n + i, so neighbouring work
  * items read neighbouring words; past l->slots, a point's further springs
- * follow the table, point i's from spill[i] on. */
+ * follow the table, point i's from spill[i] on. With classes, a slot's
+ * (rest, k, dashpot) is a byte naming its class: 5 bytes a slot, not 12
+ * (16 with dashpots), and the same floats. */
 static int build_buffers(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *a, int damped,
-                         struct msocl__layout *l)
+                         int classes, struct msocl__layout *l)
 {
   const size_t n = (size_t)m->n, S = (size_t)(l->slots > 0 ? l->slots : 1);
   int *spill = malloc((n + 1) * sizeof *spill);
@@ -162,11 +206,21 @@ static int build_buffers(struct msocl__device *dev, const msocl_model *m,
     spill[i + 1] = spill[i] + (d > (int)S ? d - (int)S : 0);
   }
   const size_t total = S * n + (size_t)spill[n];
+  /* auto: classes once the values outgrow half the cache, where memory
+   * bandwidth, not arithmetic, bounds the step */
+  if (classes < 0)
+    classes = (double)total * (damped ? 16 : 12) >
+              0.5 * (double)dev->info.cache;
+  cl_float4 tab[256];
+  unsigned char *sc = classes ? malloc(m->ns > 0 ? (size_t)m->ns : 1) : NULL;
+  l->classes = sc ? spring_classes(m, damped, tab, sc) : 0;
+  const int values = l->classes == 0;
   int *nbr = malloc(total * sizeof *nbr);
-  float *rk = calloc(2 * total, sizeof *rk);
-  float *dmp = calloc(damped ? total : 1, sizeof *dmp);
+  float *rk = values ? calloc(2 * total, sizeof *rk) : NULL;
+  float *dmp = values ? calloc(damped ? total : 1, sizeof *dmp) : NULL;
+  unsigned char *cls = values ? NULL : calloc(total, 1); /* 0: free */
   int rc = MSOCL_OK;
-  if (!nbr || !rk || !dmp) {
+  if (!nbr || (values && (!rk || !dmp)) || (!values && !cls)) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "connectivity buffers (%zu slots)",
                      total);
     goto out;
@@ -182,16 +236,24 @@ static int build_buffers(struct msocl__device *dev, const msocl_model *m,
       size_t at = (size_t)s < S ? (size_t)s * n + i
                                 : S * n + (size_t)spill[i] + (size_t)s - S;
       nbr[at] = a->other[a->off[i] + s];
+      if (!values) {
+        cls[at] = sc[sp];
+        continue;
+      }
       rk[2 * at] = m->rest[sp];
       rk[2 * at + 1] = m->k[sp];
       if (damped)
         dmp[at] = m->damp[sp];
     }
   l->con = make_buffer(dev, total * sizeof *nbr, nbr, &rc);
-  if (rc == MSOCL_OK)
+  if (rc == MSOCL_OK && values)
     l->rk = make_buffer(dev, 2 * total * sizeof *rk, rk, &rc);
-  if (rc == MSOCL_OK)
+  if (rc == MSOCL_OK && values)
     l->damp = make_buffer(dev, (damped ? total : 1) * sizeof *dmp, dmp, &rc);
+  if (rc == MSOCL_OK && !values)
+    l->rk = make_buffer(dev, total, cls, &rc);
+  if (rc == MSOCL_OK && !values)
+    l->damp = make_buffer(dev, (size_t)l->classes * sizeof *tab, tab, &rc);
   if (rc == MSOCL_OK && spill[n] > 0)
     l->spill = make_buffer(dev, (n + 1) * sizeof *spill, spill, &rc);
 out:
@@ -199,6 +261,8 @@ out:
   free(nbr);
   free(rk);
   free(dmp);
+  free(cls);
+  free(sc);
   return rc;
 }
 
@@ -263,7 +327,7 @@ int msocl__layout_fits(const msocl_model *m, msocl_layout kind)
 
 int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *adj,
-                         msocl_layout kind, int table_slots,
+                         msocl_layout kind, int table_slots, int classes,
                          struct msocl__layout *out)
 {
   memset(out, 0, sizeof *out);
@@ -283,7 +347,7 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
   } else if (out->kind == MSOCL_LAYOUT_BUFFER) {
     out->degree = adj->max_degree;
     out->slots = msocl__table_slots(adj, table_slots);
-    rc = build_buffers(dev, m, adj, has_damping(m), out);
+    rc = build_buffers(dev, m, adj, has_damping(m), classes, out);
   } else if (out->kind == MSOCL_LAYOUT_GRID) {
     if (m->grid.nx < 2 || m->grid.ns != m->ns)
       return msocl__fail(MSOCL_ERR_BAD_VALUE,

@@ -19,8 +19,14 @@ struct msocl__layout {
   int tex_w, tex_h;  /* IMAGE2D: point i is texel (i % tex_w, i / tex_w) */
   cl_mem con;        /* IMAGE2D: (4W)x(4H) RGBA image; BUFFER: int slots;
                         EDGES: int2 end points per spring */
-  cl_mem rk;         /* BUFFER, EDGES: float2 (rest, k) per slot/spring */
-  cl_mem damp;       /* dashpot coefficients per slot (or a 1-item dummy) */
+  cl_mem rk;         /* BUFFER, EDGES: float2 (rest, k) per slot/spring;
+                        BUFFER with classes: a uchar class per slot */
+  cl_mem damp;       /* dashpot coefficients per slot (or a 1-item dummy);
+                        BUFFER with classes: the classes' float4 (rest, k,
+                        dashpot, 0) */
+  int classes;       /* BUFFER: the springs' distinct (rest, k, dashpot)
+                        classes, the free slot's zeros first; 0: values in
+                        every slot */
 };
 
 /* The layout AUTO stands for on this device. */
@@ -41,9 +47,13 @@ int msocl__layout_fits(const msocl_model *m, msocl_layout kind);
  * times every point. `want` > 0 chooses (capped at the largest degree). */
 int msocl__table_slots(const struct msocl__adjacency *adj, int want);
 
+/* classes (options.classes): BUFFER may number its springs' (rest, k,
+ * dashpot) classes when there are at most 256 (5 bytes a slot instead of
+ * 12 or 16); 1: whenever they fit, 0: never, -1: when the values would
+ * not fit in half the device's cache. */
 int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *adj,
-                         msocl_layout kind, int table_slots,
+                         msocl_layout kind, int table_slots, int classes,
                          struct msocl__layout *out);
 void msocl__layout_release(struct msocl__layout *l);
 

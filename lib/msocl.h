@@ -89,6 +89,7 @@ typedef struct {
   int image_support;
   size_t image2d_max_width, image2d_max_height;
   int fp64;
+  unsigned long long cache; /* global memory cache, bytes (0: none given) */
 } msocl_device_info;
 
 /* Every device of every platform, in (P, D) order. Free with free(). */
@@ -318,6 +319,17 @@ typedef struct {
    * memory then overlap the kernels on the rest (bitwise the same
    * result); 0: all the kernels, then the copies. */
   int overlap;
+  /* BUFFER's spring classes. When the model's springs come in at most 256
+   * classes of (rest length, stiffness, dashpot) - a cloth, a lattice, a
+   * solid - a slot may hold its class's one-byte number instead of the
+   * values: 5 bytes a slot instead of 12 (16 with dashpots), the same
+   * floats, bitwise the same result, one more (cached) lookup. 1: classes
+   * whenever they fit; 0: values in every slot; -1 (default): classes when
+   * the table of values would not fit in half the device's cache - there
+   * the step is bound by memory bandwidth, and fewer bytes are faster
+   * (docs/PERFORMANCE.md: 17% at 512x512 on PoCL, 3-14% slower at
+   * 96x96-128x128, whose table stays in cache). */
+  int classes;
 } msocl_sim_options;
 
 MSOCL_EXTERN void msocl_sim_options_init(msocl_sim_options *o);
@@ -333,6 +345,11 @@ MSOCL_EXTERN void msocl_sim_destroy(msocl_sim *s);
 MSOCL_EXTERN int msocl_sim_step(msocl_sim *s, int n);
 MSOCL_EXTERN int msocl_sim_point_count(const msocl_sim *s, int *n);
 MSOCL_EXTERN int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout);
+/* How the layout holds the springs: slots a point in its table (BUFFER
+ * and IMAGE2D; GRID: the 12 implicit neighbours; EDGES: 0) and BUFFER's
+ * spring classes (0: the values in every slot). Either may be NULL. */
+MSOCL_EXTERN int msocl_sim_connectivity(const msocl_sim *s, int *slots,
+                                        int *classes);
 MSOCL_EXTERN int msocl_sim_device_info(const msocl_sim *s,
                                        msocl_device_info *info);
 /* 3 floats per point. */

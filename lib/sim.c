@@ -27,6 +27,7 @@ void msocl_sim_options_init(msocl_sim_options *o)
   o->check_every = 100;
   o->renumber = 1;
   o->overlap = 1;
+  o->classes = -1;
   /* Near its stability limit a symplectic method's energy swings by up to
    * 1 / (1 - h w / 2) (10x at 0.9 of the limit) without being unstable;
    * a blow-up grows exponentially and passes 100x within a few checks. */
@@ -50,13 +51,14 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
   /* EDGES shares the BUFFER macros with no slots: the gathering kernels
    * it does not use still compile, to nothing. */
   int len = snprintf(
-      buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s",
+      buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s",
       s->lay.kind == MSOCL_LAYOUT_IMAGE2D ? "-DMSOCL_LAYOUT_IMAGE2D"
       : s->lay.kind == MSOCL_LAYOUT_GRID  ? "-DMSOCL_LAYOUT_GRID"
                                           : "-DMSOCL_LAYOUT_BUFFER",
       s->lay.kind == MSOCL_LAYOUT_EDGES ? 0
                                         : s->lay.slots > 0 ? s->lay.slots : 1,
       s->lay.degree, s->lay.spill ? " -DMSOCL_SPILL" : "",
+      s->lay.classes ? " -DMSOCL_CLASSES" : "",
       damped ? " -DMSOCL_DAMPING" : "",
       m->viscous != 0.0f ? " -DMSOCL_VISCOUS" : "",
       m->air != 1.0f ? " -DMSOCL_AIR" : "",
@@ -319,7 +321,7 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
   rc = msocl__adjacency_build(m, &adj);
   if (rc == MSOCL_OK)
     rc = msocl__layout_create(s->dev, m, &adj, o->layout, o->buffer_slots,
-                              &s->lay);
+                              o->classes, &s->lay);
   if (rc == MSOCL_OK)
     rc = make_buffers(s, m);
   char opt[512];

@@ -83,6 +83,9 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
                        "fused runs symplectic Euler's two passes on a gather "
                        "layout, without velocity strain limiting (which "
                        "works between the passes)");
+  if (o->classes < -1 || o->classes > 1)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "classes is %d: -1 (auto), 0 or 1", o->classes);
   if (o->buffer_slots < 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "buffer_slots is %d: >= 0",
                        o->buffer_slots);

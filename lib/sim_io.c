@@ -138,6 +138,17 @@ int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout)
   return MSOCL_OK;
 }
 
+int msocl_sim_connectivity(const msocl_sim *s, int *slots, int *classes)
+{
+  if (!s)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
+  if (slots)
+    *slots = s->part[0]->lay.slots;
+  if (classes)
+    *classes = s->part[0]->lay.classes;
+  return MSOCL_OK;
+}
+
 int msocl_sim_device_info(const msocl_sim *s, msocl_device_info *info)
 {
   if (!s || !info)

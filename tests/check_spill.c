@@ -1,7 +1,9 @@
 /* BUFFER's slot table and its spill: a point's springs past the table's
  * width go in a list of its own, summed in the same order, so any width
  * gives bitwise the same motion; a hub point (a solid's centre, joined to
- * every surface point) no longer makes the table hub-degree x points. */
+ * every surface point) no longer makes the table hub-degree x points.
+ * And its spring classes: a slot's byte naming its (rest, k, dashpot),
+ * bitwise the values in every slot. */
 #include "layout.h" /* msocl__table_slots */
 #include "scenes.h"
 
@@ -45,17 +47,20 @@ static msocl_model *jello(void)
 
 struct state {
   int n;
+  int classes; /* the sim's spring classes (0: values in the slots) */
   float *pos, *vel;
 };
 
-static struct state run(const msocl_model *m, msocl_integrator in,
-                        int table, int steps)
+/* table: options.buffer_slots; classes: options.classes */
+static struct state run_classes(const msocl_model *m, msocl_integrator in,
+                                int table, int classes, int steps)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.layout = MSOCL_LAYOUT_BUFFER;
   o.integrator = in;
   o.buffer_slots = table;
+  o.classes = classes;
   ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &o.dt),
                    MSOCL_OK);
   float edt;
@@ -71,12 +76,19 @@ static struct state run(const msocl_model *m, msocl_integrator in,
   ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
   struct state st;
   msocl_sim_point_count(s, &st.n);
+  ck_assert_int_eq(msocl_sim_connectivity(s, NULL, &st.classes), MSOCL_OK);
   st.pos = malloc(3 * (size_t)st.n * sizeof(float));
   st.vel = malloc(3 * (size_t)st.n * sizeof(float));
   ck_assert_int_eq(msocl_sim_read_positions(s, st.pos), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_read_velocities(s, st.vel), MSOCL_OK);
   msocl_sim_destroy(s);
   return st;
+}
+
+static struct state run(const msocl_model *m, msocl_integrator in,
+                        int table, int steps)
+{
+  return run_classes(m, in, table, 1, steps);
 }
 
 static void same(struct state a, struct state b, const char *what)
@@ -137,6 +149,122 @@ START_TEST(damped_lattice_spills_bitwise)
   }
   free(full.pos);
   free(full.vel);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* _i: the integrator. Classes against values in every slot: the undamped
+ * ball with its hub spilling past a table of 8 (classes in the spill
+ * too), and the damped jello (a class holds the dashpot). */
+START_TEST(classes_are_bitwise_the_values)
+{
+  msocl_integrator in = (msocl_integrator)_i;
+  msocl_model *m[2] = {in == MSOCL_EXPLICIT_EULER ? NULL : ball(), jello()};
+  const int table[2] = {8, 0};
+  const char *name[2] = {"ball, table of 8", "damped jello"};
+  for (int q = 0; q < 2; q++) {
+    if (!m[q])
+      continue; /* undamped: forward Euler grows; the jello covers it */
+    struct state values = run_classes(m[q], in, table[q], 0, 200);
+    struct state classes = run_classes(m[q], in, table[q], 1, 200);
+    printf("%s, %s: %d spring classes\n", name[q], names[in],
+           classes.classes);
+    ck_assert_int_eq(values.classes, 0);
+    ck_assert_int_gt(classes.classes, 1);
+    char what[96];
+    snprintf(what, sizeof what, "%s, %s, classes", name[q], names[in]);
+    same(values, classes, what);
+    free(values.pos);
+    free(values.vel);
+    msocl_model_destroy(m[q]);
+  }
+}
+END_TEST
+
+/* A chain whose links all differ in rest length: 256 classes at most (the
+ * free slot's zeros and 255 links) fit a byte; one more link, and every
+ * slot holds its values again - bitwise the same either way. */
+START_TEST(classes_fit_a_byte)
+{
+  for (int links = 255; links <= 256; links++) {
+    msocl_model *m = NULL;
+    ck_assert_int_eq(msocl_model_create(&m), MSOCL_OK);
+    const int n = links + 1;
+    float *xyz = calloc(3 * (size_t)n, sizeof *xyz),
+          *mass = malloc((size_t)n * sizeof *mass),
+          *k = malloc((size_t)links * sizeof *k),
+          *rest = malloc((size_t)links * sizeof *rest);
+    int *ij = malloc(2 * (size_t)links * sizeof *ij);
+    for (int i = 0; i < n; i++) {
+      xyz[3 * i] = 0.01f * (float)i;
+      mass[i] = 0.01f;
+    }
+    for (int s = 0; s < links; s++) {
+      ij[2 * s] = s;
+      ij[2 * s + 1] = s + 1;
+      k[s] = 50.0f;
+      rest[s] = 0.009f + 1e-5f * (float)s; /* each its own */
+    }
+    ck_assert_int_eq(msocl_model_add_points(m, n, xyz, mass, NULL),
+                     MSOCL_OK);
+    ck_assert_int_eq(msocl_model_add_springs(m, links, ij, k, rest, NULL),
+                     MSOCL_OK);
+    ck_assert_int_eq(msocl_model_pin(m, 0, 1), MSOCL_OK);
+    struct state values = run_classes(m, MSOCL_SYMPLECTIC_EULER, 0, 0, 300);
+    struct state classes = run_classes(m, MSOCL_SYMPLECTIC_EULER, 0, 1, 300);
+    ck_assert_int_eq(classes.classes, links == 255 ? 256 : 0);
+    char what[64];
+    snprintf(what, sizeof what, "chain of %d distinct links", links);
+    same(values, classes, what);
+    free(values.pos);
+    free(values.vel);
+    free(xyz); free(mass); free(k); free(rest); free(ij);
+    msocl_model_destroy(m);
+  }
+}
+END_TEST
+
+/* options.classes = -1 (the default) takes classes once the table of
+ * values (12 B a slot, undamped) outgrows half the device's reported
+ * cache: a 16^2 cloth stays with values, a 512^2 one - 38 MB of values
+ * on this machine's 36 MiB cache - gets classes. The expectation follows
+ * the device's own figure; only the rule is fixed. */
+START_TEST(classes_auto)
+{
+  const int sizes[2] = {16, 512};
+  for (int q = 0; q < 2; q++) {
+    msocl_model *m = scene_tablecloth(sizes[q]);
+    msocl_sim_options o;
+    msocl_sim_options_init(&o);
+    ck_assert_int_eq(o.classes, -1);
+    o.layout = MSOCL_LAYOUT_BUFFER;
+    o.dt = 1e-4f;
+    msocl_sim *s = NULL;
+    int rc = msocl_sim_create(&s, rt, m, &o);
+    ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+    int slots, classes, n;
+    msocl_device_info info;
+    ck_assert_int_eq(msocl_sim_connectivity(s, &slots, &classes), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_device_info(s, &info), MSOCL_OK);
+    msocl_sim_point_count(s, &n);
+    double values = 12.0 * slots * n;
+    printf("%dx%d cloth: %.1f MB of values, cache %.1f MiB: %d classes\n",
+           sizes[q], sizes[q], values / 1e6, (double)info.cache / 1048576.0,
+           classes);
+    if (values > 0.5 * (double)info.cache)
+      ck_assert_int_gt(classes, 1);
+    else
+      ck_assert_int_eq(classes, 0);
+    msocl_sim_destroy(s);
+    msocl_model_destroy(m);
+  }
+  msocl_model *m = scene_tablecloth(8);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.classes = 2;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_ptr_null(s);
   msocl_model_destroy(m);
 }
 END_TEST
@@ -256,6 +384,9 @@ int main(void)
                       MSOCL_SYMPLECTIC_EULER, MSOCL_IMPLICIT_EULER + 1);
   tcase_add_loop_test(tc, damped_lattice_spills_bitwise,
                       MSOCL_SYMPLECTIC_EULER, MSOCL_IMPLICIT_EULER + 1);
+  tcase_add_loop_test(tc, classes_are_bitwise_the_values, 0, 5);
+  tcase_add_test(tc, classes_fit_a_byte);
+  tcase_add_test(tc, classes_auto);
   tcase_add_test(tc, split_ball_bitwise);
   tcase_add_test(tc, big_ball_fits);
   suite_add_tcase(su, tc);
