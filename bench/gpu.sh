@@ -14,8 +14,8 @@
 #              final meshes compared bit for bit (as make check does on
 #              PoCL; the GPU machine has no Check)            (seconds)
 #   table1     Table 1 on the GPU: 48..2048 per layout, with the one-kernel
-#              step (--fused) and BUFFER's values rows (--values), serial
-#              C beside it                              (about 6 min)
+#              step (--fused) and BUFFER's classes and values rows
+#              (--values), serial C beside it           (about 7 min)
 #   precision  the work-precision data on the GPU, both math modes (1 min)
 #   split      the tablecloth at 1024^2: GPU alone, PoCL's CPU alone, and
 #              split over both with calibrated weights, boundary first

@@ -39,8 +39,8 @@ struct bench_opts {
   int quick;                      /* --quick */
   int fused;                      /* --fused: also each gather layout's
                                      one-kernel step (table1) */
-  int values;                     /* --values: also BUFFER with values in
-                                     every slot, no classes (table1) */
+  int values;                     /* --values: also BUFFER with classes
+                                     and with values forced (table1) */
   const char *csv;                /* --csv */
 };
 

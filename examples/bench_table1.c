@@ -49,12 +49,15 @@ static double bytes_model(int layout, int slots, int classes,
   return (16 + 16 + 4 + conn + 16) + (32 + 16);
 }
 
-/* A row's variant of its layout: the two-pass step, the one-kernel step
- * (--fused), or BUFFER with values in every slot (--values). */
-enum { PLAIN, FUSED, VALUES, VARIANTS };
+/* A row's variant of its layout: the two-pass step (BUFFER: classes or
+ * values as the library chooses), the one-kernel step (--fused), or
+ * BUFFER with spring classes, and with values, forced (--values). */
+enum { PLAIN, FUSED, CLASSES, VALUES, VARIANTS };
 
 static const char *layout_name(int layout, int variant)
 {
+  if (variant == CLASSES)
+    return "buffer-classes";
   if (variant == VALUES)
     return "buffer-values";
   if (variant == FUSED)
@@ -268,7 +271,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
     so.device = dev;
     so.check_every = 0;
     so.fused = fused;
-    so.classes = variant != VALUES;
+    so.classes = variant == CLASSES ? 1 : variant == VALUES ? 0 : -1;
     rc = msocl_sim_create(&s, c->rt, m, &so);
     int table = slots, classes = 0;
     if (rc == MSOCL_OK)
@@ -304,12 +307,12 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
 }
 
 /* 1 where a layout runs in this variant: every layout plain, the gather
- * layouts fused with --fused, BUFFER with values with --values. */
+ * layouts fused with --fused, BUFFER's two forced variants with --values. */
 static int wanted(const struct bench_opts *o, int layout, int variant)
 {
   if (variant == FUSED)
     return o->fused && layout != MSOCL_LAYOUT_EDGES;
-  if (variant == VALUES)
+  if (variant == CLASSES || variant == VALUES)
     return o->values && layout == MSOCL_LAYOUT_BUFFER;
   return 1;
 }

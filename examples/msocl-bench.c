@@ -54,8 +54,9 @@ static int usage(FILE *f, int code)
 "  --copy-mib N   copy-bandwidth buffer size in MiB (default 256)\n"
 "  --fused        table1: also each gather layout with symplectic Euler's\n"
 "                 two passes as one kernel (layout name +fused)\n"
-"  --values       table1: also BUFFER with (rest, k) in every slot rather\n"
-"                 than a spring-class byte (layout name buffer-values)\n"
+"  --values       table1: also BUFFER with a spring-class byte in every\n"
+"                 slot (buffer-classes) and with (rest, k) in every slot\n"
+"                 (buffer-values), whatever the library would choose\n"
 "  --quick        tiny sizes and few steps: a smoke test\n"
 "  --csv FILE     also write one CSV row per run to FILE\n"
 "  -h, --help     this text\n");

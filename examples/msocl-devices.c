@@ -28,9 +28,10 @@ static void print_device(int i, const msocl_device_info *d) {
              d->image2d_max_height);
   else
     snprintf(images, sizeof images, "no images");
-  printf("%-3d %d:%-3d %-11s %4u  %8llu  %-21s %-4s  %s [%s]\n", i,
+  printf("%-3d %d:%-3d %-11s %4u  %8llu  %9.1f  %-21s %-4s  %s [%s]\n", i,
          d->platform_index, d->device_index, type_name(d->type),
-         d->compute_units, d->global_mem / (1024ULL * 1024ULL), images,
+         d->compute_units, d->global_mem / (1024ULL * 1024ULL),
+         (double)d->cache / (1024.0 * 1024.0), images,
          d->fp64 ? "yes" : "no", d->name, d->platform_name);
 }
 
@@ -58,8 +59,9 @@ int main(int argc, char **argv) {
   printf("libmsocl %s\n", msocl_version_string());
   if ((rc = msocl_device_list(&devs, &ndevs)) != MSOCL_OK)
     return fail("listing devices", rc);
-  printf("%-3s %-5s %-11s %4s  %8s  %-21s %-4s  %s\n", "#", "P:D", "type",
-         "CUs", "MiB", "images", "fp64", "name [platform]");
+  printf("%-3s %-5s %-11s %4s  %8s  %9s  %-21s %-4s  %s\n", "#", "P:D",
+         "type", "CUs", "MiB", "cache MiB", "images", "fp64",
+         "name [platform]");
   for (i = 0; i < ndevs; i++) print_device(i, &devs[i]);
 
   /* No spec shows the default choice, which is what a program gets. */
