@@ -216,7 +216,7 @@ int main(int argc, char **argv)
       for (int d = 0; d < split.parts; d++)
         printf("  part %d (device %d, %d points): host %.3f s in transfers, "
                "%.3f s waiting for the device; device %.3f s in kernels, "
-               "%.3g s in copies (%.3g s of reads beside the interior)\n",
+               "%.3g s in copies (%.3g s of them beside the interior)\n",
                d, split.device[d], split.count[d],
                split.part_exchange_seconds[d], split.part_wait_seconds[d],
                split.compute_seconds[d], split.copy_seconds[d],

@@ -161,8 +161,7 @@ int msocl__exchange_wait(msocl_sim *s, int d, struct msocl__mark *m)
   cl_int err = n > 0 ? clWaitForEvents((cl_uint)n, x->rev[d]) : CL_SUCCESS;
   if (m && err == CL_SUCCESS) {
     for (int i = 0; i < n; i++)
-      m->read[i] = x->rev[d][i];
-    m->nread = n;
+      m->copy[m->ncopy++] = x->rev[d][i];
   } else {
     book(s, d, x->rev[d], n);
   }
@@ -179,6 +178,10 @@ int msocl__exchange_scatter(msocl_sim *s, int d)
   struct msocl__exchange *x = &s->x;
   msocl__engine *dst = s->part[d];
   msocl__exchange_settle(s, d);
+  /* boundary first: the last job's interior may still run beside these */
+  struct msocl__mark *m = x->overlap && x->nmark[d] > 0
+                              ? &x->mark[d][x->nmark[d] - 1]
+                              : NULL;
   for (int k = 0; k < x->npend[d]; k++) {
     const struct msocl__pending *p = &x->pend[d][k];
     for (int e = 0; e < s->nparts; e++) {
@@ -199,9 +202,12 @@ int msocl__exchange_scatter(msocl_sim *s, int d)
         MSOCL__CL(clEnqueueWriteBuffer(x->xq[d], x->recv[d][k], CL_FALSE, at,
                                        len, p->area + x->base[d][e], 0, NULL,
                                        w));
-        x->nwev[d]++;
         MSOCL__CL(clEnqueueCopyBuffer(dst->dev->queue, x->recv[d][k], p->buf,
                                       at, to, len, 1, w, NULL));
+        if (m) /* booked with the mark, not settled */
+          m->copy[m->ncopy++] = *w;
+        else
+          x->nwev[d]++;
       }
       x->stat[d].bytes += (double)len;
     }
@@ -232,17 +238,20 @@ void msocl__exchange_marks(msocl_sim *s, int d, int keep)
       x->stat[d].compute_seconds += msocl__event_span(m->ev[0], m->ev[1]);
       end = stamp(m->ev[1], CL_PROFILING_COMMAND_END);
     }
-    /* each read's time before the interior's end ran beside it */
-    for (int r = 0; r < m->nread; r++) {
-      cl_ulong a = stamp(m->read[r], CL_PROFILING_COMMAND_START),
-               b = stamp(m->read[r], CL_PROFILING_COMMAND_END);
+    /* each copy's time before the interior's end ran beside it */
+    if (m->ncopy > 0 && clWaitForEvents((cl_uint)m->ncopy, m->copy) !=
+                            CL_SUCCESS)
+      end = 0;
+    for (int r = 0; r < m->ncopy; r++) {
+      cl_ulong a = stamp(m->copy[r], CL_PROFILING_COMMAND_START),
+               b = stamp(m->copy[r], CL_PROFILING_COMMAND_END);
       if (b > end)
         b = end;
       if (b > a)
         x->stat[d].hidden_seconds += 1e-9 * (double)(b - a);
     }
-    book(s, d, m->read, m->nread);
-    m->nread = 0;
+    book(s, d, m->copy, m->ncopy);
+    m->ncopy = 0;
     for (int q = 0; q < 2; q++)
       if (m->ev[q])
         clReleaseEvent(m->ev[q]);

@@ -146,9 +146,9 @@ void msocl__exchange_free(msocl_sim *s)
       for (int q = 0; q < 2; q++)
         if (m->ev[q])
           clReleaseEvent(m->ev[q]);
-      for (int r = 0; r < m->nread; r++)
-        clReleaseEvent(m->read[r]);
-      m->nread = 0;
+      for (int r = 0; r < m->ncopy; r++)
+        clReleaseEvent(m->copy[r]);
+      m->ncopy = 0;
     }
     x->nmark[d] = 0;
     if (x->xq[d]) {

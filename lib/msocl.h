@@ -391,8 +391,9 @@ typedef struct {
    * read, which its phases run on before the rest; 0 when off. */
   int overlap;
   double boundary_points[16];
-  /* of each part's copy time, the device time of its reads that ran
-   * while its interior's kernels still did (from the same stamps) */
+  /* of each part's copy time, the device time of its copies (reads of
+   * its boundary, writes of its halo) that ran while its interior's
+   * kernels still did (from the same stamps) */
   double hidden_copy_seconds[16];
   double exchange_seconds;     /* the largest part_exchange_seconds */
   double wait_seconds;         /* the largest part_wait_seconds */

@@ -84,15 +84,16 @@ struct msocl__xstat {
   double host_seconds; /* host time queuing and reading them */
   double wait_seconds; /* host time waiting for the device */
   double compute_seconds; /* device time of its phases' kernels */
-  double hidden_seconds;  /* boundary first: its reads' device time
+  double hidden_seconds;  /* boundary first: its copies' device time
                              while its interior still ran */
 };
 
-/* A job's markers around its phases, and its reads (booked with them). */
+/* A job's markers around its phases, and the copies that may run beside
+ * its interior, booked with them: its reads, and the next job's writes. */
 struct msocl__mark {
   cl_event ev[2];
-  cl_event read[MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
-  int nread;
+  cl_event copy[2 * MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
+  int ncopy;
 };
 
 /* Compute spans of a job's markers kept before their device time is read
@@ -159,10 +160,11 @@ struct msocl_sim {
  * current staging set (d's queue must be finished), and what d will
  * receive; send: the same queued behind d's work so far, without waiting
  * (boundary first); wait: waits for send's reads, then books them or,
- * given a job's mark, leaves them to it; scatter: queues the
- * writes into d's halos; settle: waits for the writes and books their
- * device time; marks: books the compute spans of finished jobs, all but
- * the last `keep`, and how much of their reads ran beside them. */
+ * given a job's mark, leaves them to it; scatter: queues the writes into
+ * d's halos (boundary first, left to the last job's mark while its
+ * interior may run); settle: waits for the writes and books their device
+ * time; marks: books the compute spans of finished jobs, all but the last
+ * `keep`, and how much of their copies ran beside them. */
 int msocl__exchange_plan(msocl_sim *s);
 void msocl__exchange_free(msocl_sim *s);
 int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask);

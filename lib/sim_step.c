@@ -144,7 +144,7 @@ static int job(void *ctx, int d)
   struct msocl__mark *m = &x->mark[d][x->nmark[d]];
   cl_event *mark = m->ev;
   mark[0] = mark[1] = NULL;
-  m->nread = 0;
+  m->ncopy = 0;
   if (rc == MSOCL_OK && ph < end &&
       clEnqueueMarkerWithWaitList(e->dev->queue, 0, NULL, &mark[0]) ==
           CL_SUCCESS)

@@ -263,11 +263,11 @@ START_TEST(split_report_and_normals)
     ck_assert_double_gt(info.part_wait_seconds[d], 0.0);
     ck_assert_double_gt(info.part_exchange_seconds[d], 0.0);
     ck_assert_double_gt(info.compute_seconds[d], 0.0);
-    /* the reads beside the interior are part of the copies */
+    /* the copies beside the interior are part of the copies */
     ck_assert_double_ge(info.hidden_copy_seconds[d], 0.0);
     ck_assert_double_le(info.hidden_copy_seconds[d], info.copy_seconds[d]);
     printf("part %d: device time %.4f s in kernels, %.3g s in copies "
-           "(%.3g s of reads beside the interior); host time %.4f s "
+           "(%.3g s of them beside the interior); host time %.4f s "
            "exchanging, %.4f s waiting\n",
            d, info.compute_seconds[d], info.copy_seconds[d],
            info.hidden_copy_seconds[d], info.part_exchange_seconds[d],
