@@ -9,8 +9,8 @@
 # Stages (default: all, in this order):
 #   devices    msocl-devices: what the machine offers
 #   verify     the kernels on the GPU agree with themselves: the tablecloth
-#              at 128^2 with BUFFER, GRID, IMAGE2D, the fused step and
-#              BUFFER with values in every slot (-V),
+#              at 128^2 with BUFFER, GRID, IMAGE2D, the fused step, and
+#              BUFFER with spring classes (-C) and values (-V) forced,
 #              final meshes compared bit for bit (as make check does on
 #              PoCL; the GPU machine has no Check)            (seconds)
 #   table1     Table 1 on the GPU: 48..2048 per layout, with the one-kernel
@@ -59,7 +59,7 @@ for stage in $stages; do
   verify)
     : > "$out/verify.txt"
     for run in "buffer -l buffer" "grid -l grid" "image2d -l image2d" \
-      "fused -l buffer -f" "values -l buffer -V"; do
+      "fused -l buffer -f" "classes -l buffer -C" "values -l buffer -V"; do
       set -- $run
       tag=$1
       shift
@@ -69,7 +69,7 @@ for stage in $stages; do
         -o "$out/verify_$tag.obj" >> "$out/verify.txt" 2>&1 ||
         echo "# exit status $?" >> "$out/verify.txt"
     done
-    for tag in grid image2d fused values; do
+    for tag in grid image2d fused classes values; do
       a=$out/verify_buffer.obj b=$out/verify_$tag.obj
       [ -f "$a" ] && [ -f "$b" ] || continue
       if cmp -s "$a" "$b"; then

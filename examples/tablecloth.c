@@ -28,15 +28,16 @@ static int usage(const char *argv0)
           "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
           "[-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
-          "[-S none|provot|velocity] [-p PARTS [-c STEPS] [-O]] [-f] [-V] "
+          "[-S none|provot|velocity] [-p PARTS [-c STEPS] [-O]] [-f] [-C|-V] "
           "[-o OUT.obj]\n"
           "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n"
           "  -c: weigh the devices by a calibration run of STEPS steps\n"
           "  -O: split, all kernels then all copies (default: the points\n"
           "      other devices read first, their copies beside the rest)\n"
           "  -f: both passes of a step in one kernel (same result)\n"
-          "  -V: BUFFER with rest length and stiffness in every slot, not a\n"
-          "      spring-class byte (same result)\n",
+          "  -C, -V: BUFFER with a spring-class byte in every slot, or with\n"
+          "      rest length and stiffness in every slot (default: the\n"
+          "      library's choice; same result)\n",
           argv0);
   return 2;
 }
@@ -106,7 +107,7 @@ int main(int argc, char **argv)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   int in = 0, strain = 0;
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:fOVh")) != -1) {
+  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:fOCVh")) != -1) {
     switch (opt) {
     case 'n': n = atoi(optarg); break;
     case 's': steps = atoi(optarg); break;
@@ -133,6 +134,7 @@ int main(int argc, char **argv)
     case 'c': o.calibrate_steps = atoi(optarg); break;
     case 'f': o.fused = 1; break;
     case 'O': o.overlap = 0; break;
+    case 'C': o.classes = 1; break;
     case 'V': o.classes = 0; break;
     case 'S':
       if ((strain = pick(optarg, strains, 3)) < 0) return usage(argv[0]);
@@ -166,13 +168,16 @@ int main(int argc, char **argv)
   msocl_layout layout;
   msocl_sim_device_info(s, &info);
   msocl_sim_layout(s, &layout);
-  printf("device: %s [%s]\nlayout: %s, math: %s, integrator: %s, strain "
+  int classes = 0;
+  msocl_sim_connectivity(s, NULL, &classes);
+  printf("device: %s [%s]\nlayout: %s%s, math: %s, integrator: %s, strain "
          "limiting: %s\n",
          info.name, info.platform_name,
          layout == MSOCL_LAYOUT_IMAGE2D  ? "image2d"
          : layout == MSOCL_LAYOUT_EDGES ? "edges"
          : layout == MSOCL_LAYOUT_GRID  ? "grid"
                                         : "buffer",
+         classes > 0 ? " (spring classes)" : "",
          o.math == MSOCL_MATH_RELAXED ? "relaxed" : "precise",
          integrators[in], strains[strain]);
   printf("grid %dx%d, %d steps of %.3g s (setup %.3f s)\n", n, n, steps,
