@@ -11,17 +11,22 @@
 
 #include <string.h>
 
+/* Device stamp `what` of a finished command (0 where none is given). */
+static cl_ulong stamp(cl_event ev, cl_profiling_info what)
+{
+  cl_ulong t = 0;
+  if (clGetEventProfilingInfo(ev, what, sizeof t, &t, NULL) != CL_SUCCESS)
+    return 0;
+  return t;
+}
+
 /* Seconds from profiling stamp `from` of finished command a to stamp `to`
  * of b (0 where the driver gives none). */
 static double stamps(cl_event a, cl_profiling_info from, cl_event b,
                      cl_profiling_info to)
 {
-  cl_ulong t0 = 0, t1 = 0;
-  if (clGetEventProfilingInfo(a, from, sizeof t0, &t0, NULL) != CL_SUCCESS ||
-      clGetEventProfilingInfo(b, to, sizeof t1, &t1, NULL) != CL_SUCCESS ||
-      t1 < t0)
-    return 0.0;
-  return 1e-9 * (double)(t1 - t0);
+  cl_ulong t0 = stamp(a, from), t1 = stamp(b, to);
+  return t0 > 0 && t1 > t0 ? 1e-9 * (double)(t1 - t0) : 0.0;
 }
 
 /* Device time of a finished command. */
@@ -143,15 +148,6 @@ int msocl__exchange_send(msocl_sim *s, int d, unsigned mask)
     err = clFlush(x->xq[d]);
   MSOCL__CL(err);
   return MSOCL_OK;
-}
-
-/* Device stamp `what` of a finished command (0 where none is given). */
-static cl_ulong stamp(cl_event ev, cl_profiling_info what)
-{
-  cl_ulong t = 0;
-  if (clGetEventProfilingInfo(ev, what, sizeof t, &t, NULL) != CL_SUCCESS)
-    return 0;
-  return t;
 }
 
 int msocl__exchange_wait(msocl_sim *s, int d, struct msocl__mark *m)
