@@ -41,6 +41,8 @@ struct bench_opts {
                                      one-kernel step (table1) */
   int values;                     /* --values: also BUFFER with classes
                                      and with values forced (table1) */
+  int planes;                     /* --planes: also GRID in planes and in
+                                     float4 forced (table1) */
   const char *csv;                /* --csv */
 };
 

@@ -34,10 +34,14 @@ static const char *const paper_cols[4] = {"CPU 1", "CPU 2", "GPU 1",
  * cached, and each point's force accumulator once (read + write, 32 B); the
  * point pass reads pos, vel, force, inv_mass (52 B), writes vel and clears
  * force (32 B). GRID: as BUFFER with no connectivity at all. All: the
- * position pass reads pos and vel (32 B) and writes pos (16 B). */
+ * position pass reads pos and vel (32 B) and writes pos (16 B). GRID in
+ * planes: 12 B a state, 4 B inverse mass, 4 B pinned flag: the velocity
+ * pass moves 12 + 12 + 8 + 12, the position pass 12 + 12 + 4 + 12. */
 static double bytes_model(int layout, int slots, int classes,
-                          double springs_per_point, int fused)
+                          double springs_per_point, int fused, int planes)
 {
+  if (planes)
+    return 44 + 40;
   if (layout == MSOCL_LAYOUT_EDGES)
     return 16.0 * springs_per_point + 32 + (52 + 32) + (32 + 16);
   double conn = layout == MSOCL_LAYOUT_IMAGE2D ? 16.0 * 16.0
@@ -50,9 +54,10 @@ static double bytes_model(int layout, int slots, int classes,
 }
 
 /* A row's variant of its layout: the two-pass step (BUFFER: classes or
- * values as the library chooses), the one-kernel step (--fused), or
- * BUFFER with spring classes, and with values, forced (--values). */
-enum { PLAIN, FUSED, CLASSES, VALUES, VARIANTS };
+ * values, GRID: planes or float4, as the library chooses), the one-kernel
+ * step (--fused), BUFFER with spring classes, and with values, forced
+ * (--values), or GRID in planes, and in float4, forced (--planes). */
+enum { PLAIN, FUSED, CLASSES, VALUES, PLANES, FLOAT4, VARIANTS };
 
 static const char *layout_name(int layout, int variant)
 {
@@ -60,6 +65,10 @@ static const char *layout_name(int layout, int variant)
     return "buffer-classes";
   if (variant == VALUES)
     return "buffer-values";
+  if (variant == PLANES)
+    return "grid-planes";
+  if (variant == FLOAT4)
+    return "grid-float4";
   if (variant == FUSED)
     return layout == MSOCL_LAYOUT_IMAGE2D ? "image2d+fused"
            : layout == MSOCL_LAYOUT_GRID  ? "grid+fused"
@@ -245,7 +254,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   msocl_model_spring_count(m, &ns);
   /* until the sim says what its table holds: a slot per spring, values */
   r.bytes_per_vertex_step =
-      bytes_model(layout, slots, 0, (double)ns / (n * n), fused);
+      bytes_model(layout, slots, 0, (double)ns / (n * n), fused, 0);
   char engine[64];
   snprintf(engine, sizeof engine, "%d:%d %s %s", info->platform_index,
            info->device_index, r.layout, r.math);
@@ -272,13 +281,16 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
     so.check_every = 0;
     so.fused = fused;
     so.classes = variant == CLASSES ? 1 : variant == VALUES ? 0 : -1;
+    so.planes = variant == PLANES ? 1 : variant == FLOAT4 ? 0 : -1;
     rc = msocl_sim_create(&s, c->rt, m, &so);
-    int table = slots, classes = 0;
+    int table = slots, classes = 0, planes = 0;
     if (rc == MSOCL_OK)
       rc = msocl_sim_connectivity(s, &table, &classes);
     if (rc == MSOCL_OK)
+      rc = msocl_sim_planes(s, &planes);
+    if (rc == MSOCL_OK)
       r.bytes_per_vertex_step = bytes_model(
-          layout, table, classes, (double)ns / (n * n), fused);
+          layout, table, classes, (double)ns / (n * n), fused, planes);
     if (rc == MSOCL_OK)
       rc = msocl_sim_step(s, 1); /* warm-up */
     r.seconds = INFINITY;
@@ -307,13 +319,16 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
 }
 
 /* 1 where a layout runs in this variant: every layout plain, the gather
- * layouts fused with --fused, BUFFER's two forced variants with --values. */
+ * layouts fused with --fused, BUFFER's two forced variants with --values,
+ * GRID's with --planes. */
 static int wanted(const struct bench_opts *o, int layout, int variant)
 {
   if (variant == FUSED)
     return o->fused && layout != MSOCL_LAYOUT_EDGES;
   if (variant == CLASSES || variant == VALUES)
     return o->values && layout == MSOCL_LAYOUT_BUFFER;
+  if (variant == PLANES || variant == FLOAT4)
+    return o->planes && layout == MSOCL_LAYOUT_GRID;
   return 1;
 }
 
@@ -407,8 +422,10 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
          "classes, x 12 B with values; IMAGE2D:\n16 x 16 B), neighbours "
          "cached (0), writes vel 16; EDGES:\n16 B a "
          "spring + force accumulator 32 + point pass 84; position pass reads "
-         "pos + vel 32,\nwrites pos 16. GB/s = bytes x vertex-steps/s; %%copy "
-         "= GB/s over the copy bandwidth.\n\n");
+         "pos + vel 32,\nwrites pos 16; GRID in planes (library's choice on a "
+         "CPU, or grid-planes): 84 (12 B a state, 8 B mass and pin).\n"
+         "GB/s = bytes x vertex-steps/s; %%copy = GB/s over the copy "
+         "bandwidth.\n\n");
   printf("%-9s %-28s %6s %8s %8s %9s %9s %6s %6s %6s %9s\n", "grid",
          "engine", "steps", "time s", "it/s", "s/2000it", "vs serial",
          "B/v-st", "GB/s", "%copy", "rms vs C");

@@ -57,6 +57,8 @@ static int usage(FILE *f, int code)
 "  --values       table1: also BUFFER with a spring-class byte in every\n"
 "                 slot (buffer-classes) and with (rest, k) in every slot\n"
 "                 (buffer-values), whatever the library would choose\n"
+"  --planes       table1: also GRID with the state in x, y, z planes\n"
+"                 (grid-planes) and in float4 (grid-float4), forced\n"
 "  --quick        tiny sizes and few steps: a smoke test\n"
 "  --csv FILE     also write one CSV row per run to FILE\n"
 "  -h, --help     this text\n");
@@ -132,6 +134,8 @@ int main(int argc, char **argv)
       o.fused = 1, takes = 0;
     } else if (!strcmp(w, "--values")) {
       o.values = 1, takes = 0;
+    } else if (!strcmp(w, "--planes")) {
+      o.planes = 1, takes = 0;
     } else if (!strcmp(w, "--quick")) {
       o.quick = 1, takes = 0;
     } else if (!v) {

@@ -29,6 +29,7 @@ static int usage(const char *argv0)
           "[-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
           "[-S none|provot|velocity] [-p PARTS [-c STEPS] [-O]] [-f] [-C|-V] "
+          "[-P|-F] "
           "[-o OUT.obj]\n"
           "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n"
           "  -c: weigh the devices by a calibration run of STEPS steps\n"
@@ -37,7 +38,9 @@ static int usage(const char *argv0)
           "  -f: both passes of a step in one kernel (same result)\n"
           "  -C, -V: BUFFER with a spring-class byte in every slot, or with\n"
           "      rest length and stiffness in every slot (default: the\n"
-          "      library's choice; same result)\n",
+          "      library's choice; same result)\n"
+          "  -P, -F: GRID with the state in x, y, z planes, or in float4\n"
+          "      (default: planes on a CPU device; same result)\n",
           argv0);
   return 2;
 }
@@ -107,7 +110,7 @@ int main(int argc, char **argv)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   int in = 0, strain = 0;
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:fOCVh")) != -1) {
+  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:fOCVPFh")) != -1) {
     switch (opt) {
     case 'n': n = atoi(optarg); break;
     case 's': steps = atoi(optarg); break;
@@ -136,6 +139,8 @@ int main(int argc, char **argv)
     case 'O': o.overlap = 0; break;
     case 'C': o.classes = 1; break;
     case 'V': o.classes = 0; break;
+    case 'P': o.planes = 1; break;
+    case 'F': o.planes = 0; break;
     case 'S':
       if ((strain = pick(optarg, strains, 3)) < 0) return usage(argv[0]);
       o.strain = (msocl_strain)strain;
@@ -168,8 +173,9 @@ int main(int argc, char **argv)
   msocl_layout layout;
   msocl_sim_device_info(s, &info);
   msocl_sim_layout(s, &layout);
-  int classes = 0;
+  int classes = 0, planes = 0;
   msocl_sim_connectivity(s, NULL, &classes);
+  msocl_sim_planes(s, &planes);
   printf("device: %s [%s]\nlayout: %s%s, math: %s, integrator: %s, strain "
          "limiting: %s\n",
          info.name, info.platform_name,
@@ -177,7 +183,7 @@ int main(int argc, char **argv)
          : layout == MSOCL_LAYOUT_EDGES ? "edges"
          : layout == MSOCL_LAYOUT_GRID  ? "grid"
                                         : "buffer",
-         classes > 0 ? " (spring classes)" : "",
+         classes > 0 ? " (spring classes)" : planes ? " (in planes)" : "",
          o.math == MSOCL_MATH_RELAXED ? "relaxed" : "precise",
          integrators[in], strains[strain]);
   printf("grid %dx%d, %d steps of %.3g s (setup %.3f s)\n", n, n, steps,

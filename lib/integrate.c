@@ -396,6 +396,8 @@ void msocl__step_done(msocl__engine *s)
 
 int msocl__integrate(msocl__engine *s, int n)
 {
+  if (s->planes)
+    return msocl__planes_steps(s, n);
   const int phases = msocl__phase_count(s);
   for (int q = 0; q < n; q++) {
     for (int ph = 0; ph < phases; ph++) {

@@ -330,6 +330,15 @@ typedef struct {
    * (docs/PERFORMANCE.md: 17% at 512x512 on PoCL, 3-14% slower at
    * 96x96-128x128, whose table stays in cache). */
   int classes;
+  /* GRID in planes: symplectic Euler on a cloth grid with the state held,
+   * while a call's steps run, as separate x, y, z planes of rows padded at
+   * the edges, which a CPU device runs many points to an instruction
+   * (docs/PERFORMANCE.md). Bitwise the same result; 28 bytes a point more
+   * memory; the state is copied in and out once a call (or a check_every
+   * batch). 1: whenever it applies (GRID, symplectic Euler, no strain
+   * limiting, not fused, one device); 0: never; -1 (default): where it
+   * applies on a CPU device. */
+  int planes;
 } msocl_sim_options;
 
 MSOCL_EXTERN void msocl_sim_options_init(msocl_sim_options *o);
@@ -350,6 +359,8 @@ MSOCL_EXTERN int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout);
  * spring classes (0: the values in every slot). Either may be NULL. */
 MSOCL_EXTERN int msocl_sim_connectivity(const msocl_sim *s, int *slots,
                                         int *classes);
+/* Whether the simulation's steps run in planes (options.planes): 1 or 0. */
+MSOCL_EXTERN int msocl_sim_planes(const msocl_sim *s, int *planes);
 MSOCL_EXTERN int msocl_sim_device_info(const msocl_sim *s,
                                        msocl_device_info *info);
 /* 3 floats per point. */

@@ -28,6 +28,7 @@ void msocl_sim_options_init(msocl_sim_options *o)
   o->renumber = 1;
   o->overlap = 1;
   o->classes = -1;
+  o->planes = -1;
   /* Near its stability limit a symplectic method's energy swings by up to
    * 1 / (1 - h w / 2) (10x at 0.9 of the limit) without being unstable;
    * a blow-up grows exponentially and passes 100x within a few checks. */
@@ -48,10 +49,15 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
   cl_device_fp_config fp = 0;
   clGetDeviceInfo(s->dev->id, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp,
                   NULL);
+  /* GRID in planes: its kernels, with the colliders' loop unrolled */
+  char planes[48] = "";
+  if (s->planes)
+    snprintf(planes, sizeof planes, " -DMSOCL_PLANES -DMSOCL_NCOL=%d",
+             m->ncol);
   /* EDGES shares the BUFFER macros with no slots: the gathering kernels
    * it does not use still compile, to nothing. */
   int len = snprintf(
-      buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s",
+      buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s%s",
       s->lay.kind == MSOCL_LAYOUT_IMAGE2D ? "-DMSOCL_LAYOUT_IMAGE2D"
       : s->lay.kind == MSOCL_LAYOUT_GRID  ? "-DMSOCL_LAYOUT_GRID"
                                           : "-DMSOCL_LAYOUT_BUFFER",
@@ -66,6 +72,7 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
       kinds[MSOCL__PLANE] ? " -DMSOCL_PLANE" : "",
       kinds[MSOCL__SPHERE] ? " -DMSOCL_SPHERE" : "",
       kinds[MSOCL__TABLE] ? " -DMSOCL_TABLE" : "",
+      planes,
       s->o.math == MSOCL_MATH_RELAXED
           ? " -DMSOCL_RELAXED -cl-fast-relaxed-math"
           /* GPUs may round single divide and sqrt loosely unless asked. */
@@ -324,6 +331,8 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
                               o->classes, &s->lay);
   if (rc == MSOCL_OK)
     rc = make_buffers(s, m);
+  if (rc == MSOCL_OK)
+    rc = msocl__planes_choose(s);
   char opt[512];
   cl_program prog = NULL;
   if (rc == MSOCL_OK)
@@ -332,6 +341,8 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     rc = msocl__program_get(s->dev, opt, &prog);
   if (rc == MSOCL_OK)
     rc = make_kernels(s, prog);
+  if (rc == MSOCL_OK)
+    rc = msocl__planes_create(s, prog);
   if (rc == MSOCL_OK)
     rc = msocl__integrate_setup(s);
   if (rc == MSOCL_OK) {
@@ -366,6 +377,7 @@ void msocl__engine_destroy(msocl__engine *s)
   for (size_t q = 0; q < sizeof mems / sizeof mems[0]; q++)
     if (mems[q])
       clReleaseMemObject(mems[q]);
+  msocl__planes_release(s);
   msocl__layout_release(&s->lay);
   free(s->stage);
   free(s->partial_host);

@@ -54,6 +54,14 @@ struct msocl__engine {
   int ncol;
   float *stage;           /* 4n floats, the initial upload */
   cl_float4 *partial_host;
+  /* GRID in planes (planes.c, kernels/planes.cl): the state as x, y, z
+   * planes of padded rows while a call's steps run */
+  int planes;
+  cl_mem pl_p[2], pl_v[2], pl_aux; /* ping-pong like pos and vel */
+  cl_kernel pl_k[4];      /* velocity, position, pack, unpack */
+  cl_uint pl_conn;        /* velocity: its connectivity arguments */
+  int pl_pitch, pl_plane; /* floats a row, and a plane */
+  size_t pl_global[2];    /* the passes' 2-D range: rows padded to 64 */
 };
 
 /* The largest number of engines and of exchange buffers a step names. */
@@ -196,6 +204,15 @@ int msocl__phase_count(const msocl__engine *s);
 int msocl__phase(msocl__engine *s, int phase, unsigned *exchange);
 /* That mask, without queuing anything. */
 unsigned msocl__phase_mask(const msocl__engine *s, int phase);
+/* GRID in planes (planes.c). choose: whether this engine runs in planes
+ * (options.planes; MSOCL_ERR_BAD_VALUE when forced where it cannot);
+ * create: its buffers and kernels, from the program built with
+ * -DMSOCL_PLANES; steps: n symplectic Euler steps, the state copied into
+ * planes and back; release: frees them. */
+int msocl__planes_choose(msocl__engine *s);
+int msocl__planes_create(msocl__engine *s, cl_program prog);
+int msocl__planes_steps(msocl__engine *s, int n);
+void msocl__planes_release(msocl__engine *s);
 /* Ends a step: swaps the ping-pong buffers. */
 void msocl__step_done(msocl__engine *s);
 /* The buffer an exchange bit names, at this point of the step. */

@@ -86,6 +86,9 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
   if (o->classes < -1 || o->classes > 1)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "classes is %d: -1 (auto), 0 or 1", o->classes);
+  if (o->planes < -1 || o->planes > 1)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "planes is %d: -1 (auto), 0 or 1", o->planes);
   if (o->buffer_slots < 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "buffer_slots is %d: >= 0",
                        o->buffer_slots);
@@ -138,6 +141,7 @@ static int calibrate(msocl_sim *s, msocl_runtime *rt, const msocl_model *m)
 {
   msocl_sim_options o = s->o;
   o.check_every = 0;
+  o.planes = 0; /* as the split's engines will run */
   for (int d = 0; d < s->nparts; d++) {
     msocl__engine *e = NULL;
     int rc = msocl__engine_create(&e, (struct msocl__device *)&rt->dev[o.device + d],

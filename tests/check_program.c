@@ -46,7 +46,8 @@ static int make_sim(void)
 static const char *const files[] = {"common.cl",   "step.cl",
                                     "integrators.cl", "implicit.cl",
                                     "strain.cl",   "energy.cl",
-                                    "normals.cl",  "edges.cl"};
+                                    "normals.cl",  "edges.cl",
+                                    "planes.cl"};
 #define NFILES (sizeof files / sizeof files[0])
 
 /* All kernel files into dir, with `extra` after the step file. */

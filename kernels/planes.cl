@@ -1,0 +1,231 @@
+/* GRID in planes (options.planes): symplectic Euler's two passes over a
+ * cloth grid whose state is held as separate x, y, z planes of floats, each
+ * row padded by two points on every side. Needs common.cl before it.
+ *
+ * Why: PoCL's CPU device vectorises across work-items only when a kernel's
+ * per-work-item code is all scalar (its loop vectorizer takes no vector-
+ * typed instruction), and it builds the work-item loop after -O3 has
+ * already paired the x and y of a float4 into <2 x float>. In planes every
+ * value is a scalar, the planes sit a run-time `plane` apart (so nothing
+ * pairs them), and a neighbour at (dx, dy) is at a fixed offset from the
+ * point - within the padding at the grid's edge - so eight or sixteen
+ * work-items read it with one vector load, not a gather.
+ *
+ * Same arithmetic as msocl_force, msocl_kick, msocl_collide and the
+ * position pass, slot by slot in the same order, so the result is bitwise
+ * theirs (tests/check_planes.c). The state between calls stays in the
+ * engine's float4 buffers: msocl_planes_pack copies it in, and
+ * msocl_planes_unpack back out.
+ *
+ * Point (x, y) sits at (y + 2) * pitch + x + 2 of each plane; p holds the
+ * x, y, z planes `plane` floats apart (v likewise); aux holds the inverse
+ * masses, then pos.w (pinned). MSOCL_NCOL: the model's colliders, known
+ * when the program is built so that their loop unrolls (a loop of run-time
+ * length inside would stop the vectorizer). */
+#if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID)
+
+/* dot(a, b) of float3 as the other kernels compute it: (x + y) + z. */
+#define MSOCL_DOT3(ax, ay, az, bx, by, bz) ((ax) * (bx) + (ay) * (by) + (az) * (bz))
+
+/* MSOCL_PINNED of pos.w, a scalar */
+#ifdef MSOCL_PINS
+#define MSOCL_PLANES_PINNED(w) ((w) != 0.0f)
+#else
+#define MSOCL_PLANES_PINNED(w) false
+#endif
+
+/* msocl_collider_gap in scalars: g, and the unit gradient in *nx.. */
+static float msocl_planes_gap(float px, float py, float pz,
+                              __constant const float *cf, float *nx,
+                              float *ny, float *nz)
+{
+  const int kind = (int)cf[0];
+  float g = INFINITY;
+  *nx = 0.0f;
+  *ny = 1.0f;
+  *nz = 0.0f;
+#ifdef MSOCL_PLANE
+  if (kind == MSOCL_PLANE_KIND) {
+    *nx = cf[4];
+    *ny = cf[5];
+    *nz = cf[6];
+    g = MSOCL_DOT3(cf[4], cf[5], cf[6], px, py, pz) - cf[7];
+  }
+#endif
+#ifdef MSOCL_SPHERE
+  if (kind == MSOCL_SPHERE_KIND) {
+    float dx = px - cf[4], dy = py - cf[5], dz = pz - cf[6];
+    float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+    bool out = len > 0.0f;
+    *nx = out ? dx / len : 0.0f;
+    *ny = out ? dy / len : 1.0f;
+    *nz = out ? dz / len : 0.0f;
+    g = len - cf[7];
+  }
+#endif
+#ifdef MSOCL_TABLE
+  if (kind == MSOCL_TABLE_KIND) {
+    float dx = px - cf[4], dz = pz - cf[6];
+    float rr = MSOCL_SQRT(dx * dx + dz * dz);
+    float gside = rr - cf[7], gtop = py - cf[5];
+    bool top = gtop >= gside || !(rr > 0.0f);
+    *nx = top ? 0.0f : dx / rr;
+    *ny = top ? 1.0f : 0.0f;
+    *nz = top ? 0.0f : dz / rr;
+    g = top ? gtop : gside;
+  }
+#endif
+  return g;
+}
+
+__kernel void msocl_planes_velocity(MSOCL_CONN, __global const float *p,
+                                    __global const float *v,
+                                    __global float *v_out,
+                                    __global const float *aux, int pitch,
+                                    int plane, float4 gravity, float viscous,
+                                    float air, float dt,
+                                    __constant float4 *col)
+{
+  const int x = get_global_id(0), y = get_global_id(1);
+  const int a = (y + 2) * pitch + x + 2;
+  __global const float *py_ = p + plane, *pz_ = py_ + plane;
+  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
+  const float px = p[a], py = py_[a], pz = pz_[a];
+  float vx = v[a], vy = vy_[a], vz = vz_[a];
+  float fx = 0.0f, fy = 0.0f, fz = 0.0f;
+#pragma unroll
+  for (int s = 0; s < 12; s++) {
+    const int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s];
+    const int kind = msocl_grid_kind[s], ri = msocl_grid_rest[s];
+    const float kk = kind == 0 ? grid_k.x : kind == 1 ? grid_k.y : grid_k.z;
+    const float rest = ri == 0 ? grid_rest.s0 : ri == 1 ? grid_rest.s1
+                     : ri == 2 ? grid_rest.s2 : ri == 3 ? grid_rest.s3
+                     : ri == 4 ? grid_rest.s4 : grid_rest.s5;
+    /* a missing neighbour reads the padding (or another row), and its
+     * terms are replaced by the exact zeros msocl_force adds for it */
+    const bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
+                       kk != 0.0f;
+    const int b = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];
+    const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
+    const float len2 = dx * dx + dy * dy + dz * dz;
+    const float len = MSOCL_SQRT(len2);
+    const float t = kk * MSOCL_DIV(len - rest, len);
+    const bool on = there && len > 0.0f;
+    fx += on ? t * dx : 0.0f;
+    fy += on ? t * dy : 0.0f;
+    fz += on ? t * dz : 0.0f;
+#ifdef MSOCL_DAMPING
+    const float wx = v[b] - vx, wy = vy_[b] - vy, wz = vz_[b] - vz;
+    const float u = grid_k.w * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
+    const bool onh = there && len2 > 0.0f;
+    fx += onh ? u * dx : 0.0f;
+    fy += onh ? u * dy : 0.0f;
+    fz += onh ? u * dz : 0.0f;
+#endif
+  }
+#ifdef MSOCL_VISCOUS
+  fx = fx - viscous * vx;
+  fy = fy - viscous * vy;
+  fz = fz - viscous * vz;
+#endif
+  (void)viscous;
+  const float im = aux[a];
+  vx = vx + dt * (fx * im + gravity.x);
+  vy = vy + dt * (fy * im + gravity.y);
+  vz = vz + dt * (fz * im + gravity.z);
+#ifdef MSOCL_AIR
+  vx = air * vx;
+  vy = air * vy;
+  vz = air * vz;
+#endif
+  (void)air;
+  __constant const float *cf = (__constant const float *)col;
+#pragma unroll
+  for (int c = 0; c < MSOCL_NCOL; c++) {
+    float nx, ny, nz;
+    const float g = msocl_planes_gap(px, py, pz, cf + 8 * c, &nx, &ny, &nz);
+    /* msocl_respond, its branch as selects */
+    const float fr = cf[8 * c + 1];
+    const float vn = MSOCL_DOT3(vx, vy, vz, nx, ny, nz);
+    const float lim = MSOCL_DIV(-g, dt);
+    float hx = vx + (lim - vn) * nx, hy = vy + (lim - vn) * ny,
+          hz = vz + (lim - vn) * nz;
+    hx = hx - fr * (hx - lim * nx);
+    hy = hy - fr * (hy - lim * ny);
+    hz = hz - fr * (hz - lim * nz);
+    const bool hit = vn < lim;
+    vx = hit ? hx : vx;
+    vy = hit ? hy : vy;
+    vz = hit ? hz : vz;
+  }
+  (void)cf;
+  const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  if (x < grid_nx) {
+    __global float *oy = v_out + plane, *oz = oy + plane;
+    v_out[a] = pinned ? 0.0f : vx;
+    oy[a] = pinned ? 0.0f : vy;
+    oz[a] = pinned ? 0.0f : vz;
+  }
+}
+
+__kernel void msocl_planes_position(__global const float *p,
+                                    __global const float *v,
+                                    __global float *p_out,
+                                    __global const float *aux, int nx,
+                                    int pitch, int plane, float dt)
+{
+  const int x = get_global_id(0), y = get_global_id(1);
+  const int a = (y + 2) * pitch + x + 2;
+  const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  if (x < nx) {
+    /* three statements, not a loop: an inner loop would stop the
+     * vectorizer (it takes the innermost loop, over the work-items) */
+    __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
+    __global const float *py_ = p + plane, *pz_ = py_ + plane;
+    __global float *oy = p_out + plane, *oz = oy + plane;
+    const float cx = p[a], cy = py_[a], cz = pz_[a];
+    p_out[a] = pinned ? cx : cx + dt * v[a];
+    oy[a] = pinned ? cy : cy + dt * vy_[a];
+    oz[a] = pinned ? cz : cz + dt * vz_[a];
+  }
+}
+
+/* The engine's float4 state (point i of an nx-wide grid) into planes. */
+__kernel void msocl_planes_pack(__global const float4 *pos,
+                                __global const float4 *vel,
+                                __global const float *inv_mass,
+                                __global float *p, __global float *v,
+                                __global float *aux, int nx, int pitch,
+                                int plane, int n)
+{
+  const int i = get_global_id(0);
+  if (i >= n)
+    return;
+  const int a = (i / nx + 2) * pitch + i % nx + 2;
+  const float4 q = pos[i], w = vel[i];
+  p[a] = q.x;
+  p[plane + a] = q.y;
+  p[2 * plane + a] = q.z;
+  v[a] = w.x;
+  v[plane + a] = w.y;
+  v[2 * plane + a] = w.z;
+  aux[a] = inv_mass[i];
+  aux[plane + a] = q.w;
+}
+
+/* And back: pos.w as packed; vel.w 0, as the velocity pass writes it. */
+__kernel void msocl_planes_unpack(__global const float *p,
+                                  __global const float *v,
+                                  __global const float *aux,
+                                  __global float4 *pos, __global float4 *vel,
+                                  int nx, int pitch, int plane, int n)
+{
+  const int i = get_global_id(0);
+  if (i >= n)
+    return;
+  const int a = (i / nx + 2) * pitch + i % nx + 2;
+  pos[i] = (float4)(p[a], p[plane + a], p[2 * plane + a], aux[plane + a]);
+  vel[i] = (float4)(v[a], v[plane + a], v[2 * plane + a], 0.0f);
+}
+
+#endif

@@ -1,0 +1,313 @@
+/* GRID in planes (options.planes): a cloth grid's symplectic Euler steps
+ * over x, y, z planes must be bitwise the float4 kernels' steps - with
+ * every feature the planes kernel compiles in (colliders of each kind,
+ * pins, dashpots, viscous damping, air), grids narrower and wider than a
+ * work-group, and the state written between calls - and auto must take
+ * planes exactly where they apply. */
+#include "scenes.h"
+
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define rt scene_rt
+
+/* An nx x ny cloth with everything the planes kernel handles: a round
+ * table, a ball beside it and a floor under both, a pinned corner,
+ * dashpots, viscous damping and air resistance. */
+static msocl_model *busy_cloth(int nx, int ny)
+{
+  msocl_cloth_desc d;
+  msocl_cloth_desc_init(&d);
+  d.nx = nx;
+  d.ny = ny;
+  d.origin[0] = -0.5f;
+  d.origin[1] = 0.05f;
+  d.origin[2] = -0.5f;
+  d.u[0] = 0.0f; d.u[1] = 0.0f; d.u[2] = 1.0f;
+  d.v[0] = 1.0f; d.v[1] = 0.0f; d.v[2] = 0.0f;
+  d.point_mass = 0.5f / (float)(nx * ny);
+  d.k_stretch = 50.0f;
+  d.k_shear = 10.0f;
+  d.k_bend = 10.0f;
+  d.damping = 1e-3f;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_cloth_grid(&m, &d), MSOCL_OK);
+  const float top[3] = {-0.1f, 0.0f, 0.0f}, ball[3] = {0.35f, -0.05f, 0.1f};
+  const float up[3] = {0.0f, 1.0f, 0.0f};
+  ck_assert_int_eq(msocl_model_add_table(m, top, 0.3f, 0.3f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_sphere(m, ball, 0.15f, 0.5f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_plane(m, up, -0.2f, 0.2f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_pin(m, nx * ny - 1, 1), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_set_viscous_damping(m, 1e-4f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_set_air_resistance(m, 0.999f), MSOCL_OK);
+  return m;
+}
+
+struct state {
+  int n, planes;
+  float *pos, *vel;
+};
+
+static void state_free(struct state *st)
+{
+  free(st->pos);
+  free(st->vel);
+}
+
+static msocl_sim *make(const msocl_model *m, int planes, msocl_math math,
+                       float dt)
+{
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.layout = MSOCL_LAYOUT_GRID;
+  o.planes = planes;
+  o.math = math;
+  o.dt = dt;
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, rt, m, &o);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  return s;
+}
+
+static struct state read_state(msocl_sim *s)
+{
+  struct state st;
+  ck_assert_int_eq(msocl_sim_point_count(s, &st.n), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_planes(s, &st.planes), MSOCL_OK);
+  st.pos = malloc(3 * (size_t)st.n * sizeof(float));
+  st.vel = malloc(3 * (size_t)st.n * sizeof(float));
+  ck_assert_int_eq(msocl_sim_read_positions(s, st.pos), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_read_velocities(s, st.vel), MSOCL_OK);
+  return st;
+}
+
+/* `calls` calls of `steps` steps each. */
+static struct state run(const msocl_model *m, int planes, msocl_math math,
+                        float dt, int calls, int steps)
+{
+  msocl_sim *s = make(m, planes, math, dt);
+  for (int c = 0; c < calls; c++) {
+    int rc = msocl_sim_step(s, steps);
+    ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  }
+  struct state st = read_state(s);
+  msocl_sim_destroy(s);
+  return st;
+}
+
+static void assert_bitwise(const struct state *a, const struct state *b,
+                           const char *what)
+{
+  const size_t bytes = 3 * (size_t)a->n * sizeof(float);
+  ck_assert_int_eq(a->n, b->n);
+  ck_assert_msg(memcmp(a->pos, b->pos, bytes) == 0 &&
+                    memcmp(a->vel, b->vel, bytes) == 0,
+                "%s: planes differ from float4: positions by %g, velocities "
+                "by %g",
+                what, scene_max_diff(a->pos, b->pos, 3 * a->n),
+                scene_max_diff(a->vel, b->vel, 3 * a->n));
+}
+
+/* Sizes around a work-group's 64: narrower, a little wider (two groups a
+ * row, the second mostly padding), and not square. */
+static const int sizes[][2] = {{50, 37}, {70, 20}, {9, 64}};
+
+START_TEST(busy_cloth_bitwise)
+{
+  msocl_model *m = busy_cloth(sizes[_i][0], sizes[_i][1]);
+  float dt;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  dt *= 0.5f;
+  struct state f4 = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 500);
+  struct state pl = run(m, 1, MSOCL_MATH_PRECISE, dt, 1, 500);
+  ck_assert_int_eq(f4.planes, 0);
+  ck_assert_int_eq(pl.planes, 1);
+  char what[64];
+  snprintf(what, sizeof what, "%d x %d busy cloth", sizes[_i][0],
+           sizes[_i][1]);
+  assert_bitwise(&f4, &pl, what);
+  /* and it moved: the test compares a motion, not a rest state */
+  double far = 0.0;
+  for (int i = 0; i < f4.n; i++)
+    far = fmax(far, fabs(f4.vel[3 * i + 1]));
+  ck_assert_msg(far > 0.01, "fastest vertical speed %g m/s", far);
+  state_free(&f4);
+  state_free(&pl);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* The paper's scene, and a hanging cloth (pins, dashpots, no contact):
+ * 500 steps in calls of 7 - the state copied into planes and back each
+ * call - against one call of the float4 kernels. */
+START_TEST(scenes_in_calls_bitwise)
+{
+  msocl_model *m = _i == 0 ? scene_tablecloth(33) : scene_hanging(24);
+  float dt = scene_tablecloth_dt(_i == 0 ? 33 : 24);
+  struct state f4 = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 497);
+  struct state pl = run(m, 1, MSOCL_MATH_PRECISE, dt, 71, 7);
+  assert_bitwise(&f4, &pl, _i == 0 ? "tablecloth" : "hanging cloth");
+  state_free(&f4);
+  state_free(&pl);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* A write between calls reaches the planes: the state is copied in at
+ * every call, never kept from the last. */
+START_TEST(writes_between_calls)
+{
+  msocl_model *m = scene_tablecloth(20);
+  const float dt = scene_tablecloth_dt(20);
+  struct state out[2];
+  for (int planes = 0; planes < 2; planes++) {
+    msocl_sim *s = make(m, planes, MSOCL_MATH_PRECISE, dt);
+    ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
+    struct state mid = read_state(s);
+    for (int i = 0; i < mid.n; i++) {
+      mid.pos[3 * i + 1] += 0.02f;   /* lift it */
+      mid.vel[3 * i] = 0.1f;         /* and push it sideways */
+    }
+    ck_assert_int_eq(msocl_sim_write_positions(s, mid.pos), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_write_velocities(s, mid.vel), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
+    out[planes] = read_state(s);
+    ck_assert_int_eq(out[planes].planes, planes);
+    state_free(&mid);
+    msocl_sim_destroy(s);
+  }
+  assert_bitwise(&out[0], &out[1], "written state");
+  state_free(&out[0]);
+  state_free(&out[1]);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Relaxed math compiles its own arithmetic, so planes and float4 may
+ * round differently: they must still agree closely. */
+START_TEST(relaxed_close)
+{
+  msocl_model *m = scene_tablecloth(32);
+  const float dt = scene_tablecloth_dt(32);
+  struct state f4 = run(m, 0, MSOCL_MATH_RELAXED, dt, 1, 300);
+  struct state pl = run(m, 1, MSOCL_MATH_RELAXED, dt, 1, 300);
+  ck_assert_int_eq(pl.planes, 1);
+  double d = scene_max_diff(f4.pos, pl.pos, 3 * f4.n);
+  printf("relaxed math, planes vs float4 after 300 steps: %g m\n", d);
+  ck_assert_msg(d < 1e-4, "relaxed planes differ by %g m", d);
+  state_free(&f4);
+  state_free(&pl);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Auto takes planes on a CPU device wherever they apply, and only there;
+ * forcing them where they cannot run is a clear error. */
+START_TEST(auto_and_errors)
+{
+  msocl_model *m = scene_tablecloth(16);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = scene_tablecloth_dt(16);
+  o.layout = MSOCL_LAYOUT_GRID;
+  msocl_sim *s = NULL;
+  int on = -1;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
+  ck_assert_int_eq(on, 1); /* scene_rt is a CPU device */
+  msocl_sim_destroy(s);
+  struct {
+    msocl_layout layout;
+    msocl_integrator in;
+    msocl_strain strain;
+    int fused;
+    const char *words;
+  } no[] = {
+      {MSOCL_LAYOUT_BUFFER, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 0,
+       "GRID"},
+      {MSOCL_LAYOUT_GRID, MSOCL_RK4, MSOCL_STRAIN_NONE, 0, "symplectic"},
+      {MSOCL_LAYOUT_GRID, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT, 0,
+       "strain"},
+      {MSOCL_LAYOUT_GRID, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 1,
+       "fused"},
+  };
+  for (size_t q = 0; q < sizeof no / sizeof no[0]; q++) {
+    o.layout = no[q].layout;
+    o.integrator = no[q].in;
+    o.strain = no[q].strain;
+    o.fused = no[q].fused;
+    o.planes = -1;
+    ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
+    ck_assert_msg(on == 0, "auto took planes where they do not apply (%s)",
+                  no[q].words);
+    msocl_sim_destroy(s);
+    o.planes = 1;
+    s = NULL;
+    ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+    ck_assert_ptr_null(s);
+    ck_assert_msg(strstr(msocl_last_error(), "planes") &&
+                      strstr(msocl_last_error(), no[q].words),
+                  "unclear error: %s", msocl_last_error());
+  }
+  o = (msocl_sim_options){0};
+  msocl_sim_options_init(&o);
+  o.planes = 2;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* A split's engines hold part of the model each: auto leaves planes off,
+ * and forcing them is an error (needs two CPU devices). */
+START_TEST(split_keeps_float4)
+{
+  char spec[64];
+  if (scene_cpu_spec(spec, sizeof spec, 2) < 2) {
+    printf("split_keeps_float4: one CPU device only, not run\n");
+    return;
+  }
+  msocl_runtime *two = NULL;
+  ck_assert_int_eq(msocl_runtime_create(&two, spec), MSOCL_OK);
+  msocl_model *m = scene_tablecloth(16);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = scene_tablecloth_dt(16);
+  o.layout = MSOCL_LAYOUT_GRID;
+  o.ndevices = 2;
+  msocl_sim *s = NULL;
+  int on = -1;
+  ck_assert_int_eq(msocl_sim_create(&s, two, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
+  ck_assert_int_eq(on, 0);
+  msocl_sim_destroy(s);
+  o.planes = 1;
+  s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, two, m, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_msg(strstr(msocl_last_error(), "split"), "unclear error: %s",
+                msocl_last_error());
+  msocl_model_destroy(m);
+  msocl_runtime_destroy(two);
+}
+END_TEST
+
+int main(void)
+{
+  scene_require_device("check_planes");
+  Suite *su = suite_create("planes");
+  TCase *tc = tcase_create("planes");
+  tcase_add_checked_fixture(tc, scene_setup_cpu, scene_teardown);
+  tcase_set_timeout(tc, 300);
+  tcase_add_loop_test(tc, busy_cloth_bitwise, 0,
+                      (int)(sizeof sizes / sizeof sizes[0]));
+  tcase_add_loop_test(tc, scenes_in_calls_bitwise, 0, 2);
+  tcase_add_test(tc, writes_between_calls);
+  tcase_add_test(tc, relaxed_close);
+  tcase_add_test(tc, auto_and_errors);
+  tcase_add_test(tc, split_keeps_float4);
+  suite_add_tcase(su, tc);
+  return scene_run(su);
+}
