@@ -29,8 +29,9 @@ struct msocl__layout {
                         every slot */
 };
 
-/* The layout AUTO stands for on this device. */
-msocl_layout msocl__layout_auto(const msocl_device_info *info);
+/* The layout AUTO stands for on this device, for this model. */
+msocl_layout msocl__layout_auto(const msocl_device_info *info,
+                                const msocl_model *m);
 
 /* Chooses W x H >= n for the connectivity texture within the device's
  * image limits (the texture is 4W x 4H). */

@@ -245,7 +245,7 @@ MSOCL_EXTERN int msocl_model_from_obj_text(msocl_model **m, const char *text,
 /* ------------------------------------------------------------ simulation */
 
 typedef enum {
-  MSOCL_LAYOUT_AUTO = 0, /* the faster on the device: BUFFER on CPUs */
+  MSOCL_LAYOUT_AUTO = 0, /* GRID for a cloth grid as built, else BUFFER */
   MSOCL_LAYOUT_IMAGE2D,  /* the paper's connectivity texture, 16 slots */
   MSOCL_LAYOUT_BUFFER,   /* slot-major buffers, max-degree slots */
   MSOCL_LAYOUT_EDGES,    /* seed 2: a work-item per spring, float atomics

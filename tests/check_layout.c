@@ -253,15 +253,28 @@ START_TEST(fused_equals_two_passes)
 }
 END_TEST
 
-START_TEST(auto_is_buffer_on_cpu)
+/* AUTO: GRID for a cloth grid as the builder made it (in planes on this
+ * CPU device), BUFFER once a spring is added to it. */
+START_TEST(auto_layout)
 {
   msocl_model *m = scene_tablecloth(8);
-  msocl_sim *s = NULL;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, NULL), MSOCL_OK);
-  msocl_layout l;
-  ck_assert_int_eq(msocl_sim_layout(s, &l), MSOCL_OK);
-  ck_assert_int_eq(l, MSOCL_LAYOUT_BUFFER);
-  msocl_sim_destroy(s);
+  for (int added = 0; added < 2; added++) {
+    if (added) {
+      const int ij[2] = {0, 63};
+      const float k = 1.0f;
+      ck_assert_int_eq(msocl_model_add_springs(m, 1, ij, &k, NULL, NULL),
+                       MSOCL_OK);
+    }
+    msocl_sim *s = NULL;
+    ck_assert_int_eq(msocl_sim_create(&s, rt, m, NULL), MSOCL_OK);
+    msocl_layout l;
+    int planes = -1;
+    ck_assert_int_eq(msocl_sim_layout(s, &l), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_planes(s, &planes), MSOCL_OK);
+    ck_assert_int_eq(l, added ? MSOCL_LAYOUT_BUFFER : MSOCL_LAYOUT_GRID);
+    ck_assert_int_eq(planes, !added);
+    msocl_sim_destroy(s);
+  }
   msocl_model_destroy(m);
 }
 END_TEST
@@ -277,7 +290,7 @@ int main(void)
   tcase_add_test(tc, tablecloth_bitwise);
   tcase_add_test(tc, damped_pinned_bitwise);
   tcase_add_test(tc, degree_limit);
-  tcase_add_test(tc, auto_is_buffer_on_cpu);
+  tcase_add_test(tc, auto_layout);
   tcase_add_test(tc, texture_dims);
   tcase_add_test(tc, fused_equals_two_passes);
   tcase_add_test(tc, grid_needs_a_cloth_grid);
