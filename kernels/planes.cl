@@ -78,16 +78,16 @@ static float msocl_planes_gap(float px, float py, float pz,
   return g;
 }
 
-__kernel void msocl_planes_velocity(MSOCL_CONN, __global const float *p,
-                                    __global const float *v,
-                                    __global float *v_out,
-                                    __global const float *aux, int pitch,
-                                    int plane, float4 gravity, float viscous,
-                                    float air, float dt,
-                                    __constant float4 *col)
+/* The velocity pass for the point at a = (x, y): its new velocity in
+ * *vx.., and whether it is pinned. */
+static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
+                              __global const float *v,
+                              __global const float *aux, int pitch, int plane,
+                              float4 gravity, float viscous, float air,
+                              float dt, __constant float4 *col, int x, int y,
+                              int a, float *vx_out, float *vy_out,
+                              float *vz_out, bool *pinned)
 {
-  const int x = get_global_id(0), y = get_global_id(1);
-  const int a = (y + 2) * pitch + x + 2;
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
   __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
   const float px = p[a], py = py_[a], pz = pz_[a];
@@ -159,12 +159,61 @@ __kernel void msocl_planes_velocity(MSOCL_CONN, __global const float *p,
     vz = hit ? hz : vz;
   }
   (void)cf;
-  const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  *pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  *vx_out = *pinned ? 0.0f : vx;
+  *vy_out = *pinned ? 0.0f : vy;
+  *vz_out = *pinned ? 0.0f : vz;
+}
+
+/* The planes' ping-pong arguments after the connectivity, then the fixed
+ * ones; both kernels below take them in this order. */
+#define MSOCL_PLANES_ARGS                                                     \
+  __global const float *aux, int pitch, int plane, float4 gravity,           \
+      float viscous, float air, float dt, __constant float4 *col
+
+__kernel void msocl_planes_velocity(MSOCL_CONN, __global const float *p,
+                                    __global const float *v,
+                                    __global float *v_out,
+                                    MSOCL_PLANES_ARGS)
+{
+  const int x = get_global_id(0), y = get_global_id(1);
+  const int a = (y + 2) * pitch + x + 2;
+  float vx, vy, vz;
+  bool pinned;
+  msocl_planes_kick(MSOCL_CONN_ARGS, p, v, aux, pitch, plane, gravity,
+                    viscous, air, dt, col, x, y, a, &vx, &vy, &vz, &pinned);
   if (x < grid_nx) {
     __global float *oy = v_out + plane, *oz = oy + plane;
-    v_out[a] = pinned ? 0.0f : vx;
-    oy[a] = pinned ? 0.0f : vy;
-    oz[a] = pinned ? 0.0f : vz;
+    v_out[a] = vx;
+    oy[a] = vy;
+    oz[a] = vz;
+  }
+}
+
+/* Both passes in one kernel (options.fused), as msocl_fused: the point
+ * moves by its new velocity at once; others read only the old p. */
+__kernel void msocl_planes_fused(MSOCL_CONN, __global const float *p,
+                                 __global const float *v,
+                                 __global float *v_out, __global float *p_out,
+                                 MSOCL_PLANES_ARGS)
+{
+  const int x = get_global_id(0), y = get_global_id(1);
+  const int a = (y + 2) * pitch + x + 2;
+  float vx, vy, vz;
+  bool pinned;
+  msocl_planes_kick(MSOCL_CONN_ARGS, p, v, aux, pitch, plane, gravity,
+                    viscous, air, dt, col, x, y, a, &vx, &vy, &vz, &pinned);
+  if (x < grid_nx) {
+    __global const float *py_ = p + plane, *pz_ = py_ + plane;
+    __global float *oy = v_out + plane, *oz = oy + plane;
+    __global float *qy = p_out + plane, *qz = qy + plane;
+    const float cx = p[a], cy = py_[a], cz = pz_[a];
+    v_out[a] = vx;
+    oy[a] = vy;
+    oz[a] = vz;
+    p_out[a] = pinned ? cx : cx + dt * vx;
+    qy[a] = pinned ? cy : cy + dt * vy;
+    qz[a] = pinned ? cz : cz + dt * vz;
   }
 }
 

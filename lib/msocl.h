@@ -336,7 +336,7 @@ typedef struct {
    * (docs/PERFORMANCE.md). Bitwise the same result; 28 bytes a point more
    * memory; the state is copied in and out once a call (or a check_every
    * batch). 1: whenever it applies (GRID, symplectic Euler, no strain
-   * limiting, not fused, one device); 0: never; -1 (default): where it
+   * limiting, one device; fused too); 0: never; -1 (default): where it
    * applies on a CPU device. */
   int planes;
 } msocl_sim_options;

@@ -6,11 +6,11 @@
 #include "config.h"
 #include "sim.h"
 
-enum { PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK };
+enum { PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_COUNT };
 
-static const char *const names[4] = {
+static const char *const names[PL_COUNT] = {
     "msocl_planes_velocity", "msocl_planes_position", "msocl_planes_pack",
-    "msocl_planes_unpack"};
+    "msocl_planes_unpack", "msocl_planes_fused"};
 
 /* Why the engine cannot run in planes; NULL: it can. */
 static const char *unfit(const msocl__engine *s)
@@ -21,8 +21,6 @@ static const char *unfit(const msocl__engine *s)
     return "runs symplectic Euler only";
   if (s->o.strain != MSOCL_STRAIN_NONE)
     return "runs without strain limiting only";
-  if (s->o.fused)
-    return "runs the two passes (fused is the float4 kernel's)";
   if (s->lo != 0 || s->hi != s->n)
     return "runs a whole model on one device (not a split)";
   return NULL;
@@ -57,18 +55,24 @@ static int arg(cl_kernel k, cl_uint i, size_t size, const void *v)
 /* The arguments that never change: all but the planes that ping-pong. */
 static int fixed_args(msocl__engine *s)
 {
-  cl_kernel k = s->pl_k[PL_VELOCITY];
-  cl_uint a;
-  TRY(msocl__layout_set_args(&s->lay, k, &a));
-  s->pl_conn = a;
-  TRY(arg(k, a + 3, sizeof s->pl_aux, &s->pl_aux));
-  TRY(arg(k, a + 4, sizeof(int), &s->pl_pitch));
-  TRY(arg(k, a + 5, sizeof(int), &s->pl_plane));
-  TRY(arg(k, a + 6, sizeof s->gravity, &s->gravity));
-  TRY(arg(k, a + 7, sizeof(float), &s->viscous));
-  TRY(arg(k, a + 8, sizeof(float), &s->air));
-  TRY(arg(k, a + 9, sizeof(float), &s->o.dt));
-  TRY(arg(k, a + 10, sizeof s->col, &s->col));
+  cl_kernel k = NULL;
+  /* velocity (connectivity, p, v, v_out, then these), and fused (with
+   * p_out before them) */
+  for (int q = 0; q < 2; q++) {
+    k = s->pl_k[q ? PL_FUSED : PL_VELOCITY];
+    cl_uint a;
+    TRY(msocl__layout_set_args(&s->lay, k, &a));
+    s->pl_conn = a;
+    a += 3 + (cl_uint)q;
+    TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
+    TRY(arg(k, a + 1, sizeof(int), &s->pl_pitch));
+    TRY(arg(k, a + 2, sizeof(int), &s->pl_plane));
+    TRY(arg(k, a + 3, sizeof s->gravity, &s->gravity));
+    TRY(arg(k, a + 4, sizeof(float), &s->viscous));
+    TRY(arg(k, a + 5, sizeof(float), &s->air));
+    TRY(arg(k, a + 6, sizeof(float), &s->o.dt));
+    TRY(arg(k, a + 7, sizeof s->col, &s->col));
+  }
   k = s->pl_k[PL_POSITION];
   TRY(arg(k, 3, sizeof s->pl_aux, &s->pl_aux));
   TRY(arg(k, 4, sizeof(int), &s->lay.grid_nx));
@@ -100,7 +104,7 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
   s->pl_plane = s->pl_pitch * (s->lay.grid_ny + 4);
   s->pl_global[0] = wide;
   s->pl_global[1] = (size_t)s->lay.grid_ny;
-  for (int q = 0; q < 4; q++) {
+  for (int q = 0; q < PL_COUNT; q++) {
     cl_int e;
     s->pl_k[q] = clCreateKernel(prog, names[q], &e);
     if (e != CL_SUCCESS)
@@ -151,17 +155,27 @@ int msocl__planes_steps(msocl__engine *s, int n)
   const cl_uint a = s->pl_conn;
   for (int q = 0; q < n; q++) {
     const int r = q & 1, w = 1 - r;
-    cl_kernel kv = s->pl_k[PL_VELOCITY], kp = s->pl_k[PL_POSITION];
-    TRY(arg(kv, a, sizeof s->pl_p[r], &s->pl_p[r]));
-    TRY(arg(kv, a + 1, sizeof s->pl_v[r], &s->pl_v[r]));
-    TRY(arg(kv, a + 2, sizeof s->pl_v[w], &s->pl_v[w]));
-    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, kv, 2, NULL,
-                                     s->pl_global, group, 0, NULL, NULL));
-    TRY(arg(kp, 0, sizeof s->pl_p[r], &s->pl_p[r]));
-    TRY(arg(kp, 1, sizeof s->pl_v[w], &s->pl_v[w]));
-    TRY(arg(kp, 2, sizeof s->pl_p[w], &s->pl_p[w]));
-    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, kp, 2, NULL,
-                                     s->pl_global, group, 0, NULL, NULL));
+    if (s->o.fused) {
+      cl_kernel kf = s->pl_k[PL_FUSED];
+      TRY(arg(kf, a, sizeof s->pl_p[r], &s->pl_p[r]));
+      TRY(arg(kf, a + 1, sizeof s->pl_v[r], &s->pl_v[r]));
+      TRY(arg(kf, a + 2, sizeof s->pl_v[w], &s->pl_v[w]));
+      TRY(arg(kf, a + 3, sizeof s->pl_p[w], &s->pl_p[w]));
+      MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, kf, 2, NULL,
+                                       s->pl_global, group, 0, NULL, NULL));
+    } else {
+      cl_kernel kv = s->pl_k[PL_VELOCITY], kp = s->pl_k[PL_POSITION];
+      TRY(arg(kv, a, sizeof s->pl_p[r], &s->pl_p[r]));
+      TRY(arg(kv, a + 1, sizeof s->pl_v[r], &s->pl_v[r]));
+      TRY(arg(kv, a + 2, sizeof s->pl_v[w], &s->pl_v[w]));
+      MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, kv, 2, NULL,
+                                       s->pl_global, group, 0, NULL, NULL));
+      TRY(arg(kp, 0, sizeof s->pl_p[r], &s->pl_p[r]));
+      TRY(arg(kp, 1, sizeof s->pl_v[w], &s->pl_v[w]));
+      TRY(arg(kp, 2, sizeof s->pl_p[w], &s->pl_p[w]));
+      MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, kp, 2, NULL,
+                                       s->pl_global, group, 0, NULL, NULL));
+    }
     if ((q + 1) % 64 == 0)
       MSOCL__CL(clFlush(s->dev->queue));
   }
@@ -170,7 +184,7 @@ int msocl__planes_steps(msocl__engine *s, int n)
 
 void msocl__planes_release(msocl__engine *s)
 {
-  for (int q = 0; q < 4; q++)
+  for (int q = 0; q < PL_COUNT; q++)
     if (s->pl_k[q])
       clReleaseKernel(s->pl_k[q]);
   cl_mem m[5] = {s->pl_p[0], s->pl_p[1], s->pl_v[0], s->pl_v[1], s->pl_aux};

@@ -58,7 +58,7 @@ struct msocl__engine {
    * planes of padded rows while a call's steps run */
   int planes;
   cl_mem pl_p[2], pl_v[2], pl_aux; /* ping-pong like pos and vel */
-  cl_kernel pl_k[4];      /* velocity, position, pack, unpack */
+  cl_kernel pl_k[5];      /* velocity, position, pack, unpack, fused */
   cl_uint pl_conn;        /* velocity: its connectivity arguments */
   int pl_pitch, pl_plane; /* floats a row, and a plane */
   size_t pl_global[2];    /* the passes' 2-D range: rows padded to 64 */

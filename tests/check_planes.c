@@ -1,5 +1,6 @@
 /* GRID in planes (options.planes): a cloth grid's symplectic Euler steps
- * over x, y, z planes must be bitwise the float4 kernels' steps - with
+ * over x, y, z planes, two passes or fused, must be bitwise the float4
+ * kernels' steps - with
  * every feature the planes kernel compiles in (colliders of each kind,
  * pins, dashpots, viscous damping, air), grids narrower and wider than a
  * work-group, and the state written between calls - and auto must take
@@ -57,13 +58,15 @@ static void state_free(struct state *st)
   free(st->vel);
 }
 
+/* planes: options.planes, and 2: planes with the fused kernel */
 static msocl_sim *make(const msocl_model *m, int planes, msocl_math math,
                        float dt)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.layout = MSOCL_LAYOUT_GRID;
-  o.planes = planes;
+  o.planes = planes > 0;
+  o.fused = planes == 2;
   o.math = math;
   o.dt = dt;
   msocl_sim *s = NULL;
@@ -123,12 +126,18 @@ START_TEST(busy_cloth_bitwise)
   dt *= 0.5f;
   struct state f4 = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 500);
   struct state pl = run(m, 1, MSOCL_MATH_PRECISE, dt, 1, 500);
+  struct state fu = run(m, 2, MSOCL_MATH_PRECISE, dt, 1, 500);
   ck_assert_int_eq(f4.planes, 0);
   ck_assert_int_eq(pl.planes, 1);
+  ck_assert_int_eq(fu.planes, 1);
   char what[64];
   snprintf(what, sizeof what, "%d x %d busy cloth", sizes[_i][0],
            sizes[_i][1]);
   assert_bitwise(&f4, &pl, what);
+  snprintf(what, sizeof what, "%d x %d busy cloth, fused", sizes[_i][0],
+           sizes[_i][1]);
+  assert_bitwise(&f4, &fu, what);
+  state_free(&fu);
   /* and it moved: the test compares a motion, not a rest state */
   double far = 0.0;
   for (int i = 0; i < f4.n; i++)
@@ -149,7 +158,10 @@ START_TEST(scenes_in_calls_bitwise)
   float dt = scene_tablecloth_dt(_i == 0 ? 33 : 24);
   struct state f4 = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 497);
   struct state pl = run(m, 1, MSOCL_MATH_PRECISE, dt, 71, 7);
+  struct state fu = run(m, 2, MSOCL_MATH_PRECISE, dt, 71, 7);
   assert_bitwise(&f4, &pl, _i == 0 ? "tablecloth" : "hanging cloth");
+  assert_bitwise(&f4, &fu, _i == 0 ? "tablecloth, fused" : "hanging, fused");
+  state_free(&fu);
   state_free(&f4);
   state_free(&pl);
   msocl_model_destroy(m);
@@ -223,22 +235,18 @@ START_TEST(auto_and_errors)
     msocl_layout layout;
     msocl_integrator in;
     msocl_strain strain;
-    int fused;
     const char *words;
   } no[] = {
-      {MSOCL_LAYOUT_BUFFER, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 0,
+      {MSOCL_LAYOUT_BUFFER, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE,
        "GRID"},
-      {MSOCL_LAYOUT_GRID, MSOCL_RK4, MSOCL_STRAIN_NONE, 0, "symplectic"},
-      {MSOCL_LAYOUT_GRID, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT, 0,
+      {MSOCL_LAYOUT_GRID, MSOCL_RK4, MSOCL_STRAIN_NONE, "symplectic"},
+      {MSOCL_LAYOUT_GRID, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT,
        "strain"},
-      {MSOCL_LAYOUT_GRID, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 1,
-       "fused"},
   };
   for (size_t q = 0; q < sizeof no / sizeof no[0]; q++) {
     o.layout = no[q].layout;
     o.integrator = no[q].in;
     o.strain = no[q].strain;
-    o.fused = no[q].fused;
     o.planes = -1;
     ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
     ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
