@@ -9,13 +9,15 @@
 # Stages (default: all, in this order):
 #   devices    msocl-devices: what the machine offers
 #   verify     the kernels on the GPU agree with themselves: the tablecloth
-#              at 128^2 with BUFFER, GRID, IMAGE2D, the fused step, and
-#              BUFFER with spring classes (-C) and values (-V) forced,
+#              at 128^2 with BUFFER, GRID, IMAGE2D, the fused step,
+#              BUFFER with spring classes (-C) and values (-V) forced, and
+#              GRID in planes forced (-P), two passes and fused,
 #              final meshes compared bit for bit (as make check does on
 #              PoCL; the GPU machine has no Check)            (seconds)
 #   table1     Table 1 on the GPU: 48..2048 per layout, with the one-kernel
-#              step (--fused) and BUFFER's classes and values rows
-#              (--values), serial C beside it           (about 7 min)
+#              step (--fused), BUFFER's classes and values rows
+#              (--values) and GRID in planes and in float4 forced
+#              (--planes), serial C beside it           (about 7 min)
 #   precision  the work-precision data on the GPU, both math modes (1 min)
 #   split      the tablecloth at 1024^2: GPU alone, PoCL's CPU alone, and
 #              split over both with calibrated weights, boundary first
@@ -59,7 +61,8 @@ for stage in $stages; do
   verify)
     : > "$out/verify.txt"
     for run in "buffer -l buffer" "grid -l grid" "image2d -l image2d" \
-      "fused -l buffer -f" "classes -l buffer -C" "values -l buffer -V"; do
+      "fused -l buffer -f" "classes -l buffer -C" "values -l buffer -V" \
+      "planes -l grid -P" "planesfused -l grid -P -f"; do
       set -- $run
       tag=$1
       shift
@@ -69,7 +72,7 @@ for stage in $stages; do
         -o "$out/verify_$tag.obj" >> "$out/verify.txt" 2>&1 ||
         echo "# exit status $?" >> "$out/verify.txt"
     done
-    for tag in grid image2d fused classes values; do
+    for tag in grid image2d fused classes values planes planesfused; do
       a=$out/verify_buffer.obj b=$out/verify_$tag.obj
       [ -f "$a" ] && [ -f "$b" ] || continue
       if cmp -s "$a" "$b"; then
@@ -83,7 +86,7 @@ for stage in $stages; do
     ;;
   table1)
     record table1 env MSOCL_DEVICE=gpu $bench table1 --big-steps 200 \
-      --repeat 3 --fused --values --csv "$out/table1.csv"
+      --repeat 3 --fused --values --planes --csv "$out/table1.csv"
     ;;
   precision)
     record precision env MSOCL_DEVICE=gpu $bench precision \
