@@ -333,11 +333,12 @@ typedef struct {
   /* GRID in planes: symplectic Euler on a cloth grid with the state held,
    * while a call's steps run, as separate x, y, z planes of rows padded at
    * the edges, which a CPU device runs many points to an instruction
-   * (docs/PERFORMANCE.md). Bitwise the same result; 28 bytes a point more
-   * memory; the state is copied in and out once a call (or a check_every
-   * batch). 1: whenever it applies (GRID, symplectic Euler, no strain
-   * limiting, one device; fused too); 0: never; -1 (default): where it
-   * applies on a CPU device. */
+   * (docs/PERFORMANCE.md). Bitwise the same result; 56 bytes a point more
+   * device memory (two copies of x, y, z of position and velocity, inverse
+   * mass and pin); the state is copied in and out once a call (or a
+   * check_every batch). 1: whenever it applies (GRID, symplectic Euler, no
+   * strain limiting, one device; fused too); 0: never; -1 (default):
+   * where it applies on a CPU device. */
   int planes;
 } msocl_sim_options;
 
