@@ -171,22 +171,28 @@ static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
   __global const float *aux, int pitch, int plane, float4 gravity,           \
       float viscous, float air, float dt, __constant float4 *col
 
+/* Both kernels' point (x, y), at a, and its new velocity; then the store
+ * of that velocity. */
+#define MSOCL_PLANES_KICK                                                     \
+  const int x = get_global_id(0), y = get_global_id(1);                      \
+  const int a = (y + 2) * pitch + x + 2;                                     \
+  float vx, vy, vz;                                                          \
+  bool pinned;                                                               \
+  msocl_planes_kick(MSOCL_CONN_ARGS, p, v, aux, pitch, plane, gravity,       \
+                    viscous, air, dt, col, x, y, a, &vx, &vy, &vz, &pinned)
+#define MSOCL_PLANES_STORE_V                                                  \
+  v_out[a] = vx;                                                             \
+  v_out[plane + a] = vy;                                                     \
+  v_out[2 * plane + a] = vz
+
 __kernel void msocl_planes_velocity(MSOCL_CONN, __global const float *p,
                                     __global const float *v,
                                     __global float *v_out,
                                     MSOCL_PLANES_ARGS)
 {
-  const int x = get_global_id(0), y = get_global_id(1);
-  const int a = (y + 2) * pitch + x + 2;
-  float vx, vy, vz;
-  bool pinned;
-  msocl_planes_kick(MSOCL_CONN_ARGS, p, v, aux, pitch, plane, gravity,
-                    viscous, air, dt, col, x, y, a, &vx, &vy, &vz, &pinned);
+  MSOCL_PLANES_KICK;
   if (x < grid_nx) {
-    __global float *oy = v_out + plane, *oz = oy + plane;
-    v_out[a] = vx;
-    oy[a] = vy;
-    oz[a] = vz;
+    MSOCL_PLANES_STORE_V;
   }
 }
 
@@ -197,20 +203,12 @@ __kernel void msocl_planes_fused(MSOCL_CONN, __global const float *p,
                                  __global float *v_out, __global float *p_out,
                                  MSOCL_PLANES_ARGS)
 {
-  const int x = get_global_id(0), y = get_global_id(1);
-  const int a = (y + 2) * pitch + x + 2;
-  float vx, vy, vz;
-  bool pinned;
-  msocl_planes_kick(MSOCL_CONN_ARGS, p, v, aux, pitch, plane, gravity,
-                    viscous, air, dt, col, x, y, a, &vx, &vy, &vz, &pinned);
+  MSOCL_PLANES_KICK;
   if (x < grid_nx) {
     __global const float *py_ = p + plane, *pz_ = py_ + plane;
-    __global float *oy = v_out + plane, *oz = oy + plane;
     __global float *qy = p_out + plane, *qz = qy + plane;
     const float cx = p[a], cy = py_[a], cz = pz_[a];
-    v_out[a] = vx;
-    oy[a] = vy;
-    oz[a] = vz;
+    MSOCL_PLANES_STORE_V;
     p_out[a] = pinned ? cx : cx + dt * vx;
     qy[a] = pinned ? cy : cy + dt * vy;
     qz[a] = pinned ? cz : cz + dt * vz;

@@ -76,12 +76,7 @@ static int mems(cl_kernel k, cl_uint first, int n, const cl_mem *args)
   return MSOCL_OK;
 }
 
-#define TRY(call)                                                             \
-  do {                                                                        \
-    int msocl__rc = (call);                                                   \
-    if (msocl__rc != MSOCL_OK)                                                \
-      return msocl__rc;                                                       \
-  } while (0)
+#define TRY MSOCL__TRY
 
 /* The tail the point passes that end a symplectic or explicit Euler step
  * share: inverse masses, gravity, viscous damping, air, dt, colliders, n. */

@@ -32,12 +32,7 @@ static int collect(msocl__engine *s, double *sum)
   return MSOCL_OK;
 }
 
-#define TRY(call)                                                             \
-  do {                                                                        \
-    int msocl__rc = (call);                                                   \
-    if (msocl__rc != MSOCL_OK)                                                \
-      return msocl__rc;                                                       \
-  } while (0)
+#define TRY MSOCL__TRY
 
 int msocl__implicit_setup(msocl__engine *s)
 {

@@ -33,6 +33,14 @@ void msocl__clear_error(void);
                          msocl_err_name(msocl__e), (int)msocl__e);            \
   } while (0)
 
+/* Returns a failing library call's status from the calling function. */
+#define MSOCL__TRY(call)                                                      \
+  do {                                                                        \
+    int msocl__rc = (call);                                                   \
+    if (msocl__rc != MSOCL_OK)                                                \
+      return msocl__rc;                                                       \
+  } while (0)
+
 /* ------------------------------------------------------------------ model */
 
 enum { MSOCL__PLANE = 1, MSOCL__SPHERE = 2, MSOCL__TABLE = 3 };

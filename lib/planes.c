@@ -45,12 +45,7 @@ static int arg(cl_kernel k, cl_uint i, size_t size, const void *v)
   return MSOCL_OK;
 }
 
-#define TRY(call)                                                             \
-  do {                                                                        \
-    int msocl__rc = (call);                                                   \
-    if (msocl__rc != MSOCL_OK)                                                \
-      return msocl__rc;                                                       \
-  } while (0)
+#define TRY MSOCL__TRY
 
 /* The arguments that never change: all but the planes that ping-pong. */
 static int fixed_args(msocl__engine *s)

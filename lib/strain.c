@@ -5,12 +5,7 @@
 #include "config.h"
 #include "sim.h"
 
-#define TRY(call)                                                             \
-  do {                                                                        \
-    int msocl__rc = (call);                                                   \
-    if (msocl__rc != MSOCL_OK)                                                \
-      return msocl__rc;                                                       \
-  } while (0)
+#define TRY MSOCL__TRY
 
 int msocl__strain_setup(msocl__engine *s)
 {
