@@ -1,6 +1,7 @@
-/* GRID in planes (options.planes): symplectic Euler's two passes over a
- * cloth grid whose state is held as separate x, y, z planes of floats, each
- * row padded by two points on every side. Needs common.cl before it.
+/* GRID in planes (options.planes): symplectic Euler's two passes (or
+ * fused) and velocity Verlet's, over a cloth grid whose state is held as
+ * separate x, y, z planes of floats, each row padded by two points on every
+ * side. Needs common.cl before it.
  *
  * Why: PoCL's CPU device vectorises across work-items only when a kernel's
  * per-work-item code is all scalar (its loop vectorizer takes no vector-
@@ -11,9 +12,9 @@
  * point - within the padding at the grid's edge - so eight or sixteen
  * work-items read it with one vector load, not a gather.
  *
- * Same arithmetic as msocl_force, msocl_kick, msocl_collide and the
- * position pass, slot by slot in the same order, so the result is bitwise
- * theirs (tests/check_planes.c). The state between calls stays in the
+ * Same arithmetic as msocl_force, msocl_kick, msocl_collide, the position
+ * pass and Verlet's drift and kick, slot by slot in the same order, so the
+ * result is bitwise theirs (tests/check_planes.c). The state between calls stays in the
  * engine's float4 buffers: msocl_planes_pack copies it in, and
  * msocl_planes_unpack back out.
  *
@@ -78,20 +79,16 @@ static float msocl_planes_gap(float px, float py, float pz,
   return g;
 }
 
-/* The velocity pass for the point at a = (x, y): its new velocity in
- * *vx.., and whether it is pinned. */
-static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
-                              __global const float *v,
-                              __global const float *aux, int pitch, int plane,
-                              float4 gravity, float viscous, float air,
-                              float dt, __constant float4 *col, int x, int y,
-                              int a, float *vx_out, float *vy_out,
-                              float *vz_out, bool *pinned)
+/* msocl_force at the point at a = (x, y), viscous damping included. */
+static void msocl_planes_force(MSOCL_CONN, __global const float *p,
+                               __global const float *v, int pitch, int plane,
+                               float viscous, int x, int y, int a,
+                               float *fx_out, float *fy_out, float *fz_out)
 {
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
   __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
   const float px = p[a], py = py_[a], pz = pz_[a];
-  float vx = v[a], vy = vy_[a], vz = vz_[a];
+  const float vx = v[a], vy = vy_[a], vz = vz_[a];
   float fx = 0.0f, fy = 0.0f, fz = 0.0f;
 #pragma unroll
   for (int s = 0; s < 12; s++) {
@@ -129,16 +126,17 @@ static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
   fz = fz - viscous * vz;
 #endif
   (void)viscous;
-  const float im = aux[a];
-  vx = vx + dt * (fx * im + gravity.x);
-  vy = vy + dt * (fy * im + gravity.y);
-  vz = vz + dt * (fz * im + gravity.z);
-#ifdef MSOCL_AIR
-  vx = air * vx;
-  vy = air * vy;
-  vz = air * vz;
-#endif
-  (void)air;
+  *fx_out = fx;
+  *fy_out = fy;
+  *fz_out = fz;
+}
+
+/* msocl_collide with fscale 1, its branches as selects. */
+static void msocl_planes_collide(float px, float py, float pz, float *vx_io,
+                                 float *vy_io, float *vz_io, float dt,
+                                 __constant float4 *col)
+{
+  float vx = *vx_io, vy = *vy_io, vz = *vz_io;
   __constant const float *cf = (__constant const float *)col;
 #pragma unroll
   for (int c = 0; c < MSOCL_NCOL; c++) {
@@ -159,6 +157,36 @@ static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
     vz = hit ? hz : vz;
   }
   (void)cf;
+  *vx_io = vx;
+  *vy_io = vy;
+  *vz_io = vz;
+}
+
+/* The velocity pass for the point at a = (x, y): its new velocity in
+ * *vx.., and whether it is pinned. */
+static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
+                              __global const float *v,
+                              __global const float *aux, int pitch, int plane,
+                              float4 gravity, float viscous, float air,
+                              float dt, __constant float4 *col, int x, int y,
+                              int a, float *vx_out, float *vy_out,
+                              float *vz_out, bool *pinned)
+{
+  float fx, fy, fz;
+  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, plane, viscous, x, y, a,
+                     &fx, &fy, &fz);
+  const float im = aux[a];
+  float vx = v[a] + dt * (fx * im + gravity.x);
+  float vy = v[plane + a] + dt * (fy * im + gravity.y);
+  float vz = v[2 * plane + a] + dt * (fz * im + gravity.z);
+#ifdef MSOCL_AIR
+  vx = air * vx;
+  vy = air * vy;
+  vz = air * vz;
+#endif
+  (void)air;
+  msocl_planes_collide(p[a], p[plane + a], p[2 * plane + a], &vx, &vy, &vz,
+                       dt, col);
   *pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
   *vx_out = *pinned ? 0.0f : vx;
   *vy_out = *pinned ? 0.0f : vy;
@@ -235,6 +263,93 @@ __kernel void msocl_planes_position(__global const float *p,
     oy[a] = pinned ? cy : cy + dt * vy_[a];
     oz[a] = pinned ? cz : cz + dt * vz_[a];
   }
+}
+
+/* Velocity Verlet in planes, as msocl_verlet_drift and msocl_verlet_kick.
+ * Drift: v+ = v + dt/2 a with the collision response on it, in place (no
+ * other point reads it here), and p' = p + dt v+. */
+__kernel void msocl_planes_drift(__global const float *p, __global float *v,
+                                 __global const float *acc,
+                                 __global float *p_out,
+                                 __global const float *aux, int nx,
+                                 int pitch, int plane, float dt,
+                                 __constant float4 *col)
+{
+  const int x = get_global_id(0), y = get_global_id(1);
+  const int a = (y + 2) * pitch + x + 2;
+  const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  const float h = 0.5f * dt;
+  const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
+  float vx = v[a] + h * acc[a], vy = v[plane + a] + h * acc[plane + a],
+        vz = v[2 * plane + a] + h * acc[2 * plane + a];
+  msocl_planes_collide(px, py, pz, &vx, &vy, &vz, dt, col);
+  if (x < nx) {
+    p_out[a] = pinned ? px : px + dt * vx;
+    p_out[plane + a] = pinned ? py : py + dt * vy;
+    p_out[2 * plane + a] = pinned ? pz : pz + dt * vz;
+    v[a] = pinned ? 0.0f : vx;
+    v[plane + a] = pinned ? 0.0f : vy;
+    v[2 * plane + a] = pinned ? 0.0f : vz;
+  }
+}
+
+/* Kick: a' = a(p', v+), v' = v+ + dt/2 a'; a' kept for the next drift. */
+__kernel void msocl_planes_vkick(MSOCL_CONN, __global const float *p,
+                                 __global const float *v,
+                                 __global float *v_out,
+                                 __global float *acc_out, MSOCL_PLANES_ARGS)
+{
+  const int x = get_global_id(0), y = get_global_id(1);
+  const int a = (y + 2) * pitch + x + 2;
+  float fx, fy, fz;
+  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, plane, viscous, x, y, a,
+                     &fx, &fy, &fz);
+  const float im = aux[a], h = 0.5f * dt;
+  const float ax = fx * im + gravity.x, ay = fy * im + gravity.y,
+              az = fz * im + gravity.z;
+  float vx = v[a] + h * ax, vy = v[plane + a] + h * ay,
+        vz = v[2 * plane + a] + h * az;
+#ifdef MSOCL_AIR
+  vx = air * vx;
+  vy = air * vy;
+  vz = air * vz;
+#endif
+  (void)air;
+  (void)col;
+  const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  if (x < grid_nx) {
+    v_out[a] = pinned ? 0.0f : vx;
+    v_out[plane + a] = pinned ? 0.0f : vy;
+    v_out[2 * plane + a] = pinned ? 0.0f : vz;
+    acc_out[a] = pinned ? 0.0f : ax;
+    acc_out[plane + a] = pinned ? 0.0f : ay;
+    acc_out[2 * plane + a] = pinned ? 0.0f : az;
+  }
+}
+
+/* Another float4 buffer's xyz (Verlet's acceleration) into planes, and
+ * back with w 0. */
+__kernel void msocl_planes_in(__global const float4 *src, __global float *dst,
+                              int nx, int pitch, int plane, int n)
+{
+  const int i = get_global_id(0);
+  if (i >= n)
+    return;
+  const int a = (i / nx + 2) * pitch + i % nx + 2;
+  const float4 q = src[i];
+  dst[a] = q.x;
+  dst[plane + a] = q.y;
+  dst[2 * plane + a] = q.z;
+}
+
+__kernel void msocl_planes_out(__global const float *src, __global float4 *dst,
+                               int nx, int pitch, int plane, int n)
+{
+  const int i = get_global_id(0);
+  if (i >= n)
+    return;
+  const int a = (i / nx + 2) * pitch + i % nx + 2;
+  dst[i] = (float4)(src[a], src[plane + a], src[2 * plane + a], 0.0f);
 }
 
 /* The engine's float4 state (point i of an nx-wide grid) into planes. */

@@ -242,15 +242,21 @@ static int explicit_euler(msocl__engine *s)
  * whole range before any drift: its dashpots read the velocities that
  * drift changes in place, so a drift run span by span must not precede
  * it anywhere. */
+int msocl__verlet_accel(msocl__engine *s)
+{
+  if (s->acc_valid)
+    return MSOCL_OK;
+  cl_mem a[2] = {s->pos[s->r], s->vel[s->r]};
+  TRY(mems(s->k[MSOCL__K_ACCEL], s->nconn, 2, a));
+  TRY(launch_range(s, MSOCL__K_ACCEL));
+  s->acc_valid = 1;
+  return MSOCL_OK;
+}
+
 static int verlet_drift(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
-  if (!s->acc_valid) {
-    cl_mem a[2] = {s->pos[r], s->vel[r]};
-    TRY(mems(s->k[MSOCL__K_ACCEL], s->nconn, 2, a));
-    TRY(launch_range(s, MSOCL__K_ACCEL));
-    s->acc_valid = 1;
-  }
+  TRY(msocl__verlet_accel(s));
   cl_mem d[2] = {s->pos[r], s->vel[r]};
   TRY(mems(s->k[MSOCL__K_DRIFT], 0, 2, d));
   TRY(msocl__arg_mem(s->k[MSOCL__K_DRIFT], 3, s->pos[w]));

@@ -6,19 +6,28 @@
 #include "config.h"
 #include "sim.h"
 
-enum { PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_COUNT };
+enum {
+  PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_DRIFT, PL_KICK,
+  PL_IN, PL_OUT, PL_COUNT
+};
+
+_Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_k /
+                               sizeof(cl_kernel),
+               "msocl__engine.pl_k holds every planes kernel");
 
 static const char *const names[PL_COUNT] = {
     "msocl_planes_velocity", "msocl_planes_position", "msocl_planes_pack",
-    "msocl_planes_unpack", "msocl_planes_fused"};
+    "msocl_planes_unpack",   "msocl_planes_fused",    "msocl_planes_drift",
+    "msocl_planes_vkick",    "msocl_planes_in",       "msocl_planes_out"};
 
 /* Why the engine cannot run in planes; NULL: it can. */
 static const char *unfit(const msocl__engine *s)
 {
   if (s->lay.kind != MSOCL_LAYOUT_GRID)
     return "needs the GRID layout";
-  if (s->o.integrator != MSOCL_SYMPLECTIC_EULER)
-    return "runs symplectic Euler only";
+  if (s->o.integrator != MSOCL_SYMPLECTIC_EULER &&
+      s->o.integrator != MSOCL_VERLET)
+    return "runs symplectic Euler and Verlet only";
   if (s->o.strain != MSOCL_STRAIN_NONE)
     return "runs without strain limiting only";
   if (s->lo != 0 || s->hi != s->n)
@@ -51,14 +60,15 @@ static int arg(cl_kernel k, cl_uint i, size_t size, const void *v)
 static int fixed_args(msocl__engine *s)
 {
   cl_kernel k = NULL;
-  /* velocity (connectivity, p, v, v_out, then these), and fused (with
-   * p_out before them) */
-  for (int q = 0; q < 2; q++) {
-    k = s->pl_k[q ? PL_FUSED : PL_VELOCITY];
+  /* velocity (connectivity, p, v, v_out, then these); fused and Verlet's
+   * kick (one more ping-pong argument: p_out, acc_out) */
+  const int gathers[3] = {PL_VELOCITY, PL_FUSED, PL_KICK};
+  for (int q = 0; q < 3; q++) {
+    k = s->pl_k[gathers[q]];
     cl_uint a;
     TRY(msocl__layout_set_args(&s->lay, k, &a));
     s->pl_conn = a;
-    a += 3 + (cl_uint)q;
+    a += q ? 4 : 3;
     TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
     TRY(arg(k, a + 1, sizeof(int), &s->pl_pitch));
     TRY(arg(k, a + 2, sizeof(int), &s->pl_plane));
@@ -86,7 +96,29 @@ static int fixed_args(msocl__engine *s)
     TRY(arg(k, aux_at[q], sizeof s->pl_aux, &s->pl_aux));
   }
   k = s->pl_k[PL_PACK];
-  return arg(k, 2, sizeof s->inv_mass, &s->inv_mass);
+  TRY(arg(k, 2, sizeof s->inv_mass, &s->inv_mass));
+  /* Verlet: drift (p, v, acc, p_out, aux, nx, pitch, plane, dt, col), and
+   * the acceleration in and out (src, dst, nx, pitch, plane, n) */
+  if (s->o.integrator != MSOCL_VERLET)
+    return MSOCL_OK;
+  k = s->pl_k[PL_DRIFT];
+  TRY(arg(k, 2, sizeof s->pl_a, &s->pl_a));
+  TRY(arg(k, 4, sizeof s->pl_aux, &s->pl_aux));
+  TRY(arg(k, 5, sizeof(int), &s->lay.grid_nx));
+  TRY(arg(k, 6, sizeof(int), &s->pl_pitch));
+  TRY(arg(k, 7, sizeof(int), &s->pl_plane));
+  TRY(arg(k, 8, sizeof(float), &s->o.dt));
+  TRY(arg(k, 9, sizeof s->col, &s->col));
+  for (int q = PL_IN; q <= PL_OUT; q++) {
+    k = s->pl_k[q];
+    TRY(arg(k, q == PL_IN ? 0 : 1, sizeof s->acc, &s->acc));
+    TRY(arg(k, q == PL_IN ? 1 : 0, sizeof s->pl_a, &s->pl_a));
+    TRY(arg(k, 2, sizeof(int), &s->lay.grid_nx));
+    TRY(arg(k, 3, sizeof(int), &s->pl_pitch));
+    TRY(arg(k, 4, sizeof(int), &s->pl_plane));
+    TRY(arg(k, 5, sizeof(int), &s->n));
+  }
+  return MSOCL_OK;
 }
 
 int msocl__planes_create(msocl__engine *s, cl_program prog)
@@ -106,12 +138,14 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
       return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
                          msocl_err_name(e));
   }
-  cl_mem *bufs[5] = {&s->pl_p[0], &s->pl_p[1], &s->pl_v[0], &s->pl_v[1],
-                     &s->pl_aux};
-  for (int q = 0; q < 5; q++) {
+  /* and Verlet's acceleration */
+  cl_mem *bufs[6] = {&s->pl_p[0], &s->pl_p[1], &s->pl_v[0], &s->pl_v[1],
+                     &s->pl_aux, &s->pl_a};
+  const int nbufs = s->o.integrator == MSOCL_VERLET ? 6 : 5;
+  for (int q = 0; q < nbufs; q++) {
     /* the padding is read (and its terms discarded): zeros, not garbage */
     const size_t bytes =
-        (q < 4 ? 3 : 2) * (size_t)s->pl_plane * sizeof(float);
+        (q == 4 ? 2 : 3) * (size_t)s->pl_plane * sizeof(float);
     cl_int e;
     *bufs[q] = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes, NULL,
                               &e);
@@ -140,40 +174,81 @@ static int copy(msocl__engine *s, int set, int to_planes)
   return MSOCL_OK;
 }
 
+/* A pass over the padded grid; CPU devices in work-groups of 64 points
+ * of a row (integrate.c's reason). */
+static int launch(msocl__engine *s, int k)
+{
+  const size_t local[2] = {64, 1};
+  const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 2, NULL,
+                                   s->pl_global, group, 0, NULL, NULL));
+  return MSOCL_OK;
+}
+
+/* Sets the gathering kernel k's ping-pong arguments (after its
+ * connectivity) to bufs[0..n). */
+static int gather_args(msocl__engine *s, int k, int n, const cl_mem *bufs)
+{
+  for (int q = 0; q < n; q++)
+    TRY(arg(s->pl_k[k], s->pl_conn + (cl_uint)q, sizeof bufs[q], &bufs[q]));
+  return MSOCL_OK;
+}
+
+/* One step from plane set r to set w. */
+static int step(msocl__engine *s, int r, int w)
+{
+  const cl_mem *p = s->pl_p, *v = s->pl_v;
+  if (s->o.integrator == MSOCL_VERLET) {
+    cl_kernel kd = s->pl_k[PL_DRIFT];
+    TRY(arg(kd, 0, sizeof p[r], &p[r]));
+    TRY(arg(kd, 1, sizeof v[r], &v[r]));
+    TRY(arg(kd, 3, sizeof p[w], &p[w]));
+    TRY(launch(s, PL_DRIFT));
+    const cl_mem kick[4] = {p[w], v[r], v[w], s->pl_a};
+    TRY(gather_args(s, PL_KICK, 4, kick));
+    return launch(s, PL_KICK);
+  }
+  if (s->o.fused) {
+    const cl_mem fused[4] = {p[r], v[r], v[w], p[w]};
+    TRY(gather_args(s, PL_FUSED, 4, fused));
+    return launch(s, PL_FUSED);
+  }
+  const cl_mem vel[3] = {p[r], v[r], v[w]};
+  TRY(gather_args(s, PL_VELOCITY, 3, vel));
+  TRY(launch(s, PL_VELOCITY));
+  cl_kernel kp = s->pl_k[PL_POSITION];
+  TRY(arg(kp, 0, sizeof p[r], &p[r]));
+  TRY(arg(kp, 1, sizeof v[w], &v[w]));
+  TRY(arg(kp, 2, sizeof p[w], &p[w]));
+  return launch(s, PL_POSITION);
+}
+
+/* Verlet's acceleration into its planes (in) or back (out). */
+static int acceleration(msocl__engine *s, int in)
+{
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[in ? PL_IN : PL_OUT],
+                                   1, NULL, &s->full_global, NULL, 0, NULL,
+                                   NULL));
+  return MSOCL_OK;
+}
+
 int msocl__planes_steps(msocl__engine *s, int n)
 {
   if (n <= 0)
     return MSOCL_OK;
-  const size_t local[2] = {64, 1};
-  const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
+  const int verlet = s->o.integrator == MSOCL_VERLET;
+  if (verlet) /* the float4 kernel's, when the state is new */
+    TRY(msocl__verlet_accel(s));
   TRY(copy(s, 0, 1));
-  const cl_uint a = s->pl_conn;
+  if (verlet)
+    TRY(acceleration(s, 1));
   for (int q = 0; q < n; q++) {
-    const int r = q & 1, w = 1 - r;
-    if (s->o.fused) {
-      cl_kernel kf = s->pl_k[PL_FUSED];
-      TRY(arg(kf, a, sizeof s->pl_p[r], &s->pl_p[r]));
-      TRY(arg(kf, a + 1, sizeof s->pl_v[r], &s->pl_v[r]));
-      TRY(arg(kf, a + 2, sizeof s->pl_v[w], &s->pl_v[w]));
-      TRY(arg(kf, a + 3, sizeof s->pl_p[w], &s->pl_p[w]));
-      MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, kf, 2, NULL,
-                                       s->pl_global, group, 0, NULL, NULL));
-    } else {
-      cl_kernel kv = s->pl_k[PL_VELOCITY], kp = s->pl_k[PL_POSITION];
-      TRY(arg(kv, a, sizeof s->pl_p[r], &s->pl_p[r]));
-      TRY(arg(kv, a + 1, sizeof s->pl_v[r], &s->pl_v[r]));
-      TRY(arg(kv, a + 2, sizeof s->pl_v[w], &s->pl_v[w]));
-      MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, kv, 2, NULL,
-                                       s->pl_global, group, 0, NULL, NULL));
-      TRY(arg(kp, 0, sizeof s->pl_p[r], &s->pl_p[r]));
-      TRY(arg(kp, 1, sizeof s->pl_v[w], &s->pl_v[w]));
-      TRY(arg(kp, 2, sizeof s->pl_p[w], &s->pl_p[w]));
-      MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, kp, 2, NULL,
-                                       s->pl_global, group, 0, NULL, NULL));
-    }
+    TRY(step(s, q & 1, 1 - (q & 1)));
     if ((q + 1) % 64 == 0)
       MSOCL__CL(clFlush(s->dev->queue));
   }
+  if (verlet)
+    TRY(acceleration(s, 0));
   return copy(s, n & 1, 0);
 }
 
@@ -182,8 +257,9 @@ void msocl__planes_release(msocl__engine *s)
   for (int q = 0; q < PL_COUNT; q++)
     if (s->pl_k[q])
       clReleaseKernel(s->pl_k[q]);
-  cl_mem m[5] = {s->pl_p[0], s->pl_p[1], s->pl_v[0], s->pl_v[1], s->pl_aux};
-  for (int q = 0; q < 5; q++)
+  cl_mem m[6] = {s->pl_p[0], s->pl_p[1], s->pl_v[0], s->pl_v[1], s->pl_aux,
+                 s->pl_a};
+  for (int q = 0; q < 6; q++)
     if (m[q])
       clReleaseMemObject(m[q]);
 }

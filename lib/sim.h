@@ -58,7 +58,8 @@ struct msocl__engine {
    * planes of padded rows while a call's steps run */
   int planes;
   cl_mem pl_p[2], pl_v[2], pl_aux; /* ping-pong like pos and vel */
-  cl_kernel pl_k[5];      /* velocity, position, pack, unpack, fused */
+  cl_mem pl_a;            /* Verlet: the acceleration */
+  cl_kernel pl_k[9];      /* planes.c's kernels */
   cl_uint pl_conn;        /* velocity: its connectivity arguments */
   int pl_pitch, pl_plane; /* floats a row, and a plane */
   size_t pl_global[2];    /* the passes' 2-D range: rows padded to 64 */
@@ -213,6 +214,9 @@ int msocl__planes_choose(msocl__engine *s);
 int msocl__planes_create(msocl__engine *s, cl_program prog);
 int msocl__planes_steps(msocl__engine *s, int n);
 void msocl__planes_release(msocl__engine *s);
+/* Verlet: the acceleration at the current state into acc, over the whole
+ * range, unless acc already holds it. */
+int msocl__verlet_accel(msocl__engine *s);
 /* Ends a step: swaps the ping-pong buffers. */
 void msocl__step_done(msocl__engine *s);
 /* The buffer an exchange bit names, at this point of the step. */

@@ -1,6 +1,6 @@
 /* GRID in planes (options.planes): a cloth grid's symplectic Euler steps
- * over x, y, z planes, two passes or fused, must be bitwise the float4
- * kernels' steps - with
+ * (two passes or fused) and Verlet steps over x, y, z planes must be
+ * bitwise the float4 kernels' steps - with
  * every feature the planes kernel compiles in (colliders of each kind,
  * pins, dashpots, viscous damping, air), grids narrower and wider than a
  * work-group, and the state written between calls - and auto must take
@@ -58,12 +58,17 @@ static void state_free(struct state *st)
   free(st->vel);
 }
 
-/* planes: options.planes, and 2: planes with the fused kernel */
+/* planes: options.planes, and 2: planes with the fused kernel; 3: Verlet
+ * in planes, -3 Verlet in float4 (otherwise symplectic Euler) */
 static msocl_sim *make(const msocl_model *m, int planes, msocl_math math,
                        float dt)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
+  if (planes == 3 || planes == -3) {
+    o.integrator = MSOCL_VERLET;
+    planes = planes > 0;
+  }
   o.layout = MSOCL_LAYOUT_GRID;
   o.planes = planes > 0;
   o.fused = planes == 2;
@@ -138,6 +143,15 @@ START_TEST(busy_cloth_bitwise)
            sizes[_i][1]);
   assert_bitwise(&f4, &fu, what);
   state_free(&fu);
+  struct state vf4 = run(m, -3, MSOCL_MATH_PRECISE, dt, 1, 500);
+  struct state vpl = run(m, 3, MSOCL_MATH_PRECISE, dt, 1, 500);
+  ck_assert_int_eq(vf4.planes, 0);
+  ck_assert_int_eq(vpl.planes, 1);
+  snprintf(what, sizeof what, "%d x %d busy cloth, Verlet", sizes[_i][0],
+           sizes[_i][1]);
+  assert_bitwise(&vf4, &vpl, what);
+  state_free(&vf4);
+  state_free(&vpl);
   /* and it moved: the test compares a motion, not a rest state */
   double far = 0.0;
   for (int i = 0; i < f4.n; i++)
@@ -162,6 +176,12 @@ START_TEST(scenes_in_calls_bitwise)
   assert_bitwise(&f4, &pl, _i == 0 ? "tablecloth" : "hanging cloth");
   assert_bitwise(&f4, &fu, _i == 0 ? "tablecloth, fused" : "hanging, fused");
   state_free(&fu);
+  /* Verlet carries its acceleration from call to call */
+  struct state vf4 = run(m, -3, MSOCL_MATH_PRECISE, dt, 1, 497);
+  struct state vpl = run(m, 3, MSOCL_MATH_PRECISE, dt, 71, 7);
+  assert_bitwise(&vf4, &vpl, _i == 0 ? "tablecloth, Verlet" : "hanging, Verlet");
+  state_free(&vf4);
+  state_free(&vpl);
   state_free(&f4);
   state_free(&pl);
   msocl_model_destroy(m);
@@ -174,8 +194,12 @@ START_TEST(writes_between_calls)
 {
   msocl_model *m = scene_tablecloth(20);
   const float dt = scene_tablecloth_dt(20);
-  struct state out[2];
-  for (int planes = 0; planes < 2; planes++) {
+  /* symplectic Euler float4 and planes, then Verlet's (whose stored
+   * acceleration a write must renew) */
+  const int modes[4] = {0, 1, -3, 3};
+  struct state out[4];
+  for (int q = 0; q < 4; q++) {
+    const int planes = modes[q];
     msocl_sim *s = make(m, planes, MSOCL_MATH_PRECISE, dt);
     ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
     struct state mid = read_state(s);
@@ -186,14 +210,15 @@ START_TEST(writes_between_calls)
     ck_assert_int_eq(msocl_sim_write_positions(s, mid.pos), MSOCL_OK);
     ck_assert_int_eq(msocl_sim_write_velocities(s, mid.vel), MSOCL_OK);
     ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
-    out[planes] = read_state(s);
-    ck_assert_int_eq(out[planes].planes, planes);
+    out[q] = read_state(s);
+    ck_assert_int_eq(out[q].planes, planes > 0);
     state_free(&mid);
     msocl_sim_destroy(s);
   }
   assert_bitwise(&out[0], &out[1], "written state");
-  state_free(&out[0]);
-  state_free(&out[1]);
+  assert_bitwise(&out[2], &out[3], "written state, Verlet");
+  for (int q = 0; q < 4; q++)
+    state_free(&out[q]);
   msocl_model_destroy(m);
 }
 END_TEST
@@ -230,6 +255,11 @@ START_TEST(auto_and_errors)
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
   ck_assert_int_eq(on, 1); /* scene_rt is a CPU device */
+  msocl_sim_destroy(s);
+  o.integrator = MSOCL_VERLET;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
+  ck_assert_int_eq(on, 1);
   msocl_sim_destroy(s);
   struct {
     msocl_layout layout;
