@@ -6,6 +6,8 @@
 #include "config.h"
 #include "sim.h"
 
+#include <limits.h>
+
 enum {
   PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_DRIFT, PL_KICK,
   PL_IN, PL_OUT, PL_COUNT
@@ -32,6 +34,10 @@ static const char *unfit(const msocl__engine *s)
     return "runs without strain limiting only";
   if (s->lo != 0 || s->hi != s->n)
     return "runs a whole model on one device (not a split)";
+  /* the kernels index all three planes with an int */
+  const size_t wide = ((size_t)s->lay.grid_nx + 63) / 64 * 64 + 4;
+  if (3 * wide * ((size_t)s->lay.grid_ny + 4) > (size_t)INT_MAX)
+    return "index at most 2^31 floats (the grid is too large)";
   return NULL;
 }
 
