@@ -1,7 +1,7 @@
 /* GRID in planes (options.planes): symplectic Euler's two passes (or
- * fused) and velocity Verlet's, over a cloth grid whose state is held as
- * separate x, y, z planes of floats, each row padded by two points on every
- * side. Needs common.cl before it.
+ * fused), velocity Verlet's and RK4's stages, over a cloth grid whose
+ * state is held as separate x, y, z planes of floats, each row padded by
+ * two points on every side. Needs common.cl before it.
  *
  * Why: PoCL's CPU device vectorises across work-items only when a kernel's
  * per-work-item code is all scalar (its loop vectorizer takes no vector-
@@ -13,10 +13,10 @@
  * work-items read it with one vector load, not a gather.
  *
  * Same arithmetic as msocl_force, msocl_kick, msocl_collide, the position
- * pass and Verlet's drift and kick, slot by slot in the same order, so the
- * result is bitwise theirs (tests/check_planes.c). The state between calls stays in the
- * engine's float4 buffers: msocl_planes_pack copies it in, and
- * msocl_planes_unpack back out.
+ * pass, Verlet's drift and kick and RK4's stage, slot by slot in the same
+ * order, so the result is bitwise theirs (tests/check_planes.c). The state
+ * between calls stays in the engine's float4 buffers: msocl_planes_pack
+ * copies it in, and msocl_planes_unpack back out.
  *
  * Point (x, y) sits at (y + 2) * pitch + x + 2 of each plane; p holds the
  * x, y, z planes `plane` floats apart (v likewise); aux holds the inverse
@@ -325,6 +325,120 @@ __kernel void msocl_planes_vkick(MSOCL_CONN, __global const float *p,
     acc_out[plane + a] = pinned ? 0.0f : ay;
     acc_out[2 * plane + a] = pinned ? 0.0f : az;
   }
+}
+
+/* msocl_project in scalars (explicit methods: a point found inside a
+ * collider goes back to its surface and loses its inward speed). */
+static void msocl_planes_project(float *px, float *py, float *pz, float *vx,
+                                 float *vy, float *vz,
+                                 __constant float4 *col)
+{
+  __constant const float *cf = (__constant const float *)col;
+#pragma unroll
+  for (int c = 0; c < MSOCL_NCOL; c++) {
+    float nx, ny, nz;
+    const float g = msocl_planes_gap(*px, *py, *pz, cf + 8 * c, &nx, &ny,
+                                     &nz);
+    const bool in = g < 0.0f;
+    const float qx = *px - g * nx, qy = *py - g * ny, qz = *pz - g * nz;
+    const float vn = MSOCL_DOT3(*vx, *vy, *vz, nx, ny, nz);
+    const bool back = in && vn < 0.0f;
+    float wx = *vx - vn * nx, wy = *vy - vn * ny, wz = *vz - vn * nz;
+    const float fr = cf[8 * c + 1];
+    wx = wx - fr * wx;
+    wy = wy - fr * wy;
+    wz = wz - fr * wz;
+    *px = in ? qx : *px;
+    *py = in ? qy : *py;
+    *pz = in ? qz : *pz;
+    *vx = back ? wx : *vx;
+    *vy = back ? wy : *vy;
+    *vz = back ? wz : *vz;
+  }
+  (void)cf;
+}
+
+/* One RK4 stage in planes, as msocl_rk4_stage; mode a constant in each of
+ * the three kernels below, so its branches fold away. */
+static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
+                             __global const float *v0,
+                             __global const float *sp,
+                             __global const float *sv, __global float *sum_p,
+                             __global float *sum_v, __global float *np,
+                             __global float *nv, __global const float *aux,
+                             int pitch, int plane, float4 gravity,
+                             float viscous, float air, float dt,
+                             __constant float4 *col, float c, const int mode)
+{
+  const int x = get_global_id(0), y = get_global_id(1);
+  const int a = (y + 2) * pitch + x + 2;
+  float fx, fy, fz;
+  msocl_planes_force(MSOCL_CONN_ARGS, sp, sv, pitch, plane, viscous, x, y,
+                     a, &fx, &fy, &fz);
+  const float im = aux[a];
+  const float kv[3] = {fx * im + gravity.x, fy * im + gravity.y,
+                       fz * im + gravity.z};
+  const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  float p[3], v[3];
+  if (mode == 2) {
+    const float h = dt / 6.0f;
+#pragma unroll
+    for (int q = 0; q < 3; q++) {
+      p[q] = p0[q * plane + a] + h * (sum_p[q * plane + a] + sv[q * plane + a]);
+      v[q] = v0[q * plane + a] + h * (sum_v[q * plane + a] + kv[q]);
+#ifdef MSOCL_AIR
+      v[q] = air * v[q];
+#endif
+    }
+    msocl_planes_project(&p[0], &p[1], &p[2], &v[0], &v[1], &v[2], col);
+  } else {
+    const float h = c * dt;
+#pragma unroll
+    for (int q = 0; q < 3; q++) {
+      const float kp = sv[q * plane + a];
+      const float sp_ = mode == 0 ? kp : sum_p[q * plane + a] + 2.0f * kp;
+      const float sv_ = mode == 0 ? kv[q] : sum_v[q * plane + a] + 2.0f * kv[q];
+      if (x < grid_nx) {
+        sum_p[q * plane + a] = sp_;
+        sum_v[q * plane + a] = sv_;
+      }
+      p[q] = p0[q * plane + a] + h * kp;
+      v[q] = v0[q * plane + a] + h * kv[q];
+    }
+  }
+  (void)air;
+  (void)col;
+  if (x < grid_nx) {
+#pragma unroll
+    for (int q = 0; q < 3; q++) {
+      np[q * plane + a] = pinned ? p0[q * plane + a] : p[q];
+      nv[q * plane + a] = pinned ? 0.0f : v[q];
+    }
+  }
+}
+
+#define MSOCL_PLANES_RK4_ARGS                                                 \
+  MSOCL_CONN, __global const float *p0, __global const float *v0,            \
+      __global const float *sp, __global const float *sv,                    \
+      __global float *sum_p, __global float *sum_v, __global float *np,      \
+      __global float *nv, MSOCL_PLANES_ARGS, float c
+#define MSOCL_PLANES_RK4_CALL(mode)                                           \
+  msocl_planes_rk4(MSOCL_CONN_ARGS, p0, v0, sp, sv, sum_p, sum_v, np, nv,    \
+                   aux, pitch, plane, gravity, viscous, air, dt, col, c, mode)
+
+__kernel void msocl_planes_rk4_first(MSOCL_PLANES_RK4_ARGS)
+{
+  MSOCL_PLANES_RK4_CALL(0);
+}
+
+__kernel void msocl_planes_rk4_middle(MSOCL_PLANES_RK4_ARGS)
+{
+  MSOCL_PLANES_RK4_CALL(1);
+}
+
+__kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
+{
+  MSOCL_PLANES_RK4_CALL(2);
 }
 
 /* Another float4 buffer's xyz (Verlet's acceleration) into planes, and

@@ -10,7 +10,7 @@
 
 enum {
   PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_DRIFT, PL_KICK,
-  PL_IN, PL_OUT, PL_COUNT
+  PL_IN, PL_OUT, PL_RK4, PL_RK4_MID, PL_RK4_LAST, PL_COUNT
 };
 
 _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_k /
@@ -20,7 +20,9 @@ _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_k /
 static const char *const names[PL_COUNT] = {
     "msocl_planes_velocity", "msocl_planes_position", "msocl_planes_pack",
     "msocl_planes_unpack",   "msocl_planes_fused",    "msocl_planes_drift",
-    "msocl_planes_vkick",    "msocl_planes_in",       "msocl_planes_out"};
+    "msocl_planes_vkick",    "msocl_planes_in",       "msocl_planes_out",
+    "msocl_planes_rk4_first", "msocl_planes_rk4_middle",
+    "msocl_planes_rk4_last"};
 
 /* Why the engine cannot run in planes; NULL: it can. */
 static const char *unfit(const msocl__engine *s)
@@ -28,8 +30,8 @@ static const char *unfit(const msocl__engine *s)
   if (s->lay.kind != MSOCL_LAYOUT_GRID)
     return "needs the GRID layout";
   if (s->o.integrator != MSOCL_SYMPLECTIC_EULER &&
-      s->o.integrator != MSOCL_VERLET)
-    return "runs symplectic Euler and Verlet only";
+      s->o.integrator != MSOCL_VERLET && s->o.integrator != MSOCL_RK4)
+    return "runs symplectic Euler, Verlet and RK4 only";
   if (s->o.strain != MSOCL_STRAIN_NONE)
     return "runs without strain limiting only";
   if (s->lo != 0 || s->hi != s->n)
@@ -67,14 +69,16 @@ static int fixed_args(msocl__engine *s)
 {
   cl_kernel k = NULL;
   /* velocity (connectivity, p, v, v_out, then these); fused and Verlet's
-   * kick (one more ping-pong argument: p_out, acc_out) */
-  const int gathers[3] = {PL_VELOCITY, PL_FUSED, PL_KICK};
-  for (int q = 0; q < 3; q++) {
+   * kick (one more ping-pong argument: p_out, acc_out); RK4's stages
+   * (p0, v0, sp, sv, sum_p, sum_v, np, nv, then these and c) */
+  const int gathers[6] = {PL_VELOCITY, PL_FUSED,   PL_KICK,
+                          PL_RK4,      PL_RK4_MID, PL_RK4_LAST};
+  for (int q = 0; q < 6; q++) {
     k = s->pl_k[gathers[q]];
     cl_uint a;
     TRY(msocl__layout_set_args(&s->lay, k, &a));
     s->pl_conn = a;
-    a += q ? 4 : 3;
+    a += q == 0 ? 3 : q < 3 ? 4 : 8;
     TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
     TRY(arg(k, a + 1, sizeof(int), &s->pl_pitch));
     TRY(arg(k, a + 2, sizeof(int), &s->pl_plane));
@@ -103,6 +107,13 @@ static int fixed_args(msocl__engine *s)
   }
   k = s->pl_k[PL_PACK];
   TRY(arg(k, 2, sizeof s->inv_mass, &s->inv_mass));
+  if (s->o.integrator == MSOCL_RK4)
+    for (int q = PL_RK4; q <= PL_RK4_LAST; q++) {
+      const cl_mem sums[2] = {s->pl_sum[0], s->pl_sum[1]};
+      for (int u = 0; u < 2; u++)
+        TRY(arg(s->pl_k[q], s->pl_conn + 4 + (cl_uint)u, sizeof sums[u],
+                &sums[u]));
+    }
   /* Verlet: drift (p, v, acc, p_out, aux, nx, pitch, plane, dt, col), and
    * the acceleration in and out (src, dst, nx, pitch, plane, n) */
   if (s->o.integrator != MSOCL_VERLET)
@@ -144,11 +155,15 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
       return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
                          msocl_err_name(e));
   }
-  /* and Verlet's acceleration */
-  cl_mem *bufs[6] = {&s->pl_p[0], &s->pl_p[1], &s->pl_v[0], &s->pl_v[1],
-                     &s->pl_aux, &s->pl_a};
-  const int nbufs = s->o.integrator == MSOCL_VERLET ? 6 : 5;
-  for (int q = 0; q < nbufs; q++) {
+  /* and Verlet's acceleration, or RK4's stage states and sums */
+  cl_mem *bufs[12] = {&s->pl_p[0],  &s->pl_p[1],  &s->pl_v[0],
+                      &s->pl_v[1],  &s->pl_aux,   &s->pl_a,
+                      &s->pl_sp[0], &s->pl_sp[1], &s->pl_sv[0],
+                      &s->pl_sv[1], &s->pl_sum[0], &s->pl_sum[1]};
+  for (int q = 0; q < 12; q++) {
+    if ((q == 5 && s->o.integrator != MSOCL_VERLET) ||
+        (q > 5 && s->o.integrator != MSOCL_RK4))
+      continue;
     /* the padding is read (and its terms discarded): zeros, not garbage */
     const size_t bytes =
         (q == 4 ? 2 : 3) * (size_t)s->pl_plane * sizeof(float);
@@ -200,10 +215,35 @@ static int gather_args(msocl__engine *s, int k, int n, const cl_mem *bufs)
   return MSOCL_OK;
 }
 
+/* RK4's stage q (as integrate.c's rk4_stage): the stage states alternate
+ * between two sets so no kernel writes what its neighbours read; the last
+ * stage writes set w. */
+static int rk4_stage(msocl__engine *s, int q, int r, int w)
+{
+  static const float cs[4] = {0.5f, 0.5f, 1.0f, 0.0f};
+  const int k = q == 0 ? PL_RK4 : q == 3 ? PL_RK4_LAST : PL_RK4_MID;
+  const int in = (q - 1) & 1, out = q & 1;
+  const cl_mem y0[4] = {s->pl_p[r], s->pl_v[r], q ? s->pl_sp[in] : s->pl_p[r],
+                        q ? s->pl_sv[in] : s->pl_v[r]};
+  const cl_mem next[2] = {q == 3 ? s->pl_p[w] : s->pl_sp[out],
+                          q == 3 ? s->pl_v[w] : s->pl_sv[out]};
+  TRY(gather_args(s, k, 4, y0));
+  for (int u = 0; u < 2; u++)
+    TRY(arg(s->pl_k[k], s->pl_conn + 6 + (cl_uint)u, sizeof next[u],
+            &next[u]));
+  TRY(arg(s->pl_k[k], s->pl_conn + 16, sizeof(float), &cs[q]));
+  return launch(s, k);
+}
+
 /* One step from plane set r to set w. */
 static int step(msocl__engine *s, int r, int w)
 {
   const cl_mem *p = s->pl_p, *v = s->pl_v;
+  if (s->o.integrator == MSOCL_RK4) {
+    for (int q = 0; q < 4; q++)
+      TRY(rk4_stage(s, q, r, w));
+    return MSOCL_OK;
+  }
   if (s->o.integrator == MSOCL_VERLET) {
     cl_kernel kd = s->pl_k[PL_DRIFT];
     TRY(arg(kd, 0, sizeof p[r], &p[r]));
@@ -263,9 +303,10 @@ void msocl__planes_release(msocl__engine *s)
   for (int q = 0; q < PL_COUNT; q++)
     if (s->pl_k[q])
       clReleaseKernel(s->pl_k[q]);
-  cl_mem m[6] = {s->pl_p[0], s->pl_p[1], s->pl_v[0], s->pl_v[1], s->pl_aux,
-                 s->pl_a};
-  for (int q = 0; q < 6; q++)
+  cl_mem m[12] = {s->pl_p[0],  s->pl_p[1],  s->pl_v[0],   s->pl_v[1],
+                  s->pl_aux,   s->pl_a,     s->pl_sp[0],  s->pl_sp[1],
+                  s->pl_sv[0], s->pl_sv[1], s->pl_sum[0], s->pl_sum[1]};
+  for (int q = 0; q < 12; q++)
     if (m[q])
       clReleaseMemObject(m[q]);
 }

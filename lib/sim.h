@@ -59,7 +59,8 @@ struct msocl__engine {
   int planes;
   cl_mem pl_p[2], pl_v[2], pl_aux; /* ping-pong like pos and vel */
   cl_mem pl_a;            /* Verlet: the acceleration */
-  cl_kernel pl_k[9];      /* planes.c's kernels */
+  cl_mem pl_sp[2], pl_sv[2], pl_sum[2]; /* RK4: stage states, sums */
+  cl_kernel pl_k[12];     /* planes.c's kernels */
   cl_uint pl_conn;        /* velocity: its connectivity arguments */
   int pl_pitch, pl_plane; /* floats a row, and a plane */
   size_t pl_global[2];    /* the passes' 2-D range: rows padded to 64 */

@@ -1,5 +1,5 @@
 /* GRID in planes (options.planes): a cloth grid's symplectic Euler steps
- * (two passes or fused) and Verlet steps over x, y, z planes must be
+ * (two passes or fused), Verlet and RK4 steps over x, y, z planes must be
  * bitwise the float4 kernels' steps - with
  * every feature the planes kernel compiles in (colliders of each kind,
  * pins, dashpots, viscous damping, air), grids narrower and wider than a
@@ -59,14 +59,15 @@ static void state_free(struct state *st)
 }
 
 /* planes: options.planes, and 2: planes with the fused kernel; 3: Verlet
- * in planes, -3 Verlet in float4 (otherwise symplectic Euler) */
+ * in planes, -3 Verlet in float4; 4 and -4 RK4 (otherwise symplectic
+ * Euler) */
 static msocl_sim *make(const msocl_model *m, int planes, msocl_math math,
                        float dt)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  if (planes == 3 || planes == -3) {
-    o.integrator = MSOCL_VERLET;
+  if (planes == 3 || planes == -3 || planes == 4 || planes == -4) {
+    o.integrator = planes == 3 || planes == -3 ? MSOCL_VERLET : MSOCL_RK4;
     planes = planes > 0;
   }
   o.layout = MSOCL_LAYOUT_GRID;
@@ -152,6 +153,14 @@ START_TEST(busy_cloth_bitwise)
   assert_bitwise(&vf4, &vpl, what);
   state_free(&vf4);
   state_free(&vpl);
+  struct state rf4 = run(m, -4, MSOCL_MATH_PRECISE, dt, 1, 300);
+  struct state rpl = run(m, 4, MSOCL_MATH_PRECISE, dt, 1, 300);
+  ck_assert_int_eq(rpl.planes, 1);
+  snprintf(what, sizeof what, "%d x %d busy cloth, RK4", sizes[_i][0],
+           sizes[_i][1]);
+  assert_bitwise(&rf4, &rpl, what);
+  state_free(&rf4);
+  state_free(&rpl);
   /* and it moved: the test compares a motion, not a rest state */
   double far = 0.0;
   for (int i = 0; i < f4.n; i++)
@@ -182,6 +191,11 @@ START_TEST(scenes_in_calls_bitwise)
   assert_bitwise(&vf4, &vpl, _i == 0 ? "tablecloth, Verlet" : "hanging, Verlet");
   state_free(&vf4);
   state_free(&vpl);
+  struct state rf4 = run(m, -4, MSOCL_MATH_PRECISE, dt, 1, 203);
+  struct state rpl = run(m, 4, MSOCL_MATH_PRECISE, dt, 29, 7);
+  assert_bitwise(&rf4, &rpl, _i == 0 ? "tablecloth, RK4" : "hanging, RK4");
+  state_free(&rf4);
+  state_free(&rpl);
   state_free(&f4);
   state_free(&pl);
   msocl_model_destroy(m);
@@ -256,11 +270,13 @@ START_TEST(auto_and_errors)
   ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
   ck_assert_int_eq(on, 1); /* scene_rt is a CPU device */
   msocl_sim_destroy(s);
-  o.integrator = MSOCL_VERLET;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
-  ck_assert_int_eq(on, 1);
-  msocl_sim_destroy(s);
+  for (int in = MSOCL_VERLET; in <= MSOCL_RK4; in++) {
+    o.integrator = (msocl_integrator)in;
+    ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
+    ck_assert_int_eq(on, 1);
+    msocl_sim_destroy(s);
+  }
   struct {
     msocl_layout layout;
     msocl_integrator in;
@@ -269,7 +285,9 @@ START_TEST(auto_and_errors)
   } no[] = {
       {MSOCL_LAYOUT_BUFFER, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE,
        "GRID"},
-      {MSOCL_LAYOUT_GRID, MSOCL_RK4, MSOCL_STRAIN_NONE, "symplectic"},
+      {MSOCL_LAYOUT_GRID, MSOCL_IMPLICIT_EULER, MSOCL_STRAIN_NONE,
+       "symplectic"},
+      {MSOCL_LAYOUT_GRID, MSOCL_EXPLICIT_EULER, MSOCL_STRAIN_NONE, "RK4"},
       {MSOCL_LAYOUT_GRID, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT,
        "strain"},
   };
