@@ -441,6 +441,12 @@ __kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
   MSOCL_PLANES_RK4_CALL(2);
 }
 
+/* Where point i of an nx-wide grid sits in a plane. */
+static int msocl_planes_at(int i, int nx, int pitch)
+{
+  return (i / nx + 2) * pitch + i % nx + 2;
+}
+
 /* Another float4 buffer's xyz (Verlet's acceleration) into planes, and
  * back with w 0. */
 __kernel void msocl_planes_in(__global const float4 *src, __global float *dst,
@@ -449,7 +455,7 @@ __kernel void msocl_planes_in(__global const float4 *src, __global float *dst,
   const int i = get_global_id(0);
   if (i >= n)
     return;
-  const int a = (i / nx + 2) * pitch + i % nx + 2;
+  const int a = msocl_planes_at(i, nx, pitch);
   const float4 q = src[i];
   dst[a] = q.x;
   dst[plane + a] = q.y;
@@ -462,7 +468,7 @@ __kernel void msocl_planes_out(__global const float *src, __global float4 *dst,
   const int i = get_global_id(0);
   if (i >= n)
     return;
-  const int a = (i / nx + 2) * pitch + i % nx + 2;
+  const int a = msocl_planes_at(i, nx, pitch);
   dst[i] = (float4)(src[a], src[plane + a], src[2 * plane + a], 0.0f);
 }
 
@@ -477,7 +483,7 @@ __kernel void msocl_planes_pack(__global const float4 *pos,
   const int i = get_global_id(0);
   if (i >= n)
     return;
-  const int a = (i / nx + 2) * pitch + i % nx + 2;
+  const int a = msocl_planes_at(i, nx, pitch);
   const float4 q = pos[i], w = vel[i];
   p[a] = q.x;
   p[plane + a] = q.y;
@@ -499,7 +505,7 @@ __kernel void msocl_planes_unpack(__global const float *p,
   const int i = get_global_id(0);
   if (i >= n)
     return;
-  const int a = (i / nx + 2) * pitch + i % nx + 2;
+  const int a = msocl_planes_at(i, nx, pitch);
   pos[i] = (float4)(p[a], p[plane + a], p[2 * plane + a], aux[plane + a]);
   vel[i] = (float4)(v[a], v[plane + a], v[2 * plane + a], 0.0f);
 }
