@@ -19,15 +19,41 @@ void msocl_energy(MSOCL_CONN, __global const float4 *pos,
     float3 p = pos[i].xyz, v = vel[i].xyz;
     float m = 1.0f / inv_mass[i];
     e.x = 0.5f * m * dot(v, v);
-    for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-      int j;
+    /* four slots at a time, as msocl_force gathers (a free slot, the
+     * point itself with k 0, adds an exact 0): one slot at a time this
+     * loop cost five velocity passes on PoCL */
+#if MSOCL_TABLE_SLOTS <= 64
+#pragma unroll
+#endif
+    for (int s0 = 0; s0 < MSOCL_TABLE_SLOTS; s0 += 4) {
+      int4 j;
+      float4 rest, k, c;
+      msocl_slot4(MSOCL_CONN_ARGS, i, s0, n, &j, &rest, &k, &c);
+      float4 a = pos[j.x], b = pos[j.y], f = pos[j.z], g = pos[j.w];
+      float4 dx = (float4)(a.x, b.x, f.x, g.x) - p.x;
+      float4 dy = (float4)(a.y, b.y, f.y, g.y) - p.y;
+      float4 dz = (float4)(a.z, b.z, f.z, g.z) - p.z;
+      float4 stretch = MSOCL_SQRT(dx * dx + dy * dy + dz * dz) - rest;
+      float4 t = 0.25f * k * stretch * stretch;
+      e.y += t.x;
+      if (s0 + 1 < MSOCL_TABLE_SLOTS)
+        e.y += t.y;
+      if (s0 + 2 < MSOCL_TABLE_SLOTS)
+        e.y += t.z;
+      if (s0 + 3 < MSOCL_TABLE_SLOTS)
+        e.y += t.w;
+      (void)c;
+    }
+#ifdef MSOCL_SPILL
+    for (int o = spill[i]; o < spill[i + 1]; o++) {
+      const int at = MSOCL_SLOTS * n + o;
       float rest, k, c;
-      if (!msocl_slot(MSOCL_CONN_ARGS, i, s, n, &j, &rest, &k, &c))
-        break;
-      float3 d = pos[j].xyz - p;
+      msocl_values(rk, dmp, at, &rest, &k, &c);
+      float3 d = pos[nbr[at]].xyz - p;
       float stretch = MSOCL_SQRT(dot(d, d)) - rest;
       e.y += 0.25f * k * stretch * stretch;
     }
+#endif
     e.z = -m * dot(gravity.xyz, p);
   }
   part[l] = e;
