@@ -441,21 +441,20 @@ __kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
   MSOCL_PLANES_RK4_CALL(2);
 }
 
-/* Where point i of an nx-wide grid sits in a plane. */
-static int msocl_planes_at(int i, int nx, int pitch)
-{
-  return (i / nx + 2) * pitch + i % nx + 2;
-}
+/* The copy kernels run over the planes' 2-D range too: point i = y nx + x
+ * of an nx-wide grid (n points), at a in a plane - no division a point. */
+#define MSOCL_PLANES_POINT                                                    \
+  const int x = get_global_id(0), y = get_global_id(1);                      \
+  const int i = y * nx + x, a = (y + 2) * pitch + x + 2;                     \
+  if (x >= nx || i >= n)                                                     \
+    return
 
 /* Another float4 buffer's xyz (Verlet's acceleration) into planes, and
  * back with w 0. */
 __kernel void msocl_planes_in(__global const float4 *src, __global float *dst,
                               int nx, int pitch, int plane, int n)
 {
-  const int i = get_global_id(0);
-  if (i >= n)
-    return;
-  const int a = msocl_planes_at(i, nx, pitch);
+  MSOCL_PLANES_POINT;
   const float4 q = src[i];
   dst[a] = q.x;
   dst[plane + a] = q.y;
@@ -465,14 +464,11 @@ __kernel void msocl_planes_in(__global const float4 *src, __global float *dst,
 __kernel void msocl_planes_out(__global const float *src, __global float4 *dst,
                                int nx, int pitch, int plane, int n)
 {
-  const int i = get_global_id(0);
-  if (i >= n)
-    return;
-  const int a = msocl_planes_at(i, nx, pitch);
+  MSOCL_PLANES_POINT;
   dst[i] = (float4)(src[a], src[plane + a], src[2 * plane + a], 0.0f);
 }
 
-/* The engine's float4 state (point i of an nx-wide grid) into planes. */
+/* The engine's float4 state into planes. */
 __kernel void msocl_planes_pack(__global const float4 *pos,
                                 __global const float4 *vel,
                                 __global const float *inv_mass,
@@ -480,10 +476,7 @@ __kernel void msocl_planes_pack(__global const float4 *pos,
                                 __global float *aux, int nx, int pitch,
                                 int plane, int n)
 {
-  const int i = get_global_id(0);
-  if (i >= n)
-    return;
-  const int a = msocl_planes_at(i, nx, pitch);
+  MSOCL_PLANES_POINT;
   const float4 q = pos[i], w = vel[i];
   p[a] = q.x;
   p[plane + a] = q.y;
@@ -502,10 +495,7 @@ __kernel void msocl_planes_unpack(__global const float *p,
                                   __global float4 *pos, __global float4 *vel,
                                   int nx, int pitch, int plane, int n)
 {
-  const int i = get_global_id(0);
-  if (i >= n)
-    return;
-  const int a = msocl_planes_at(i, nx, pitch);
+  MSOCL_PLANES_POINT;
   pos[i] = (float4)(p[a], p[plane + a], p[2 * plane + a], aux[plane + a]);
   vel[i] = (float4)(v[a], v[plane + a], v[2 * plane + a], 0.0f);
 }

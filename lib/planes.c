@@ -180,6 +180,17 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
   return fixed_args(s);
 }
 
+/* A pass over the padded grid; CPU devices in work-groups of 64 points
+ * of a row (integrate.c's reason). */
+static int launch(msocl__engine *s, int k)
+{
+  const size_t local[2] = {64, 1};
+  const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 2, NULL,
+                                   s->pl_global, group, 0, NULL, NULL));
+  return MSOCL_OK;
+}
+
 /* pack (to_planes) or unpack planes set `set` and the current state. */
 static int copy(msocl__engine *s, int set, int to_planes)
 {
@@ -190,20 +201,7 @@ static int copy(msocl__engine *s, int set, int to_planes)
     TRY(arg(k, (cl_uint)(to_planes ? q : 3 + q), sizeof f4[q], &f4[q]));
     TRY(arg(k, (cl_uint)(to_planes ? 3 + q : q), sizeof pl[q], &pl[q]));
   }
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &s->full_global,
-                                   NULL, 0, NULL, NULL));
-  return MSOCL_OK;
-}
-
-/* A pass over the padded grid; CPU devices in work-groups of 64 points
- * of a row (integrate.c's reason). */
-static int launch(msocl__engine *s, int k)
-{
-  const size_t local[2] = {64, 1};
-  const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 2, NULL,
-                                   s->pl_global, group, 0, NULL, NULL));
-  return MSOCL_OK;
+  return launch(s, to_planes ? PL_PACK : PL_UNPACK);
 }
 
 /* Sets the gathering kernel k's ping-pong arguments (after its
@@ -272,10 +270,7 @@ static int step(msocl__engine *s, int r, int w)
 /* Verlet's acceleration into its planes (in) or back (out). */
 static int acceleration(msocl__engine *s, int in)
 {
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[in ? PL_IN : PL_OUT],
-                                   1, NULL, &s->full_global, NULL, 0, NULL,
-                                   NULL));
-  return MSOCL_OK;
+  return launch(s, in ? PL_IN : PL_OUT);
 }
 
 int msocl__planes_steps(msocl__engine *s, int n)
