@@ -267,6 +267,17 @@ static void msocl_slot4(MSOCL_CONN, int i, int s0, int n, int4 *j,
 #endif
 }
 
+/* buf at the four points j, less o: their x, y and z differences, each a
+ * vector of four (the gathers' transpose). */
+static void msocl_diff4(__global const float4 *buf, int4 j, float4 o,
+                        float4 *dx, float4 *dy, float4 *dz)
+{
+  float4 a = buf[j.x], b = buf[j.y], e = buf[j.z], g = buf[j.w];
+  *dx = (float4)(a.x, b.x, e.x, g.x) - o.x;
+  *dy = (float4)(a.y, b.y, e.y, g.y) - o.y;
+  *dz = (float4)(a.z, b.z, e.z, g.z) - o.z;
+}
+
 /* Internal and viscous force on point i (not gravity): the gather over its
  * springs, in slot order - msocl_spring and msocl_dashpot four slots at a
  * time, so that their square roots and divisions, which bounded this loop
@@ -289,10 +300,8 @@ static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
     int4 j;
     float4 rest, k, c;
     msocl_slot4(MSOCL_CONN_ARGS, i, s0, n, &j, &rest, &k, &c);
-    float4 a = pos[j.x], b = pos[j.y], e = pos[j.z], g = pos[j.w];
-    float4 dx = (float4)(a.x, b.x, e.x, g.x) - p.x;
-    float4 dy = (float4)(a.y, b.y, e.y, g.y) - p.y;
-    float4 dz = (float4)(a.z, b.z, e.z, g.z) - p.z;
+    float4 dx, dy, dz;
+    msocl_diff4(pos, j, p, &dx, &dy, &dz);
     /* dot(d, d) = (x x + y y) + z z, as msocl_spring */
     float4 len2 = dx * dx + dy * dy + dz * dz;
     float4 len = MSOCL_SQRT(len2);
@@ -302,14 +311,9 @@ static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
     float4 sy = select((float4)(0.0f), t * dy, on);
     float4 sz = select((float4)(0.0f), t * dz, on);
 #ifdef MSOCL_DAMPING
-    a = vel[j.x] - v;
-    b = vel[j.y] - v;
-    e = vel[j.z] - v;
-    g = vel[j.w] - v;
-    float4 u = c * MSOCL_DIV((float4)(a.x, b.x, e.x, g.x) * dx +
-                                 (float4)(a.y, b.y, e.y, g.y) * dy +
-                                 (float4)(a.z, b.z, e.z, g.z) * dz,
-                             len2);
+    float4 wx, wy, wz;
+    msocl_diff4(vel, j, v, &wx, &wy, &wz);
+    float4 u = c * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
     on = len2 > 0.0f;
     float4 hx = select((float4)(0.0f), u * dx, on);
     float4 hy = select((float4)(0.0f), u * dy, on);

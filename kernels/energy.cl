@@ -29,10 +29,8 @@ void msocl_energy(MSOCL_CONN, __global const float4 *pos,
       int4 j;
       float4 rest, k, c;
       msocl_slot4(MSOCL_CONN_ARGS, i, s0, n, &j, &rest, &k, &c);
-      float4 a = pos[j.x], b = pos[j.y], f = pos[j.z], g = pos[j.w];
-      float4 dx = (float4)(a.x, b.x, f.x, g.x) - p.x;
-      float4 dy = (float4)(a.y, b.y, f.y, g.y) - p.y;
-      float4 dz = (float4)(a.z, b.z, f.z, g.z) - p.z;
+      float4 dx, dy, dz;
+      msocl_diff4(pos, j, (float4)(p, 0.0f), &dx, &dy, &dz);
       float4 stretch = MSOCL_SQRT(dx * dx + dy * dy + dz * dz) - rest;
       float4 t = 0.25f * k * stretch * stretch;
       e.y += t.x;
