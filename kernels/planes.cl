@@ -76,6 +76,7 @@ static float msocl_planes_gap(float px, float py, float pz,
     g = top ? gtop : gside;
   }
 #endif
+  (void)kind; /* no collider kind compiled in */
   return g;
 }
 
@@ -126,6 +127,7 @@ static void msocl_planes_force(MSOCL_CONN, __global const float *p,
   fz = fz - viscous * vz;
 #endif
   (void)viscous;
+  (void)vx; (void)vy; (void)vz; /* read by dashpots and viscous damping */
   *fx_out = fx;
   *fy_out = fy;
   *fz_out = fz;
