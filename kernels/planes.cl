@@ -164,6 +164,17 @@ static void msocl_planes_collide(float px, float py, float pz, float *vx_io,
   *vz_io = vz;
 }
 
+/* Air resistance (MSOCL_AIR): the velocity times `air`. */
+static void msocl_planes_air(float air, float *vx, float *vy, float *vz)
+{
+#ifdef MSOCL_AIR
+  *vx = air * *vx;
+  *vy = air * *vy;
+  *vz = air * *vz;
+#endif
+  (void)air; (void)vx; (void)vy; (void)vz;
+}
+
 /* The velocity pass for the point at a = (x, y): its new velocity in
  * *vx.., and whether it is pinned. */
 static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
@@ -181,12 +192,7 @@ static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
   float vx = v[a] + dt * (fx * im + gravity.x);
   float vy = v[plane + a] + dt * (fy * im + gravity.y);
   float vz = v[2 * plane + a] + dt * (fz * im + gravity.z);
-#ifdef MSOCL_AIR
-  vx = air * vx;
-  vy = air * vy;
-  vz = air * vz;
-#endif
-  (void)air;
+  msocl_planes_air(air, &vx, &vy, &vz);
   msocl_planes_collide(p[a], p[plane + a], p[2 * plane + a], &vx, &vy, &vz,
                        dt, col);
   *pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
@@ -311,12 +317,7 @@ __kernel void msocl_planes_vkick(MSOCL_CONN, __global const float *p,
               az = fz * im + gravity.z;
   float vx = v[a] + h * ax, vy = v[plane + a] + h * ay,
         vz = v[2 * plane + a] + h * az;
-#ifdef MSOCL_AIR
-  vx = air * vx;
-  vy = air * vy;
-  vz = air * vz;
-#endif
-  (void)air;
+  msocl_planes_air(air, &vx, &vy, &vz);
   (void)col;
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
   if (x < grid_nx) {

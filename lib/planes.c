@@ -1,8 +1,9 @@
 /* GRID in planes (options.planes, kernels/planes.cl): a cloth grid's
- * symplectic Euler steps over x, y, z planes of padded rows, which PoCL's
- * CPU device runs eight or sixteen points to an instruction. The engine's
- * float4 buffers stay the state everything else reads and writes: a call's
- * steps copy it into the planes, step there, and copy it back. */
+ * symplectic Euler, Verlet and RK4 steps over x, y, z planes of padded
+ * rows, which PoCL's CPU device runs eight points to an instruction. The
+ * engine's float4 buffers stay the state everything else reads and
+ * writes: a call's steps copy it into the planes, step there, and copy it
+ * back. */
 #include "config.h"
 #include "sim.h"
 
