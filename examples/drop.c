@@ -39,7 +39,7 @@ static int usage(const drop_options *d)
           "usage: %s [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] "
           "[-T DT]\n"
           "  [-i symplectic|verlet|rk4|implicit|explicit] "
-          "[-l auto|buffer|image2d|edges] [-K] [-o OUT.obj|OUT.ply]\n"
+          "[-l auto|buffer|image2d|edges|grid] [-K] [-o OUT.obj|OUT.ply]\n"
           "  -n  %s (%d to %d, default %d)\n"
           "  -t  simulated seconds (default %g)\n"
           "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that "
@@ -118,7 +118,7 @@ int drop_parse(drop_options *d, int argc, char **argv)
       d->integrator = (msocl_integrator)k;
       break;
     case 'l':
-      if ((k = pick(optarg, layouts, 4)) < 0)
+      if ((k = pick(optarg, layouts, 5)) < 0)
         return usage(d);
       d->layout = (msocl_layout)k;
       break;

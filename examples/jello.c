@@ -5,7 +5,7 @@
  *
  *   jello [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] [-T DT]
  *         [-i symplectic|verlet|rk4|implicit|explicit]
- *         [-l auto|buffer|image2d|edges] [-o OUT.obj|OUT.ply]
+ *         [-l auto|buffer|image2d|edges|grid] [-o OUT.obj|OUT.ply]
  */
 #include "drop.h"
 

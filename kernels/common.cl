@@ -50,6 +50,37 @@
 #define MSOCL_CONN                                                            \
   __read_only image2d_t con, int tex_w, int tex_h, __read_only image2d_t dmp
 #define MSOCL_CONN_ARGS con, tex_w, tex_h, dmp
+#elif defined(MSOCL_LAYOUT_GRID) && defined(MSOCL_GRID_3D)
+#define MSOCL_MAX_SLOTS 32
+#define MSOCL_CONN                                                            \
+  int grid_nx, int grid_ny, int grid_nz, float4 grid_k, float8 grid_rest
+#define MSOCL_CONN_ARGS grid_nx, grid_ny, grid_nz, grid_k, grid_rest
+/* A lattice's 32 neighbours in the order msocl_model_lattice adds their
+ * springs (so in BUFFER's slot order: each set loops the points in index
+ * order, so a point meets first the springs of the points before it):
+ * 6 structural, 12 face shear, 8 body shear, 6 bend. kind: 0 structural,
+ * 1 face shear, 2 body shear, 3 bend - grid_k's stiffness and grid_rest's
+ * rest length; grid_rest.s4 is the dashpot. */
+__constant int msocl_grid_dx[32] = {
+    0, 0, -1, 1, 0, 0,
+    0, -1, 1, 0, -1, 1, 0, -1, -1, 1, 1, 0,
+    -1, 1, -1, 1, -1, 1, -1, 1,
+    0, 0, -2, 2, 0, 0};
+__constant int msocl_grid_dy[32] = {
+    0, -1, 0, 0, 1, 0,
+    -1, 0, 0, 1, -1, -1, -1, 1, 0, 1, 0, 1,
+    -1, -1, 1, 1, -1, -1, 1, 1,
+    0, -2, 0, 0, 2, 0};
+__constant int msocl_grid_dz[32] = {
+    -1, 0, 0, 0, 0, 1,
+    -1, -1, -1, -1, 0, 0, 1, 0, 1, 0, 1, 1,
+    -1, -1, -1, -1, 1, 1, 1, 1,
+    -2, 0, 0, 0, 0, 2};
+__constant int msocl_grid_kind[32] = {
+    0, 0, 0, 0, 0, 0,
+    1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
+    2, 2, 2, 2, 2, 2, 2, 2,
+    3, 3, 3, 3, 3, 3};
 #elif defined(MSOCL_LAYOUT_GRID)
 #define MSOCL_MAX_SLOTS 12
 #define MSOCL_CONN int grid_nx, int grid_ny, float4 grid_k, float8 grid_rest
@@ -117,7 +148,25 @@ static void msocl_values(MSOCL_RK, int at, float *rest, float *k, float *c)
 static int msocl_slot(MSOCL_CONN, int i, int s, int n, int *j, float *rest,
                       float *k, float *c)
 {
-#if defined(MSOCL_LAYOUT_GRID)
+#if defined(MSOCL_LAYOUT_GRID) && defined(MSOCL_GRID_3D)
+  /* as the cloth's below, in three dimensions */
+  int x = i % grid_nx, t = i / grid_nx, y = t % grid_ny, z = t / grid_ny;
+  int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s],
+      qz = z + msocl_grid_dz[s];
+  int kind = msocl_grid_kind[s];
+  float kk = kind == 0 ? grid_k.x : kind == 1 ? grid_k.y
+           : kind == 2 ? grid_k.z : grid_k.w;
+  float r = kind == 0 ? grid_rest.s0 : kind == 1 ? grid_rest.s1
+          : kind == 2 ? grid_rest.s2 : grid_rest.s3;
+  bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
+               qz >= 0 && qz < grid_nz && kk != 0.0f;
+  *j = there ? (qz * grid_ny + qy) * grid_nx + qx : i;
+  *rest = r;
+  *k = there ? kk : 0.0f;
+  *c = there ? grid_rest.s4 : 0.0f;
+  (void)n;
+  return 1;
+#elif defined(MSOCL_LAYOUT_GRID)
   /* A missing neighbour (grid edge, or a kind the cloth leaves out) is a
    * spring to the point itself with k = 0: it adds exact zeros, and the
    * loop keeps a fixed trip count. */
@@ -199,7 +248,7 @@ static float3 msocl_dashpot(float3 p, float3 q, float3 vp, float3 vq, float c)
 static void msocl_slot4(MSOCL_CONN, int i, int s0, int n, int4 *j,
                         float4 *rest, float4 *k, float4 *c)
 {
-#ifdef MSOCL_LAYOUT_GRID
+#if defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_GRID_3D)
   /* msocl_slot's arithmetic on four lanes at once. Each group of four
    * neighbours is of one kind (stretch, shear, bend). */
   int x = i % grid_nx, y = i / grid_nx, kind = msocl_grid_kind[s0];

@@ -68,12 +68,15 @@ struct msocl_model {
   float air; /* velocity factor a step, (0, 1] */
   int ncol;
   struct msocl__collider col[MSOCL__MAX_COLLIDERS];
-  /* Set by msocl_model_cloth_grid: the grid the GRID layout recomputes
-   * neighbours from; valid while ns == grid.ns (no springs added since). */
+  /* Set by msocl_model_cloth_grid (nz 0) and msocl_model_lattice (nz >=
+   * 2): the grid the GRID layout recomputes neighbours from; valid while
+   * ns == grid.ns (no springs added since). */
   struct {
-    int nx, ny, ns;
-    float k[3];    /* stretch, shear, bend (0: absent) */
-    float rest[6]; /* stretch along u, v; shear u+v, v-u; bend u, v */
+    int nx, ny, nz, ns;
+    float k[4];    /* cloth: stretch, shear, bend; lattice: structural,
+                      face shear, body shear, bend (0: absent) */
+    float rest[6]; /* cloth: stretch along u, v; shear u+v, v-u; bend u, v;
+                      lattice: one a kind, as k */
     float damp;
   } grid;
 };

@@ -21,7 +21,7 @@ msocl_layout msocl__layout_auto(const msocl_device_info *info,
    * image reads are about 3x slower than buffer reads on a CPU; no device
    * measured so far prefers the texture. */
   (void)info;
-  if (m->grid.nx >= 2 && m->grid.ns == m->ns)
+  if (m->grid.nx >= 2 && m->grid.ns == m->ns && m->grid.nz == 0)
     return MSOCL_LAYOUT_GRID;
   return MSOCL_LAYOUT_BUFFER;
 }
@@ -358,16 +358,22 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
     if (m->grid.nx < 2 || m->grid.ns != m->ns)
       return msocl__fail(MSOCL_ERR_BAD_VALUE,
                          "the GRID layout needs a cloth from "
-                         "msocl_model_cloth_grid with no springs added "
+                         "msocl_model_cloth_grid or a lattice from "
+                         "msocl_model_lattice, with no springs added "
                          "since (use BUFFER)");
-    out->slots = 12;
+    const int lattice = m->grid.nz > 0;
+    out->slots = lattice ? 32 : 12;
     out->grid_nx = m->grid.nx;
     out->grid_ny = m->grid.ny;
-    for (int q = 0; q < 3; q++)
-      out->grid_k.s[q] = m->grid.k[q];
-    out->grid_k.s[3] = m->grid.damp;
+    out->grid_nz = m->grid.nz;
+    /* cloth: three stiffnesses and the dashpot; lattice: four
+     * stiffnesses, and the dashpot after the four rests */
+    for (int q = 0; q < 4; q++)
+      out->grid_k.s[q] = q < 3 || lattice ? m->grid.k[q] : m->grid.damp;
     for (int q = 0; q < 8; q++)
-      out->grid_rest.s[q] = q < 6 ? m->grid.rest[q] : 0.0f;
+      out->grid_rest.s[q] = q < (lattice ? 4 : 6) ? m->grid.rest[q] : 0.0f;
+    if (lattice)
+      out->grid_rest.s[4] = m->grid.damp;
     rc = MSOCL_OK;
   } else if (out->kind == MSOCL_LAYOUT_EDGES) {
     out->slots = 0;
@@ -400,6 +406,8 @@ int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,
   if (l->kind == MSOCL_LAYOUT_GRID) {
     MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->grid_nx));
     MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->grid_ny));
+    if (l->grid_nz > 0)
+      MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->grid_nz));
     MSOCL__CL(clSetKernelArg(k, a++, sizeof l->grid_k, &l->grid_k));
     MSOCL__CL(clSetKernelArg(k, a++, sizeof l->grid_rest, &l->grid_rest));
     *next = a;

@@ -14,8 +14,11 @@ struct msocl__layout {
                         NULL: none spill */
   int nsprings;      /* EDGES */
   int grid_nx, grid_ny;    /* GRID */
-  cl_float4 grid_k;        /* stretch, shear, bend stiffness; dashpot */
-  cl_float8 grid_rest;     /* the six kinds' rest lengths */
+  int grid_nz;             /* GRID: a lattice's layers; 0: a cloth */
+  cl_float4 grid_k;        /* cloth: stretch, shear, bend stiffness,
+                              dashpot; lattice: the four kinds' stiffness */
+  cl_float8 grid_rest;     /* cloth: the six kinds' rest lengths; lattice:
+                              the four kinds', then the dashpot */
   int tex_w, tex_h;  /* IMAGE2D: point i is texel (i % tex_w, i / tex_w) */
   cl_mem con;        /* IMAGE2D: (4W)x(4H) RGBA image; BUFFER: int slots;
                         EDGES: int2 end points per spring */

@@ -4,6 +4,7 @@
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "internal.h"
 
@@ -107,17 +108,31 @@ static int check_desc(const msocl_lattice_desc *d) {
 /* Scratch arrays for one add_springs call, in the documented order. */
 struct springs {
   int n, *ij;
-  float *k;
+  float *k, *rest;
+  const float *rests; /* by kind: structural, face, body, bend */
 };
 
-static void push(struct springs *s, int a, int b, float k) {
+static void push(struct springs *s, int a, int b, float k, int kind) {
   s->ij[2 * s->n] = a;
   s->ij[2 * s->n + 1] = b;
+  s->rest[s->n] = s->rests[kind];
   s->k[s->n++] = k;
 }
 
+/* Rest lengths by kind, from the spacing in double: every spring of a kind
+ * rests at the same length (not each at its rounded distance), so the GRID
+ * layout, which stores none, sums bit for bit what the others do. */
+static void kind_rests(const msocl_lattice_desc *d, float *rest) {
+  const double h = d->spacing;
+  rest[0] = (float)h;
+  rest[1] = (float)(h * sqrt(2.0));
+  rest[2] = (float)(h * sqrt(3.0));
+  rest[3] = (float)(2.0 * h);
+}
+
 /* Each set loops k, then j, then i (the index order), so a set's springs
- * run through the lattice in point order. */
+ * run through the lattice in point order (kernels/common.cl's 3-D GRID
+ * tables list a point's neighbours in the order this gives them). */
 static void push_springs(struct springs *s, const msocl_lattice_desc *d) {
   int i, j, k, nx = d->nx, ny = d->ny, nz = d->nz;
   int dx = 1, dy = nx, dz = nx * ny;
@@ -129,42 +144,42 @@ static void push_springs(struct springs *s, const msocl_lattice_desc *d) {
 
   if (d->k_structural > 0)
     FOR_POINTS {
-      if (i + 1 < nx) push(s, P, P + dx, d->k_structural);
-      if (j + 1 < ny) push(s, P, P + dy, d->k_structural);
-      if (k + 1 < nz) push(s, P, P + dz, d->k_structural);
+      if (i + 1 < nx) push(s, P, P + dx, d->k_structural, 0);
+      if (j + 1 < ny) push(s, P, P + dy, d->k_structural, 0);
+      if (k + 1 < nz) push(s, P, P + dz, d->k_structural, 0);
     }
   /* Both diagonals of the square whose lowest corner is P, in the xy, xz
    * and yz planes. */
   if (d->k_shear_face > 0)
     FOR_POINTS {
       if (i + 1 < nx && j + 1 < ny) {
-        push(s, P, P + dx + dy, d->k_shear_face);
-        push(s, P + dx, P + dy, d->k_shear_face);
+        push(s, P, P + dx + dy, d->k_shear_face, 1);
+        push(s, P + dx, P + dy, d->k_shear_face, 1);
       }
       if (i + 1 < nx && k + 1 < nz) {
-        push(s, P, P + dx + dz, d->k_shear_face);
-        push(s, P + dx, P + dz, d->k_shear_face);
+        push(s, P, P + dx + dz, d->k_shear_face, 1);
+        push(s, P + dx, P + dz, d->k_shear_face, 1);
       }
       if (j + 1 < ny && k + 1 < nz) {
-        push(s, P, P + dy + dz, d->k_shear_face);
-        push(s, P + dy, P + dz, d->k_shear_face);
+        push(s, P, P + dy + dz, d->k_shear_face, 1);
+        push(s, P + dy, P + dz, d->k_shear_face, 1);
       }
     }
   /* The four body diagonals of the cell whose lowest corner is P. */
   if (d->k_shear_body > 0)
     FOR_POINTS {
       if (i + 1 < nx && j + 1 < ny && k + 1 < nz) {
-        push(s, P, P + dx + dy + dz, d->k_shear_body);
-        push(s, P + dx, P + dy + dz, d->k_shear_body);
-        push(s, P + dy, P + dx + dz, d->k_shear_body);
-        push(s, P + dz, P + dx + dy, d->k_shear_body);
+        push(s, P, P + dx + dy + dz, d->k_shear_body, 2);
+        push(s, P + dx, P + dy + dz, d->k_shear_body, 2);
+        push(s, P + dy, P + dx + dz, d->k_shear_body, 2);
+        push(s, P + dz, P + dx + dy, d->k_shear_body, 2);
       }
     }
   if (d->k_bend > 0)
     FOR_POINTS {
-      if (i + 2 < nx) push(s, P, P + 2 * dx, d->k_bend);
-      if (j + 2 < ny) push(s, P, P + 2 * dy, d->k_bend);
-      if (k + 2 < nz) push(s, P, P + 2 * dz, d->k_bend);
+      if (i + 2 < nx) push(s, P, P + 2 * dx, d->k_bend, 3);
+      if (j + 2 < ny) push(s, P, P + 2 * dy, d->k_bend, 3);
+      if (k + 2 < nz) push(s, P, P + 2 * dz, d->k_bend, 3);
     }
 #undef FOR_POINTS
 #undef P
@@ -197,25 +212,41 @@ static int add_points(msocl_model *m, const msocl_lattice_desc *d) {
 
 static int add_springs(msocl_model *m, const msocl_lattice_desc *d) {
   long long most = spring_count(d);
-  struct springs s = {0, NULL, NULL};
+  float rests[4];
+  kind_rests(d, rests);
+  struct springs s = {0, NULL, NULL, NULL, rests};
   float *damp = NULL;
   int i, rc = MSOCL_OK;
 
-  if (most == 0) return MSOCL_OK; /* every set left out */
-  s.ij = malloc((size_t)most * 2 * sizeof *s.ij);
-  s.k = malloc((size_t)most * sizeof *s.k);
-  if (d->damping > 0) damp = malloc((size_t)most * sizeof *damp);
-  if (!s.ij || !s.k || (d->damping > 0 && !damp)) {
-    rc = msocl__fail(MSOCL_ERR_NO_MEMORY,
-                     "lattice: cannot allocate %lld springs", most);
-  } else {
-    push_springs(&s, d);
-    for (i = 0; damp && i < s.n; i++) damp[i] = d->damping;
-    /* rest NULL: each spring rests at its length in the lattice. */
-    if (s.n > 0) rc = msocl_model_add_springs(m, s.n, s.ij, s.k, NULL, damp);
+  if (most > 0) {
+    s.ij = malloc((size_t)most * 2 * sizeof *s.ij);
+    s.k = malloc((size_t)most * sizeof *s.k);
+    s.rest = malloc((size_t)most * sizeof *s.rest);
+    if (d->damping > 0) damp = malloc((size_t)most * sizeof *damp);
+    if (!s.ij || !s.k || !s.rest || (d->damping > 0 && !damp)) {
+      rc = msocl__fail(MSOCL_ERR_NO_MEMORY,
+                       "lattice: cannot allocate %lld springs", most);
+    } else {
+      push_springs(&s, d);
+      for (i = 0; damp && i < s.n; i++) damp[i] = d->damping;
+      if (s.n > 0)
+        rc = msocl_model_add_springs(m, s.n, s.ij, s.k, s.rest, damp);
+    }
+  }
+  if (rc == MSOCL_OK) { /* the record the GRID layout works from */
+    const float k[4] = {d->k_structural, d->k_shear_face, d->k_shear_body,
+                        d->k_bend};
+    m->grid.nx = d->nx;
+    m->grid.ny = d->ny;
+    m->grid.nz = d->nz;
+    m->grid.ns = m->ns;
+    memcpy(m->grid.k, k, sizeof k);
+    memcpy(m->grid.rest, rests, sizeof rests);
+    m->grid.damp = d->damping > 0 ? d->damping : 0.0f;
   }
   free(s.ij);
   free(s.k);
+  free(s.rest);
   free(damp);
   return rc;
 }

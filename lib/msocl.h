@@ -185,7 +185,10 @@ MSOCL_EXTERN int msocl_model_cloth_grid(msocl_model **m,
  * (k * ny + j) * nx + i at origin + spacing * (i, j, k). Spring sets, each
  * left out when its stiffness is 0: structural (6 axis neighbours), face
  * shear (12 face diagonals), body shear (8 body diagonals), bend (6 axis
- * neighbours two apart). Structural + face shear + bend: degree 24. */
+ * neighbours two apart). Structural + face shear + bend: degree 24.
+ * Each set's springs rest at the lattice's spacing times 1, sqrt 2,
+ * sqrt 3 and 2 (computed in double), and the GRID layout can recompute
+ * them from the points' positions in the lattice. */
 typedef struct {
   int nx, ny, nz;
   float origin[3];
@@ -251,7 +254,8 @@ typedef enum {
   MSOCL_LAYOUT_EDGES,    /* seed 2: a work-item per spring, float atomics
                             into force accumulators (symplectic Euler only) */
   MSOCL_LAYOUT_GRID      /* no stored springs: a cloth from
-                            msocl_model_cloth_grid recomputes its 12
+                            msocl_model_cloth_grid (or a lattice from
+                            msocl_model_lattice) recomputes its 12 (32)
                             neighbours from its grid position */
 } msocl_layout;
 

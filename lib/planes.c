@@ -30,6 +30,8 @@ static const char *unfit(const msocl__engine *s)
 {
   if (s->lay.kind != MSOCL_LAYOUT_GRID)
     return "needs the GRID layout";
+  if (s->lay.grid_nz > 0)
+    return "needs a cloth grid (not a lattice)";
   if (s->o.integrator != MSOCL_SYMPLECTIC_EULER &&
       s->o.integrator != MSOCL_VERLET && s->o.integrator != MSOCL_RK4)
     return "runs symplectic Euler, Verlet and RK4 only";

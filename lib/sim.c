@@ -59,7 +59,9 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
   int len = snprintf(
       buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s%s",
       s->lay.kind == MSOCL_LAYOUT_IMAGE2D ? "-DMSOCL_LAYOUT_IMAGE2D"
-      : s->lay.kind == MSOCL_LAYOUT_GRID  ? "-DMSOCL_LAYOUT_GRID"
+      : s->lay.kind == MSOCL_LAYOUT_GRID
+          ? (s->lay.grid_nz > 0 ? "-DMSOCL_LAYOUT_GRID -DMSOCL_GRID_3D"
+                                : "-DMSOCL_LAYOUT_GRID")
                                           : "-DMSOCL_LAYOUT_BUFFER",
       s->lay.kind == MSOCL_LAYOUT_EDGES ? 0
                                         : s->lay.slots > 0 ? s->lay.slots : 1,

@@ -248,8 +248,9 @@ static double mean_reach(const msocl_model *m, const int *num)
 
 /* The model the engines run: m itself, or m renumbered by reverse
  * Cuthill-McKee where that brings spring neighbours closer (s->perm
- * records how). A cloth grid keeps its numbering: row by row it is
- * banded already, and the GRID layout derives neighbours from it. */
+ * records how). A cloth grid or lattice keeps its numbering: row by row
+ * (layer by layer) it is banded already, and the GRID layout derives
+ * neighbours from it. */
 static int number_points(msocl_sim *s, const msocl_model *m,
                          msocl_model **renumbered)
 {

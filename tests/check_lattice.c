@@ -1,0 +1,233 @@
+/* GRID for lattices: a msocl_model_lattice's 32 neighbours, recomputed
+ * from each point's (x, y, z) position, must sum what BUFFER's stored
+ * slots sum, bit for bit - under every integrator and both kinds of
+ * strain limiting, with each spring set on or left out, with colliders,
+ * pins and damping, and split over several devices - and GRID must refuse
+ * a lattice whose springs were changed after the builder. */
+#include "scenes.h"
+
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define rt scene_rt
+
+/* Lattice sizes (some with fewer layers than the bend springs reach, one
+ * a single cell) and spring sets: the builder's default (no body shear),
+ * all four sets, and structural springs left out. */
+static const int sizes[][3] = {{5, 5, 5}, {3, 6, 2}, {2, 2, 2}};
+enum { SETS_DEFAULT, SETS_ALL, SETS_NO_STRUCTURAL, SETS };
+
+/* A lattice dropped onto a floor beside a ball and a round table, one
+ * corner pinned, with dashpots, viscous damping and air resistance. */
+static msocl_model *busy_lattice(const int *size, int sets)
+{
+  msocl_lattice_desc d;
+  msocl_lattice_desc_init(&d);
+  d.nx = size[0];
+  d.ny = size[1];
+  d.nz = size[2];
+  d.origin[1] = 0.01f;
+  if (sets == SETS_ALL)
+    d.k_shear_body = 80.0f;
+  if (sets == SETS_NO_STRUCTURAL)
+    d.k_structural = 0.0f;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_lattice(&m, &d), MSOCL_OK);
+  const float top[3] = {0.0f, -0.02f, 0.0f}, ball[3] = {0.05f, 0.0f, 0.05f};
+  const float up[3] = {0.0f, 1.0f, 0.0f};
+  ck_assert_int_eq(msocl_model_add_table(m, top, 0.05f, 0.3f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_sphere(m, ball, 0.03f, 0.5f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_plane(m, up, -0.05f, 0.2f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_pin(m, 0, 1), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_set_viscous_damping(m, 1e-4f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_set_air_resistance(m, 0.999f), MSOCL_OK);
+  return m;
+}
+
+struct state {
+  int n;
+  float *pos, *vel;
+  msocl_energy e;
+};
+
+/* `steps` steps (in calls of 7, so calls end mid-way) on `parts` devices
+ * of runtime r; the blow-up check off, so that a run that grows still
+ * compares. */
+static struct state run(msocl_runtime *r, const msocl_model *m,
+                        msocl_layout lay, msocl_integrator in,
+                        msocl_strain strain, int parts, int steps)
+{
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = 5e-5f;
+  o.layout = lay;
+  o.integrator = in;
+  o.strain = strain;
+  o.ndevices = parts;
+  o.check_every = 0;
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, r, m, &o);
+  ck_assert_msg(rc == MSOCL_OK, "sim_create: %s", msocl_last_error());
+  msocl_layout got;
+  ck_assert_int_eq(msocl_sim_layout(s, &got), MSOCL_OK);
+  ck_assert_int_eq(got, lay);
+  for (int done = 0; done < steps; done += 7) {
+    rc = msocl_sim_step(s, steps - done < 7 ? steps - done : 7);
+    ck_assert_msg(rc == MSOCL_OK, "step: %s", msocl_last_error());
+  }
+  struct state st;
+  msocl_sim_point_count(s, &st.n);
+  st.pos = malloc(3 * (size_t)st.n * sizeof(float));
+  st.vel = malloc(3 * (size_t)st.n * sizeof(float));
+  ck_assert_int_eq(msocl_sim_read_positions(s, st.pos), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_read_velocities(s, st.vel), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_energy(s, &st.e), MSOCL_OK);
+  msocl_sim_destroy(s);
+  return st;
+}
+
+/* b must be a's bits: positions, velocities and (on as many devices,
+ * which add their parts in the same order) the energy sums. */
+static void same(struct state a, struct state b, int energy, const char *what)
+{
+  const size_t bytes = 3 * (size_t)a.n * sizeof(float);
+  ck_assert_msg(memcmp(a.pos, b.pos, bytes) == 0,
+                "%s: positions differ by %g", what,
+                scene_max_diff(a.pos, b.pos, 3 * a.n));
+  ck_assert_msg(memcmp(a.vel, b.vel, bytes) == 0,
+                "%s: velocities differ by %g", what,
+                scene_max_diff(a.vel, b.vel, 3 * a.n));
+  ck_assert_msg(!energy || (a.e.total == b.e.total && a.e.spring == b.e.spring),
+                "%s: energy %.17g J against %.17g J", what, b.e.total,
+                a.e.total);
+}
+
+static void state_free(struct state *st)
+{
+  free(st->pos);
+  free(st->vel);
+}
+
+static const struct {
+  msocl_integrator in;
+  msocl_strain strain;
+  const char *name;
+} methods[] = {
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, "symplectic Euler"},
+    {MSOCL_EXPLICIT_EULER, MSOCL_STRAIN_NONE, "explicit Euler"},
+    {MSOCL_VERLET, MSOCL_STRAIN_NONE, "Verlet"},
+    {MSOCL_RK4, MSOCL_STRAIN_NONE, "RK4"},
+    {MSOCL_IMPLICIT_EULER, MSOCL_STRAIN_NONE, "implicit Euler"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT, "Provot strain"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_VELOCITY, "velocity strain"},
+};
+
+/* Each size with each set of springs, every method: GRID is BUFFER. */
+START_TEST(grid_is_buffer)
+{
+  const int *size = sizes[_i / SETS];
+  const int sets = _i % SETS;
+  msocl_model *m = busy_lattice(size, sets);
+  int n = 0;
+  msocl_model_point_count(m, &n);
+  float *p0 = malloc(3 * (size_t)n * sizeof(float));
+  msocl_model_get_positions(m, p0);
+  for (size_t q = 0; q < sizeof methods / sizeof methods[0]; q++) {
+    char what[160];
+    snprintf(what, sizeof what, "%dx%dx%d lattice, sets %d, %s", size[0],
+             size[1], size[2], sets, methods[q].name);
+    struct state b = run(rt, m, MSOCL_LAYOUT_BUFFER, methods[q].in,
+                         methods[q].strain, 1, 100);
+    struct state g = run(rt, m, MSOCL_LAYOUT_GRID, methods[q].in,
+                         methods[q].strain, 1, 100);
+    /* it must have moved, or equality proves nothing */
+    ck_assert_msg(scene_max_diff(p0, b.pos, 3 * n) > 1e-5, "%s: still",
+                  what);
+    same(b, g, 1, what);
+    state_free(&b);
+    state_free(&g);
+  }
+  free(p0);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Split over two and three devices (as many as there are): GRID is the
+ * one-device run, for the explicit integrators. */
+START_TEST(split_is_one_device)
+{
+  char spec[256];
+  const int ndev = scene_cpu_spec(spec, sizeof spec, 3);
+  if (ndev < 2) {
+    printf("split_is_one_device: one CPU device only, nothing to split\n");
+    return;
+  }
+  msocl_runtime *many = NULL;
+  ck_assert_int_eq(msocl_runtime_create(&many, spec), MSOCL_OK);
+  const int size[3] = {6, 5, 9};
+  msocl_model *m = busy_lattice(size, SETS_ALL);
+  for (int q = 0; q < 4; q++) /* the explicit integrators */
+    for (int parts = 2; parts <= ndev; parts++) {
+      char what[160];
+      snprintf(what, sizeof what, "%s on %d devices", methods[q].name,
+               parts);
+      struct state one = run(many, m, MSOCL_LAYOUT_GRID, methods[q].in,
+                             MSOCL_STRAIN_NONE, 1, 100);
+      struct state split = run(many, m, MSOCL_LAYOUT_GRID, methods[q].in,
+                               MSOCL_STRAIN_NONE, parts, 100);
+      same(one, split, 0, what);
+      state_free(&one);
+      state_free(&split);
+    }
+  msocl_model_destroy(m);
+  msocl_runtime_destroy(many);
+}
+END_TEST
+
+/* GRID recomputes springs from the builder's record: a spring added after
+ * it must turn GRID away with a clear error (AUTO then takes BUFFER). */
+START_TEST(changed_lattice_refused)
+{
+  const int size[3] = {3, 3, 3};
+  msocl_model *m = busy_lattice(size, SETS_DEFAULT);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.layout = MSOCL_LAYOUT_GRID;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  msocl_sim_destroy(s);
+  const int ij[2] = {0, 26};
+  const float k = 1.0f;
+  ck_assert_int_eq(msocl_model_add_springs(m, 1, ij, &k, NULL, NULL),
+                   MSOCL_OK);
+  s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_msg(strstr(msocl_last_error(), "lattice"), "unclear error: %s",
+                msocl_last_error());
+  o.layout = MSOCL_LAYOUT_AUTO;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  msocl_layout got;
+  ck_assert_int_eq(msocl_sim_layout(s, &got), MSOCL_OK);
+  ck_assert_int_eq(got, MSOCL_LAYOUT_BUFFER);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+int main(void)
+{
+  scene_require_device("check_lattice");
+  Suite *su = suite_create("lattice");
+  TCase *tc = tcase_create("lattice");
+  tcase_add_checked_fixture(tc, scene_setup_cpu, scene_teardown);
+  tcase_set_timeout(tc, 300);
+  tcase_add_loop_test(tc, grid_is_buffer, 0,
+                      (int)(sizeof sizes / sizeof sizes[0]) * SETS);
+  tcase_add_test(tc, split_is_one_device);
+  tcase_add_test(tc, changed_lattice_refused);
+  suite_add_tcase(su, tc);
+  return scene_run(su);
+}
