@@ -39,7 +39,8 @@ static int usage(const drop_options *d)
           "usage: %s [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] "
           "[-T DT]\n"
           "  [-i symplectic|verlet|rk4|implicit|explicit] "
-          "[-l auto|buffer|image2d|edges|grid] [-K] [-o OUT.obj|OUT.ply]\n"
+          "[-l auto|buffer|image2d|edges|grid] [-P|-F] [-K]\n"
+          "  [-o OUT.obj|OUT.ply]\n"
           "  -n  %s (%d to %d, default %d)\n"
           "  -t  simulated seconds (default %g)\n"
           "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that "
@@ -50,6 +51,8 @@ static int usage(const drop_options *d)
           "step)\n"
           "  -i  integrator (default symplectic)\n"
           "  -l  spring layout (default auto)\n"
+          "  -P, -F: GRID with the state in x, y, z planes, or in float4\n"
+          "      (default: planes on a CPU device; same result)\n"
           "  -K  keep the model's point numbering (default: the library "
           "renumbers\n      the points so spring neighbours sit close)\n"
           "  -o  final mesh, OBJ or PLY by extension (default %s)\n",
@@ -86,7 +89,7 @@ int drop_parse(drop_options *d, int argc, char **argv)
 {
   int opt, k;
   double x;
-  while ((opt = getopt(argc, argv, "n:t:d:a:T:i:l:o:Kh")) != -1) {
+  while ((opt = getopt(argc, argv, "n:t:d:a:T:i:l:o:PFKh")) != -1) {
     switch (opt) {
     case 'n':
       if (!number(optarg, &x) || x != floor(x) || x < d->size_min ||
@@ -112,6 +115,8 @@ int drop_parse(drop_options *d, int argc, char **argv)
     case 'd': d->spec = optarg; break;
     case 'o': d->out = optarg; break;
     case 'K': d->keep_numbering = 1; break;
+    case 'P': d->planes = 1; break;
+    case 'F': d->planes = 0; break;
     case 'i':
       if ((k = pick(optarg, integrators, 5)) < 0)
         return usage(d);
@@ -282,6 +287,7 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
   o.integrator = d->integrator;
   o.layout = d->layout;
   o.renumber = !d->keep_numbering;
+  o.planes = d->planes;
   o.dt = d->dt;
   const char *why = "-T";
   int rc = d->dt > 0 ? MSOCL_OK : choose_dt(d, m, &o.dt, &why);
@@ -302,15 +308,17 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
     return drop_fail(d->prog, "setting up the simulation", rc);
   msocl_device_info info;
   msocl_layout layout;
+  int planes = 0;
   if ((rc = msocl_sim_device_info(s, &info)) != MSOCL_OK ||
-      (rc = msocl_sim_layout(s, &layout)) != MSOCL_OK) {
+      (rc = msocl_sim_layout(s, &layout)) != MSOCL_OK ||
+      (rc = msocl_sim_planes(s, &planes)) != MSOCL_OK) {
     msocl_sim_destroy(s);
     return drop_fail(d->prog, "asking the simulation", rc);
   }
-  printf("device: %s [%s]\nlayout: %s, integrator: %s\n", info.name,
+  printf("device: %s [%s]\nlayout: %s%s, integrator: %s\n", info.name,
          info.platform_name,
          (int)layout >= 0 && (int)layout < 5 ? layouts[layout] : "other",
-         integrators[d->integrator]);
+         planes ? " (in planes)" : "", integrators[d->integrator]);
   printf("dt %.3g s (%s), air resistance %g a step (%.3g/s)\n"
          "%.3g s simulated: %lld steps (setup %.3f s)\n",
          (double)o.dt, why, (double)d->air,

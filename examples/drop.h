@@ -20,6 +20,7 @@ typedef struct {
   msocl_integrator integrator; /* -i */
   msocl_layout layout;         /* -l */
   int keep_numbering;          /* -K: no renumbering (to compare) */
+  int planes;                  /* -P 1, -F 0, as options.planes (-1) */
 } drop_options;
 
 /* Reads argv over the defaults already in *d. Returns 0, or 2 after

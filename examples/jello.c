@@ -5,7 +5,7 @@
  *
  *   jello [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] [-T DT]
  *         [-i symplectic|verlet|rk4|implicit|explicit]
- *         [-l auto|buffer|image2d|edges|grid] [-o OUT.obj|OUT.ply]
+ *         [-l auto|buffer|image2d|edges|grid] [-P|-F] [-o OUT.obj|OUT.ply]
  */
 #include "drop.h"
 
@@ -22,7 +22,7 @@ int main(int argc, char **argv)
    * step (-T, or explicit Euler's) damps more per second. */
   drop_options d = {.prog = "jello", .size_help = "points along each edge",
                     .size = 8, .size_min = 2, .size_max = 64, .seconds = 3.0,
-                    .out = "jello.obj", .air = 0.999f};
+                    .out = "jello.obj", .air = 0.999f, .planes = -1};
   int rc = drop_parse(&d, argc, argv);
   if (rc)
     return rc;

@@ -40,7 +40,7 @@ int main(int argc, char **argv)
                     .size_help = "icosphere subdivisions: 0 is 12 surface "
                                  "points, 1 is 42, 2 is 162, ...",
                     .size = 2, .size_min = 0, .size_max = 7, .seconds = 3.0,
-                    .out = "ball.obj", .air = 0.998f};
+                    .out = "ball.obj", .air = 0.998f, .planes = -1};
   int rc = drop_parse(&d, argc, argv);
   if (rc)
     return rc;

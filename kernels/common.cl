@@ -81,6 +81,16 @@ __constant int msocl_grid_kind[32] = {
     1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
     2, 2, 2, 2, 2, 2, 2, 2,
     3, 3, 3, 3, 3, 3};
+/* slot s's stiffness and rest length, and the dashpot (as the cloth's
+ * below) */
+#define MSOCL_GRID_K(s)                                                       \
+  (msocl_grid_kind[s] == 0 ? grid_k.x : msocl_grid_kind[s] == 1 ? grid_k.y   \
+   : msocl_grid_kind[s] == 2 ? grid_k.z : grid_k.w)
+#define MSOCL_GRID_R(s)                                                       \
+  (msocl_grid_kind[s] == 0 ? grid_rest.s0                                    \
+   : msocl_grid_kind[s] == 1 ? grid_rest.s1                                  \
+   : msocl_grid_kind[s] == 2 ? grid_rest.s2 : grid_rest.s3)
+#define MSOCL_GRID_C grid_rest.s4
 #elif defined(MSOCL_LAYOUT_GRID)
 #define MSOCL_MAX_SLOTS 12
 #define MSOCL_CONN int grid_nx, int grid_ny, float4 grid_k, float8 grid_rest
@@ -94,6 +104,17 @@ __constant int msocl_grid_dx[12] = {0, -1, 1, 0, -1, 1, -1, 1, 0, -2, 2, 0};
 __constant int msocl_grid_dy[12] = {-1, 0, 0, 1, -1, -1, 1, 1, -2, 0, 0, 2};
 __constant int msocl_grid_kind[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
 __constant int msocl_grid_rest[12] = {1, 0, 0, 1, 2, 3, 3, 2, 5, 4, 4, 5};
+/* slot s's stiffness and rest length, and the dashpot */
+#define MSOCL_GRID_K(s)                                                       \
+  (msocl_grid_kind[s] == 0 ? grid_k.x : msocl_grid_kind[s] == 1 ? grid_k.y   \
+                                                              : grid_k.z)
+#define MSOCL_GRID_R(s)                                                       \
+  (msocl_grid_rest[s] == 0 ? grid_rest.s0                                    \
+   : msocl_grid_rest[s] == 1 ? grid_rest.s1                                  \
+   : msocl_grid_rest[s] == 2 ? grid_rest.s2                                  \
+   : msocl_grid_rest[s] == 3 ? grid_rest.s3                                  \
+   : msocl_grid_rest[s] == 4 ? grid_rest.s4 : grid_rest.s5)
+#define MSOCL_GRID_C grid_k.w
 #elif defined(MSOCL_SPILL)
 /* BUFFER with a spill: MSOCL_SLOTS slots a point in the table, the rest of
  * a point's springs (only a few points have more) listed after the table,
@@ -153,17 +174,13 @@ static int msocl_slot(MSOCL_CONN, int i, int s, int n, int *j, float *rest,
   int x = i % grid_nx, t = i / grid_nx, y = t % grid_ny, z = t / grid_ny;
   int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s],
       qz = z + msocl_grid_dz[s];
-  int kind = msocl_grid_kind[s];
-  float kk = kind == 0 ? grid_k.x : kind == 1 ? grid_k.y
-           : kind == 2 ? grid_k.z : grid_k.w;
-  float r = kind == 0 ? grid_rest.s0 : kind == 1 ? grid_rest.s1
-          : kind == 2 ? grid_rest.s2 : grid_rest.s3;
+  float kk = MSOCL_GRID_K(s);
   bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
                qz >= 0 && qz < grid_nz && kk != 0.0f;
   *j = there ? (qz * grid_ny + qy) * grid_nx + qx : i;
-  *rest = r;
+  *rest = MSOCL_GRID_R(s);
   *k = there ? kk : 0.0f;
-  *c = there ? grid_rest.s4 : 0.0f;
+  *c = there ? MSOCL_GRID_C : 0.0f;
   (void)n;
   return 1;
 #elif defined(MSOCL_LAYOUT_GRID)

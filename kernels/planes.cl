@@ -22,8 +22,20 @@
  * x, y, z planes `plane` floats apart (v likewise); aux holds the inverse
  * masses, then pos.w (pinned). MSOCL_NCOL: the model's colliders, known
  * when the program is built so that their loop unrolls (a loop of run-time
- * length inside would stop the vectorizer). */
+ * length inside would stop the vectorizer); MSOCL_GRID_KINDS: a bit for
+ * each kind of spring the model has. */
 #if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID)
+
+/* The work-item's point (x, y, z) and where it sits in a plane: a
+ * lattice's layers are `slab` floats apart, each padded by two rows, and
+ * two padding layers lie at each end; a cloth has one layer (z 0). */
+#define MSOCL_PLANES_XYZ                                                      \
+  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2)
+#ifdef MSOCL_GRID_3D
+#define MSOCL_PLANES_AT(x, y, z) (((z) + 2) * slab + ((y) + 2) * pitch + (x) + 2)
+#else
+#define MSOCL_PLANES_AT(x, y, z) (((y) + 2) * pitch + (x) + 2)
+#endif
 
 /* dot(a, b) of float3 as the other kernels compute it: (x + y) + z. */
 #define MSOCL_DOT3(ax, ay, az, bx, by, bz) ((ax) * (bx) + (ay) * (by) + (az) * (bz))
@@ -80,11 +92,12 @@ static float msocl_planes_gap(float px, float py, float pz,
   return g;
 }
 
-/* msocl_force at the point at a = (x, y), viscous damping included. */
+/* msocl_force at the point at a = (x, y, z), viscous damping included. */
 static void msocl_planes_force(MSOCL_CONN, __global const float *p,
-                               __global const float *v, int pitch, int plane,
-                               float viscous, int x, int y, int a,
-                               float *fx_out, float *fy_out, float *fz_out)
+                               __global const float *v, int pitch, int slab,
+                               int plane, float viscous, int x, int y, int z,
+                               int a, float *fx_out, float *fy_out,
+                               float *fz_out)
 {
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
   __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
@@ -92,18 +105,27 @@ static void msocl_planes_force(MSOCL_CONN, __global const float *p,
   const float vx = v[a], vy = vy_[a], vz = vz_[a];
   float fx = 0.0f, fy = 0.0f, fz = 0.0f;
 #pragma unroll
-  for (int s = 0; s < 12; s++) {
+  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
+    /* a kind the model leaves out: BUFFER has no slot for it either */
+    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+      continue;
     const int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s];
-    const int kind = msocl_grid_kind[s], ri = msocl_grid_rest[s];
-    const float kk = kind == 0 ? grid_k.x : kind == 1 ? grid_k.y : grid_k.z;
-    const float rest = ri == 0 ? grid_rest.s0 : ri == 1 ? grid_rest.s1
-                     : ri == 2 ? grid_rest.s2 : ri == 3 ? grid_rest.s3
-                     : ri == 4 ? grid_rest.s4 : grid_rest.s5;
+    const float kk = MSOCL_GRID_K(s), rest = MSOCL_GRID_R(s);
     /* a missing neighbour reads the padding (or another row), and its
      * terms are replaced by the exact zeros msocl_force adds for it */
+#ifdef MSOCL_GRID_3D
+    const int qz = z + msocl_grid_dz[s];
+    const bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
+                       qz >= 0 && qz < grid_nz && kk != 0.0f;
+    const int b = a + msocl_grid_dz[s] * slab + msocl_grid_dy[s] * pitch +
+                  msocl_grid_dx[s];
+#else
     const bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
                        kk != 0.0f;
     const int b = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];
+    (void)z;
+    (void)slab;
+#endif
     const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
     const float len2 = dx * dx + dy * dy + dz * dz;
     const float len = MSOCL_SQRT(len2);
@@ -114,7 +136,7 @@ static void msocl_planes_force(MSOCL_CONN, __global const float *p,
     fz += on ? t * dz : 0.0f;
 #ifdef MSOCL_DAMPING
     const float wx = v[b] - vx, wy = vy_[b] - vy, wz = vz_[b] - vz;
-    const float u = grid_k.w * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
+    const float u = MSOCL_GRID_C * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
     const bool onh = there && len2 > 0.0f;
     fx += onh ? u * dx : 0.0f;
     fy += onh ? u * dy : 0.0f;
@@ -175,19 +197,19 @@ static void msocl_planes_air(float air, float *vx, float *vy, float *vz)
   (void)air; (void)vx; (void)vy; (void)vz;
 }
 
-/* The velocity pass for the point at a = (x, y): its new velocity in
+/* The velocity pass for the point at a = (x, y, z): its new velocity in
  * *vx.., and whether it is pinned. */
 static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
                               __global const float *v,
-                              __global const float *aux, int pitch, int plane,
-                              float4 gravity, float viscous, float air,
-                              float dt, __constant float4 *col, int x, int y,
-                              int a, float *vx_out, float *vy_out,
-                              float *vz_out, bool *pinned)
+                              __global const float *aux, int pitch, int slab,
+                              int plane, float4 gravity, float viscous,
+                              float air, float dt, __constant float4 *col,
+                              int x, int y, int z, int a, float *vx_out,
+                              float *vy_out, float *vz_out, bool *pinned)
 {
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, plane, viscous, x, y, a,
-                     &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
+                     y, z, a, &fx, &fy, &fz);
   const float im = aux[a];
   float vx = v[a] + dt * (fx * im + gravity.x);
   float vy = v[plane + a] + dt * (fy * im + gravity.y);
@@ -204,18 +226,20 @@ static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
 /* The planes' ping-pong arguments after the connectivity, then the fixed
  * ones; both kernels below take them in this order. */
 #define MSOCL_PLANES_ARGS                                                     \
-  __global const float *aux, int pitch, int plane, float4 gravity,           \
-      float viscous, float air, float dt, __constant float4 *col
+  __global const float *aux, int pitch, int slab, int plane,                 \
+      float4 gravity, float viscous, float air, float dt,                    \
+      __constant float4 *col
 
-/* Both kernels' point (x, y), at a, and its new velocity; then the store
- * of that velocity. */
+/* Both kernels' point (x, y, z), at a, and its new velocity; then the
+ * store of that velocity. */
 #define MSOCL_PLANES_KICK                                                     \
-  const int x = get_global_id(0), y = get_global_id(1);                      \
-  const int a = (y + 2) * pitch + x + 2;                                     \
+  MSOCL_PLANES_XYZ;                                                          \
+  const int a = MSOCL_PLANES_AT(x, y, z);                                    \
   float vx, vy, vz;                                                          \
   bool pinned;                                                               \
-  msocl_planes_kick(MSOCL_CONN_ARGS, p, v, aux, pitch, plane, gravity,       \
-                    viscous, air, dt, col, x, y, a, &vx, &vy, &vz, &pinned)
+  msocl_planes_kick(MSOCL_CONN_ARGS, p, v, aux, pitch, slab, plane, gravity, \
+                    viscous, air, dt, col, x, y, z, a, &vx, &vy, &vz,        \
+                    &pinned)
 #define MSOCL_PLANES_STORE_V                                                  \
   v_out[a] = vx;                                                             \
   v_out[plane + a] = vy;                                                     \
@@ -255,10 +279,11 @@ __kernel void msocl_planes_position(__global const float *p,
                                     __global const float *v,
                                     __global float *p_out,
                                     __global const float *aux, int nx,
-                                    int pitch, int plane, float dt)
+                                    int pitch, int slab, int plane, float dt)
 {
-  const int x = get_global_id(0), y = get_global_id(1);
-  const int a = (y + 2) * pitch + x + 2;
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab;
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
   if (x < nx) {
     /* three statements, not a loop: an inner loop would stop the
@@ -280,11 +305,12 @@ __kernel void msocl_planes_drift(__global const float *p, __global float *v,
                                  __global const float *acc,
                                  __global float *p_out,
                                  __global const float *aux, int nx,
-                                 int pitch, int plane, float dt,
+                                 int pitch, int slab, int plane, float dt,
                                  __constant float4 *col)
 {
-  const int x = get_global_id(0), y = get_global_id(1);
-  const int a = (y + 2) * pitch + x + 2;
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab;
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
   const float h = 0.5f * dt;
   const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
@@ -307,11 +333,11 @@ __kernel void msocl_planes_vkick(MSOCL_CONN, __global const float *p,
                                  __global float *v_out,
                                  __global float *acc_out, MSOCL_PLANES_ARGS)
 {
-  const int x = get_global_id(0), y = get_global_id(1);
-  const int a = (y + 2) * pitch + x + 2;
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, plane, viscous, x, y, a,
-                     &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
+                     y, z, a, &fx, &fy, &fz);
   const float im = aux[a], h = 0.5f * dt;
   const float ax = fx * im + gravity.x, ay = fy * im + gravity.y,
               az = fz * im + gravity.z;
@@ -369,15 +395,15 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
                              __global const float *sv, __global float *sum_p,
                              __global float *sum_v, __global float *np,
                              __global float *nv, __global const float *aux,
-                             int pitch, int plane, float4 gravity,
+                             int pitch, int slab, int plane, float4 gravity,
                              float viscous, float air, float dt,
                              __constant float4 *col, float c, const int mode)
 {
-  const int x = get_global_id(0), y = get_global_id(1);
-  const int a = (y + 2) * pitch + x + 2;
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, sp, sv, pitch, plane, viscous, x, y,
-                     a, &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, viscous, x,
+                     y, z, a, &fx, &fy, &fz);
   const float im = aux[a];
   const float kv[3] = {fx * im + gravity.x, fy * im + gravity.y,
                        fz * im + gravity.z};
@@ -427,7 +453,8 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
       __global float *nv, MSOCL_PLANES_ARGS, float c
 #define MSOCL_PLANES_RK4_CALL(mode)                                           \
   msocl_planes_rk4(MSOCL_CONN_ARGS, p0, v0, sp, sv, sum_p, sum_v, np, nv,    \
-                   aux, pitch, plane, gravity, viscous, air, dt, col, c, mode)
+                   aux, pitch, slab, plane, gravity, viscous, air, dt, col, \
+                   c, mode)
 
 __kernel void msocl_planes_rk4_first(MSOCL_PLANES_RK4_ARGS)
 {
@@ -444,18 +471,21 @@ __kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
   MSOCL_PLANES_RK4_CALL(2);
 }
 
-/* The copy kernels run over the planes' 2-D range too: point i = y nx + x
- * of an nx-wide grid (n points), at a in a plane - no division a point. */
+/* The copy kernels run over the planes' range too: point
+ * i = (z ny + y) nx + x of an nx-wide grid (n points; ny the range's
+ * second size), at a in a plane - no division a point. */
 #define MSOCL_PLANES_POINT                                                    \
-  const int x = get_global_id(0), y = get_global_id(1);                      \
-  const int i = y * nx + x, a = (y + 2) * pitch + x + 2;                     \
+  MSOCL_PLANES_XYZ;                                                          \
+  const int i = (z * (int)get_global_size(1) + y) * nx + x;                  \
+  const int a = MSOCL_PLANES_AT(x, y, z);                                    \
+  (void)slab;                                                                \
   if (x >= nx || i >= n)                                                     \
     return
 
 /* Another float4 buffer's xyz (Verlet's acceleration) into planes, and
  * back with w 0. */
 __kernel void msocl_planes_in(__global const float4 *src, __global float *dst,
-                              int nx, int pitch, int plane, int n)
+                              int nx, int pitch, int slab, int plane, int n)
 {
   MSOCL_PLANES_POINT;
   const float4 q = src[i];
@@ -465,7 +495,7 @@ __kernel void msocl_planes_in(__global const float4 *src, __global float *dst,
 }
 
 __kernel void msocl_planes_out(__global const float *src, __global float4 *dst,
-                               int nx, int pitch, int plane, int n)
+                               int nx, int pitch, int slab, int plane, int n)
 {
   MSOCL_PLANES_POINT;
   dst[i] = (float4)(src[a], src[plane + a], src[2 * plane + a], 0.0f);
@@ -477,7 +507,7 @@ __kernel void msocl_planes_pack(__global const float4 *pos,
                                 __global const float *inv_mass,
                                 __global float *p, __global float *v,
                                 __global float *aux, int nx, int pitch,
-                                int plane, int n)
+                                int slab, int plane, int n)
 {
   MSOCL_PLANES_POINT;
   const float4 q = pos[i], w = vel[i];
@@ -496,7 +526,7 @@ __kernel void msocl_planes_unpack(__global const float *p,
                                   __global const float *v,
                                   __global const float *aux,
                                   __global float4 *pos, __global float4 *vel,
-                                  int nx, int pitch, int plane, int n)
+                                  int nx, int pitch, int slab, int plane, int n)
 {
   MSOCL_PLANES_POINT;
   pos[i] = (float4)(p[a], p[plane + a], p[2 * plane + a], aux[plane + a]);

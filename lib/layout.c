@@ -12,16 +12,18 @@
 #include <string.h>
 
 msocl_layout msocl__layout_auto(const msocl_device_info *info,
-                                const msocl_model *m)
+                                const msocl_model *m, int planes)
 {
   /* A cloth grid as the builder made it: GRID stores nothing, moves the
    * fewest bytes, and on a CPU runs in planes (2.3x its float4 step at
    * 256x256 and 1024x1024 on PoCL: docs/PERFORMANCE.md). Otherwise
    * BUFFER: it reads 12 bytes a slot against the texture's 16, and PoCL's
    * image reads are about 3x slower than buffer reads on a CPU; no device
-   * measured so far prefers the texture. */
+   * measured so far prefers the texture. A lattice takes GRID only in
+   * planes: 3.3-4.1x BUFFER at 32^3 and 64^3 on PoCL, where its float4
+   * GRID, with a division and a modulo a slot, is 0.3-0.6x. */
   (void)info;
-  if (m->grid.nx >= 2 && m->grid.ns == m->ns && m->grid.nz == 0)
+  if (m->grid.nx >= 2 && m->grid.ns == m->ns && (m->grid.nz == 0 || planes))
     return MSOCL_LAYOUT_GRID;
   return MSOCL_LAYOUT_BUFFER;
 }
@@ -337,8 +339,8 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          struct msocl__layout *out)
 {
   memset(out, 0, sizeof *out);
-  out->kind = kind == MSOCL_LAYOUT_AUTO ? msocl__layout_auto(&dev->info, m)
-                                        : kind;
+  out->kind =
+      kind == MSOCL_LAYOUT_AUTO ? msocl__layout_auto(&dev->info, m, 0) : kind;
   int rc;
   if (out->kind == MSOCL_LAYOUT_IMAGE2D) {
     if (!dev->info.image_support)

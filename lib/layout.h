@@ -32,9 +32,10 @@ struct msocl__layout {
                         every slot */
 };
 
-/* The layout AUTO stands for on this device, for this model. */
+/* The layout AUTO stands for on this device, for this model; planes:
+ * whether its GRID would run in planes. */
 msocl_layout msocl__layout_auto(const msocl_device_info *info,
-                                const msocl_model *m);
+                                const msocl_model *m, int planes);
 
 /* Chooses W x H >= n for the connectivity texture within the device's
  * image limits (the texture is 4W x 4H). */

@@ -1,6 +1,7 @@
-/* GRID in planes (options.planes, kernels/planes.cl): a cloth grid's
- * symplectic Euler, Verlet and RK4 steps over x, y, z planes of padded
- * rows, which PoCL's CPU device runs eight points to an instruction. The
+/* GRID in planes (options.planes, kernels/planes.cl): a cloth grid's or
+ * a lattice's symplectic Euler, Verlet and RK4 steps over x, y, z planes
+ * of padded rows, which PoCL's CPU device runs eight points to an
+ * instruction. The
  * engine's float4 buffers stay the state everything else reads and
  * writes: a call's steps copy it into the planes, step there, and copy it
  * back. */
@@ -25,37 +26,52 @@ static const char *const names[PL_COUNT] = {
     "msocl_planes_rk4_first", "msocl_planes_rk4_middle",
     "msocl_planes_rk4_last"};
 
-/* Why the engine cannot run in planes; NULL: it can. */
-static const char *unfit(const msocl__engine *s)
+/* Why a model's GRID cannot run in planes with options o on points
+ * [lo, hi) of its n; NULL: it can. */
+static const char *unfit(const msocl_sim_options *o, const msocl_model *m,
+                         int lo, int hi)
 {
-  if (s->lay.kind != MSOCL_LAYOUT_GRID)
-    return "needs the GRID layout";
-  if (s->lay.grid_nz > 0)
-    return "needs a cloth grid (not a lattice)";
-  if (s->o.integrator != MSOCL_SYMPLECTIC_EULER &&
-      s->o.integrator != MSOCL_VERLET && s->o.integrator != MSOCL_RK4)
+  if (o->integrator != MSOCL_SYMPLECTIC_EULER &&
+      o->integrator != MSOCL_VERLET && o->integrator != MSOCL_RK4)
     return "runs symplectic Euler, Verlet and RK4 only";
-  if (s->o.strain != MSOCL_STRAIN_NONE)
+  if (o->strain != MSOCL_STRAIN_NONE)
     return "runs without strain limiting only";
-  if (s->lo != 0 || s->hi != s->n)
+  if (lo != 0 || hi != m->n)
     return "runs a whole model on one device (not a split)";
   /* the kernels index all three planes with an int */
-  const size_t wide = ((size_t)s->lay.grid_nx + 63) / 64 * 64 + 4;
-  if (3 * wide * ((size_t)s->lay.grid_ny + 4) > (size_t)INT_MAX)
+  const size_t wide = (size_t)m->grid.nx + 64 + 4;
+  const size_t layers = m->grid.nz > 0 ? (size_t)m->grid.nz + 4 : 1;
+  if (3 * wide * ((size_t)m->grid.ny + 4) * layers > (size_t)INT_MAX)
     return "index at most 2^31 floats (the grid is too large)";
   return NULL;
 }
 
-int msocl__planes_choose(msocl__engine *s)
+/* Whether GRID would run in planes: where it fits, when forced, or by
+ * default on CPU devices, where it is measured faster
+ * (docs/PERFORMANCE.md); a GPU gathers float4 as well, and is not
+ * measured. */
+static int chosen(const struct msocl__device *dev, const msocl_sim_options *o,
+                  const char *why)
 {
-  const char *why = unfit(s);
+  return !why && (o->planes == 1 ||
+                  (o->planes == -1 && dev->info.type == MSOCL_DEVICE_CPU));
+}
+
+int msocl__planes_would(const struct msocl__device *dev,
+                        const msocl_sim_options *o, const msocl_model *m,
+                        int lo, int hi)
+{
+  return chosen(dev, o, unfit(o, m, lo, hi));
+}
+
+int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
+{
+  const char *why = s->lay.kind != MSOCL_LAYOUT_GRID
+                        ? "needs the GRID layout"
+                        : unfit(&s->o, m, s->lo, s->hi);
   if (s->o.planes == 1 && why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "planes %s", why);
-  /* auto: CPU devices, where it is measured faster (docs/PERFORMANCE.md);
-   * a GPU gathers float4 as well, and is not measured */
-  s->planes = !why && (s->o.planes == 1 ||
-                       (s->o.planes == -1 &&
-                        s->dev->info.type == MSOCL_DEVICE_CPU));
+  s->planes = chosen(s->dev, &s->o, why);
   return MSOCL_OK;
 }
 
@@ -66,6 +82,17 @@ static int arg(cl_kernel k, cl_uint i, size_t size, const void *v)
 }
 
 #define TRY MSOCL__TRY
+
+/* The planes' shape from argument i: (nx if with_nx,) pitch, slab,
+ * plane. */
+static int shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx)
+{
+  if (with_nx)
+    TRY(arg(k, i++, sizeof(int), &s->lay.grid_nx));
+  TRY(arg(k, i, sizeof(int), &s->pl_pitch));
+  TRY(arg(k, i + 1, sizeof(int), &s->pl_slab));
+  return arg(k, i + 2, sizeof(int), &s->pl_plane);
+}
 
 /* The arguments that never change: all but the planes that ping-pong. */
 static int fixed_args(msocl__engine *s)
@@ -83,29 +110,24 @@ static int fixed_args(msocl__engine *s)
     s->pl_conn = a;
     a += q == 0 ? 3 : q < 3 ? 4 : 8;
     TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
-    TRY(arg(k, a + 1, sizeof(int), &s->pl_pitch));
-    TRY(arg(k, a + 2, sizeof(int), &s->pl_plane));
-    TRY(arg(k, a + 3, sizeof s->gravity, &s->gravity));
-    TRY(arg(k, a + 4, sizeof(float), &s->viscous));
-    TRY(arg(k, a + 5, sizeof(float), &s->air));
-    TRY(arg(k, a + 6, sizeof(float), &s->o.dt));
-    TRY(arg(k, a + 7, sizeof s->col, &s->col));
+    TRY(shape(s, k, a + 1, 0));
+    TRY(arg(k, a + 4, sizeof s->gravity, &s->gravity));
+    TRY(arg(k, a + 5, sizeof(float), &s->viscous));
+    TRY(arg(k, a + 6, sizeof(float), &s->air));
+    TRY(arg(k, a + 7, sizeof(float), &s->o.dt));
+    TRY(arg(k, a + 8, sizeof s->col, &s->col));
   }
   k = s->pl_k[PL_POSITION];
   TRY(arg(k, 3, sizeof s->pl_aux, &s->pl_aux));
-  TRY(arg(k, 4, sizeof(int), &s->lay.grid_nx));
-  TRY(arg(k, 5, sizeof(int), &s->pl_pitch));
-  TRY(arg(k, 6, sizeof(int), &s->pl_plane));
-  TRY(arg(k, 7, sizeof(float), &s->o.dt));
-  /* pack (pos, vel, inv_mass, p, v, aux, ints); unpack (p, v, aux, pos,
-   * vel, ints) */
+  TRY(shape(s, k, 4, 1));
+  TRY(arg(k, 8, sizeof(float), &s->o.dt));
+  /* pack (pos, vel, inv_mass, p, v, aux, shape, n); unpack (p, v, aux,
+   * pos, vel, shape, n) */
   const cl_uint ints[2] = {6, 5}, aux_at[2] = {5, 2};
   for (int q = 0; q < 2; q++) {
     k = s->pl_k[PL_PACK + q];
-    TRY(arg(k, ints[q], sizeof(int), &s->lay.grid_nx));
-    TRY(arg(k, ints[q] + 1, sizeof(int), &s->pl_pitch));
-    TRY(arg(k, ints[q] + 2, sizeof(int), &s->pl_plane));
-    TRY(arg(k, ints[q] + 3, sizeof(int), &s->n));
+    TRY(shape(s, k, ints[q], 1));
+    TRY(arg(k, ints[q] + 4, sizeof(int), &s->n));
     TRY(arg(k, aux_at[q], sizeof s->pl_aux, &s->pl_aux));
   }
   k = s->pl_k[PL_PACK];
@@ -117,26 +139,22 @@ static int fixed_args(msocl__engine *s)
         TRY(arg(s->pl_k[q], s->pl_conn + 4 + (cl_uint)u, sizeof sums[u],
                 &sums[u]));
     }
-  /* Verlet: drift (p, v, acc, p_out, aux, nx, pitch, plane, dt, col), and
-   * the acceleration in and out (src, dst, nx, pitch, plane, n) */
+  /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col), and the
+   * acceleration in and out (src, dst, shape, n) */
   if (s->o.integrator != MSOCL_VERLET)
     return MSOCL_OK;
   k = s->pl_k[PL_DRIFT];
   TRY(arg(k, 2, sizeof s->pl_a, &s->pl_a));
   TRY(arg(k, 4, sizeof s->pl_aux, &s->pl_aux));
-  TRY(arg(k, 5, sizeof(int), &s->lay.grid_nx));
-  TRY(arg(k, 6, sizeof(int), &s->pl_pitch));
-  TRY(arg(k, 7, sizeof(int), &s->pl_plane));
-  TRY(arg(k, 8, sizeof(float), &s->o.dt));
-  TRY(arg(k, 9, sizeof s->col, &s->col));
+  TRY(shape(s, k, 5, 1));
+  TRY(arg(k, 9, sizeof(float), &s->o.dt));
+  TRY(arg(k, 10, sizeof s->col, &s->col));
   for (int q = PL_IN; q <= PL_OUT; q++) {
     k = s->pl_k[q];
     TRY(arg(k, q == PL_IN ? 0 : 1, sizeof s->acc, &s->acc));
     TRY(arg(k, q == PL_IN ? 1 : 0, sizeof s->pl_a, &s->pl_a));
-    TRY(arg(k, 2, sizeof(int), &s->lay.grid_nx));
-    TRY(arg(k, 3, sizeof(int), &s->pl_pitch));
-    TRY(arg(k, 4, sizeof(int), &s->pl_plane));
-    TRY(arg(k, 5, sizeof(int), &s->n));
+    TRY(shape(s, k, 2, 1));
+    TRY(arg(k, 6, sizeof(int), &s->n));
   }
   return MSOCL_OK;
 }
@@ -145,12 +163,21 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
 {
   if (!s->planes)
     return MSOCL_OK;
-  /* rows padded to whole work-groups of 64, plus two points each side */
-  const size_t wide = ((size_t)s->lay.grid_nx + 63) / 64 * 64;
+  /* rows padded to whole work-groups - of 64 points, or of 32, 16 or 8
+   * for a narrow grid (a lattice's rows are short), so that few padding
+   * points are computed - plus two points each side; a lattice's layers
+   * padded by two rows each side, and two padding layers at each end */
+  size_t group = 64;
+  while (group > 8 && (size_t)s->lay.grid_nx <= group / 2)
+    group /= 2;
+  const size_t wide = ((size_t)s->lay.grid_nx + group - 1) / group * group;
+  s->pl_group = group;
   s->pl_pitch = (int)wide + 4;
-  s->pl_plane = s->pl_pitch * (s->lay.grid_ny + 4);
+  s->pl_slab = s->pl_pitch * (s->lay.grid_ny + 4);
+  s->pl_plane = s->pl_slab * (s->lay.grid_nz > 0 ? s->lay.grid_nz + 4 : 1);
   s->pl_global[0] = wide;
   s->pl_global[1] = (size_t)s->lay.grid_ny;
+  s->pl_global[2] = s->lay.grid_nz > 0 ? (size_t)s->lay.grid_nz : 1;
   for (int q = 0; q < PL_COUNT; q++) {
     cl_int e;
     s->pl_k[q] = clCreateKernel(prog, names[q], &e);
@@ -183,13 +210,13 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
   return fixed_args(s);
 }
 
-/* A pass over the padded grid; CPU devices in work-groups of 64 points
- * of a row (integrate.c's reason). */
+/* A pass over the padded grid; CPU devices in work-groups of a row's
+ * pl_group points (integrate.c's reason). */
 static int launch(msocl__engine *s, int k)
 {
-  const size_t local[2] = {64, 1};
+  const size_t local[3] = {s->pl_group, 1, 1};
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 2, NULL,
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 3, NULL,
                                    s->pl_global, group, 0, NULL, NULL));
   return MSOCL_OK;
 }
@@ -232,7 +259,7 @@ static int rk4_stage(msocl__engine *s, int q, int r, int w)
   for (int u = 0; u < 2; u++)
     TRY(arg(s->pl_k[k], s->pl_conn + 6 + (cl_uint)u, sizeof next[u],
             &next[u]));
-  TRY(arg(s->pl_k[k], s->pl_conn + 16, sizeof(float), &cs[q]));
+  TRY(arg(s->pl_k[k], s->pl_conn + 17, sizeof(float), &cs[q]));
   return launch(s, k);
 }
 

@@ -49,11 +49,18 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
   cl_device_fp_config fp = 0;
   clGetDeviceInfo(s->dev->id, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp,
                   NULL);
-  /* GRID in planes: its kernels, with the colliders' loop unrolled */
-  char planes[48] = "";
-  if (s->planes)
-    snprintf(planes, sizeof planes, " -DMSOCL_PLANES -DMSOCL_NCOL=%d",
-             m->ncol);
+  /* GRID in planes: its kernels, with the colliders' loop unrolled and
+   * the kinds of spring the model leaves out compiled out (a lattice's
+   * body shear, by default: 8 of its 32 neighbours) */
+  char planes[80] = "";
+  if (s->planes) {
+    int kinds = 0;
+    for (int q = 0; q < 4; q++)
+      kinds |= (m->grid.k[q] != 0.0f) << q;
+    snprintf(planes, sizeof planes,
+             " -DMSOCL_PLANES -DMSOCL_NCOL=%d -DMSOCL_GRID_KINDS=%d", m->ncol,
+             kinds);
+  }
   /* EDGES shares the BUFFER macros with no slots: the gathering kernels
    * it does not use still compile, to nothing. */
   int len = snprintf(
@@ -328,13 +335,18 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     goto fail;
   }
   rc = msocl__adjacency_build(m, &adj);
+  /* AUTO takes GRID for a lattice only where it would run in planes */
+  msocl_layout kind = o->layout;
+  if (kind == MSOCL_LAYOUT_AUTO)
+    kind = msocl__layout_auto(&dev->info, m,
+                              msocl__planes_would(dev, o, m, lo, hi));
   if (rc == MSOCL_OK)
-    rc = msocl__layout_create(s->dev, m, &adj, o->layout, o->buffer_slots,
+    rc = msocl__layout_create(s->dev, m, &adj, kind, o->buffer_slots,
                               o->classes, &s->lay);
   if (rc == MSOCL_OK)
     rc = make_buffers(s, m);
   if (rc == MSOCL_OK)
-    rc = msocl__planes_choose(s);
+    rc = msocl__planes_choose(s, m);
   char opt[512];
   cl_program prog = NULL;
   if (rc == MSOCL_OK)

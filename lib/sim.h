@@ -62,8 +62,9 @@ struct msocl__engine {
   cl_mem pl_sp[2], pl_sv[2], pl_sum[2]; /* RK4: stage states, sums */
   cl_kernel pl_k[12];     /* planes.c's kernels */
   cl_uint pl_conn;        /* velocity: its connectivity arguments */
-  int pl_pitch, pl_plane; /* floats a row, and a plane */
-  size_t pl_global[2];    /* the passes' 2-D range: rows padded to 64 */
+  int pl_pitch, pl_slab, pl_plane; /* floats a row, a layer, a plane */
+  size_t pl_global[3];    /* the passes' range: rows padded to a group */
+  size_t pl_group;        /* a work-group's points (CPU devices) */
 };
 
 /* The largest number of engines and of exchange buffers a step names. */
@@ -206,12 +207,17 @@ int msocl__phase_count(const msocl__engine *s);
 int msocl__phase(msocl__engine *s, int phase, unsigned *exchange);
 /* That mask, without queuing anything. */
 unsigned msocl__phase_mask(const msocl__engine *s, int phase);
-/* GRID in planes (planes.c). choose: whether this engine runs in planes
- * (options.planes; MSOCL_ERR_BAD_VALUE when forced where it cannot);
- * create: its buffers and kernels, from the program built with
- * -DMSOCL_PLANES; steps: n symplectic Euler steps, the state copied into
- * planes and back; release: frees them. */
-int msocl__planes_choose(msocl__engine *s);
+/* GRID in planes (planes.c). would: whether model m's GRID on dev, over
+ * points [lo, hi), would run in planes (what AUTO weighs for a lattice);
+ * choose: whether this engine runs in planes (options.planes;
+ * MSOCL_ERR_BAD_VALUE when forced where it cannot); create: its buffers
+ * and kernels, from the program built with -DMSOCL_PLANES; steps: n steps
+ * (symplectic Euler, Verlet or RK4), the state copied into planes and
+ * back; release: frees them. */
+int msocl__planes_would(const struct msocl__device *dev,
+                        const msocl_sim_options *o, const msocl_model *m,
+                        int lo, int hi);
+int msocl__planes_choose(msocl__engine *s, const msocl_model *m);
 int msocl__planes_create(msocl__engine *s, cl_program prog);
 int msocl__planes_steps(msocl__engine *s, int n);
 void msocl__planes_release(msocl__engine *s);

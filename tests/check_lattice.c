@@ -1,9 +1,11 @@
 /* GRID for lattices: a msocl_model_lattice's 32 neighbours, recomputed
- * from each point's (x, y, z) position, must sum what BUFFER's stored
- * slots sum, bit for bit - under every integrator and both kinds of
- * strain limiting, with each spring set on or left out, with colliders,
- * pins and damping, and split over several devices - and GRID must refuse
- * a lattice whose springs were changed after the builder. */
+ * from each point's (x, y, z) position, in float4 and in planes, must sum
+ * what BUFFER's stored slots sum, bit for bit - under every integrator
+ * and both kinds of strain limiting, with each spring set on or left out,
+ * with colliders, pins and damping, rows narrower and wider than a
+ * work-group, and split over several devices; AUTO must take GRID exactly
+ * where it runs in planes, and GRID must refuse a lattice whose springs
+ * were changed after the builder. */
 #include "scenes.h"
 
 #include <check.h>
@@ -14,11 +16,18 @@
 
 #define rt scene_rt
 
-/* Lattice sizes (some with fewer layers than the bend springs reach, one
- * a single cell) and spring sets: the builder's default (no body shear),
- * all four sets, and structural springs left out. */
-static const int sizes[][3] = {{5, 5, 5}, {3, 6, 2}, {2, 2, 2}};
-enum { SETS_DEFAULT, SETS_ALL, SETS_NO_STRUCTURAL, SETS };
+/* Spring sets: the builder's default (no body shear), all four sets,
+ * and structural springs left out. */
+enum { SETS_DEFAULT, SETS_ALL, SETS_NO_STRUCTURAL };
+/* Lattices: every set at 5^3; fewer layers than the bend springs reach;
+ * a single cell; rows of 19 (a work-group of 32 in planes) and 70 (two
+ * of 64). */
+static const struct {
+  int size[3], sets;
+} cases[] = {{{5, 5, 5}, SETS_DEFAULT}, {{5, 5, 5}, SETS_ALL},
+             {{5, 5, 5}, SETS_NO_STRUCTURAL}, {{3, 6, 2}, SETS_ALL},
+             {{2, 2, 2}, SETS_DEFAULT}, {{19, 3, 4}, SETS_ALL},
+             {{70, 2, 2}, SETS_DEFAULT}};
 
 /* A lattice dropped onto a floor beside a ball and a round table, one
  * corner pinned, with dashpots, viscous damping and air resistance. */
@@ -48,7 +57,8 @@ static msocl_model *busy_lattice(const int *size, int sets)
 }
 
 struct state {
-  int n;
+  int n, planes;
+  msocl_layout layout;
   float *pos, *vel;
   msocl_energy e;
 };
@@ -58,7 +68,8 @@ struct state {
  * compares. */
 static struct state run(msocl_runtime *r, const msocl_model *m,
                         msocl_layout lay, msocl_integrator in,
-                        msocl_strain strain, int parts, int steps)
+                        msocl_strain strain, int fused, int planes,
+                        int parts, int steps)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
@@ -66,6 +77,8 @@ static struct state run(msocl_runtime *r, const msocl_model *m,
   o.layout = lay;
   o.integrator = in;
   o.strain = strain;
+  o.fused = fused;
+  o.planes = planes;
   o.ndevices = parts;
   o.check_every = 0;
   msocl_sim *s = NULL;
@@ -73,13 +86,16 @@ static struct state run(msocl_runtime *r, const msocl_model *m,
   ck_assert_msg(rc == MSOCL_OK, "sim_create: %s", msocl_last_error());
   msocl_layout got;
   ck_assert_int_eq(msocl_sim_layout(s, &got), MSOCL_OK);
-  ck_assert_int_eq(got, lay);
+  if (lay != MSOCL_LAYOUT_AUTO)
+    ck_assert_int_eq(got, lay);
   for (int done = 0; done < steps; done += 7) {
     rc = msocl_sim_step(s, steps - done < 7 ? steps - done : 7);
     ck_assert_msg(rc == MSOCL_OK, "step: %s", msocl_last_error());
   }
   struct state st;
   msocl_sim_point_count(s, &st.n);
+  st.layout = got;
+  ck_assert_int_eq(msocl_sim_planes(s, &st.planes), MSOCL_OK);
   st.pos = malloc(3 * (size_t)st.n * sizeof(float));
   st.vel = malloc(3 * (size_t)st.n * sizeof(float));
   ck_assert_int_eq(msocl_sim_read_positions(s, st.pos), MSOCL_OK);
@@ -114,22 +130,26 @@ static void state_free(struct state *st)
 static const struct {
   msocl_integrator in;
   msocl_strain strain;
+  int fused, planes; /* planes: whether GRID can run in planes */
   const char *name;
 } methods[] = {
-    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, "symplectic Euler"},
-    {MSOCL_EXPLICIT_EULER, MSOCL_STRAIN_NONE, "explicit Euler"},
-    {MSOCL_VERLET, MSOCL_STRAIN_NONE, "Verlet"},
-    {MSOCL_RK4, MSOCL_STRAIN_NONE, "RK4"},
-    {MSOCL_IMPLICIT_EULER, MSOCL_STRAIN_NONE, "implicit Euler"},
-    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT, "Provot strain"},
-    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_VELOCITY, "velocity strain"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 0, 1, "symplectic Euler"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 1, 1, "fused"},
+    {MSOCL_VERLET, MSOCL_STRAIN_NONE, 0, 1, "Verlet"},
+    {MSOCL_RK4, MSOCL_STRAIN_NONE, 0, 1, "RK4"},
+    {MSOCL_EXPLICIT_EULER, MSOCL_STRAIN_NONE, 0, 0, "explicit Euler"},
+    {MSOCL_IMPLICIT_EULER, MSOCL_STRAIN_NONE, 0, 0, "implicit Euler"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT, 0, 0, "Provot strain"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_VELOCITY, 0, 0, "velocity strain"},
 };
 
-/* Each size with each set of springs, every method: GRID is BUFFER. */
+/* Each lattice, every method: GRID in float4 and (where it applies) in
+ * planes is BUFFER; AUTO takes GRID where it runs in planes (this CPU
+ * device), BUFFER elsewhere. */
 START_TEST(grid_is_buffer)
 {
-  const int *size = sizes[_i / SETS];
-  const int sets = _i % SETS;
+  const int *size = cases[_i].size;
+  const int sets = cases[_i].sets;
   msocl_model *m = busy_lattice(size, sets);
   int n = 0;
   msocl_model_point_count(m, &n);
@@ -139,14 +159,35 @@ START_TEST(grid_is_buffer)
     char what[160];
     snprintf(what, sizeof what, "%dx%dx%d lattice, sets %d, %s", size[0],
              size[1], size[2], sets, methods[q].name);
+    const int pl = methods[q].planes;
     struct state b = run(rt, m, MSOCL_LAYOUT_BUFFER, methods[q].in,
-                         methods[q].strain, 1, 100);
+                         methods[q].strain, methods[q].fused, -1, 1, 100);
+    /* GRID in float4: forced where planes apply, else by default */
     struct state g = run(rt, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                         methods[q].strain, 1, 100);
+                         methods[q].strain, methods[q].fused, pl ? 0 : -1, 1,
+                         100);
+    ck_assert_msg(!g.planes, "%s: planes where they cannot be", what);
     /* it must have moved, or equality proves nothing */
     ck_assert_msg(scene_max_diff(p0, b.pos, 3 * n) > 1e-5, "%s: still",
                   what);
     same(b, g, 1, what);
+    if (pl) { /* GRID in planes, by default on this CPU device */
+      struct state a = run(rt, m, MSOCL_LAYOUT_GRID, methods[q].in,
+                           methods[q].strain, methods[q].fused, -1, 1, 100);
+      ck_assert_msg(a.planes, "%s: not in planes", what);
+      same(b, a, 1, what);
+      state_free(&a);
+    }
+    if (_i == 0) { /* AUTO: GRID exactly where it runs in planes */
+      struct state c = run(rt, m, MSOCL_LAYOUT_AUTO, methods[q].in,
+                           methods[q].strain, methods[q].fused, -1, 1, 0);
+      ck_assert_msg(c.layout == (pl ? MSOCL_LAYOUT_GRID
+                                    : MSOCL_LAYOUT_BUFFER) &&
+                        c.planes == pl,
+                    "%s: AUTO took layout %d, planes %d", what,
+                    (int)c.layout, c.planes);
+      state_free(&c);
+    }
     state_free(&b);
     state_free(&g);
   }
@@ -175,12 +216,17 @@ START_TEST(split_is_one_device)
       snprintf(what, sizeof what, "%s on %d devices", methods[q].name,
                parts);
       struct state one = run(many, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                             MSOCL_STRAIN_NONE, 1, 100);
+                             MSOCL_STRAIN_NONE, 0, -1, 1, 100);
       struct state split = run(many, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                               MSOCL_STRAIN_NONE, parts, 100);
+                               MSOCL_STRAIN_NONE, 0, -1, parts, 100);
       same(one, split, 0, what);
       state_free(&one);
       state_free(&split);
+      /* a split runs in float4, so AUTO keeps BUFFER there */
+      struct state a = run(many, m, MSOCL_LAYOUT_AUTO, methods[q].in,
+                           MSOCL_STRAIN_NONE, 0, -1, parts, 0);
+      ck_assert_int_eq(a.layout, MSOCL_LAYOUT_BUFFER);
+      state_free(&a);
     }
   msocl_model_destroy(m);
   msocl_runtime_destroy(many);
@@ -225,7 +271,7 @@ int main(void)
   tcase_add_checked_fixture(tc, scene_setup_cpu, scene_teardown);
   tcase_set_timeout(tc, 300);
   tcase_add_loop_test(tc, grid_is_buffer, 0,
-                      (int)(sizeof sizes / sizeof sizes[0]) * SETS);
+                      (int)(sizeof cases / sizeof cases[0]));
   tcase_add_test(tc, split_is_one_device);
   tcase_add_test(tc, changed_lattice_refused);
   suite_add_tcase(su, tc);
