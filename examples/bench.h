@@ -51,6 +51,7 @@ struct bench_row {
   char device[128];
   const char *layout, *integrator, *math;
   int grid;
+  long long points; /* 0: grid x grid (a cloth) */
   double dt;
   long long steps;
   double seconds, steps_per_s, vertex_steps_per_s;
@@ -84,6 +85,7 @@ int bench_fail(const char *what, int rc);
 
 int bench_table1(const struct bench_opts *o, FILE *csv);
 int bench_precision(const struct bench_opts *o, FILE *csv);
+int bench_lattice(const struct bench_opts *o, FILE *csv);
 
 /* Device-to-device copy bandwidth (bytes read + written per second / 1e9)
  * of the device `info` names, through clEnqueueCopyBuffer on a context of

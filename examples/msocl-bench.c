@@ -1,8 +1,9 @@
 /* The benchmark: the paper's Table 1 reproduced and extended, with a
- * roofline column (table1), and work-precision data for every integrator
- * and math mode (precision). A table on stdout, one CSV row per run.
+ * roofline column (table1), work-precision data for every integrator and
+ * math mode (precision), and the second seed's jello cube per engine
+ * (lattice). A table on stdout, one CSV row per run.
  *
- *   msocl-bench [table1|precision] [-d SPEC] [-g LIST] [-s STEPS]
+ *   msocl-bench [table1|precision|lattice] [-d SPEC] [-g LIST] [-s STEPS]
  *               [-l LIST] [-i LIST] [-m LIST] [-T SECONDS] [--from X]
  *               [--levels N]
  *               [--max-grid N] [--big-steps N] [--repeat N] [--copy-mib N]
@@ -24,21 +25,24 @@ const char *const bench_integrator_names[5] = {"symplectic", "explicit",
 static int usage(FILE *f, int code)
 {
   fprintf(f,
-"usage: msocl-bench [table1|precision] [options]\n"
+"usage: msocl-bench [table1|precision|lattice] [options]\n"
 "  table1     the paper's Table 1: tablecloth on a round table, serial C\n"
 "             (Algorithm 1) against libmsocl per layout, with a roofline\n"
 "             column from the device's measured copy bandwidth (default)\n"
 "  precision  work-precision data: a cloth hanging from two corners, every\n"
 "             integrator and math mode over a sweep of dt, error against a\n"
 "             double-precision RK4 reference\n"
+"  lattice    the jello cube, n^3 points: BUFFER, GRID in float4 and GRID\n"
+"             in planes side by side, each against BUFFER's speed and\n"
+"             final positions (-g default 16,32,64; -i default symplectic)\n"
 "options:\n"
 "  -d SPEC        device spec (MSOCL_DEVICE grammar; 'all' = every device)\n"
 "  -g LIST        grid sizes, e.g. 48,64,96 (table1: default 48,64,96,128,\n"
 "                 256,512,1024,2048; precision: one size, default 16)\n"
-"  -s STEPS       steps per run (table1, default 2000)\n"
+"  -s STEPS       steps per run (table1, default 2000; lattice, 200)\n"
 "  --big-steps N  steps for grids above 128 (table1, default: -s)\n"
 "  --repeat N     time each run N times back to back, the fastest counts\n"
-"                 (table1, default 1; for a noisy machine)\n"
+"                 (table1 and lattice, default 1; for a noisy machine)\n"
 "  --max-grid N   skip grids larger than N\n"
 "  -l LIST        layouts: buffer,image2d,edges,grid (table1 default all\n"
 "                 four; precision default buffer; edges: symplectic Euler\n"
@@ -130,6 +134,8 @@ int main(int argc, char **argv)
       mode = 0, takes = 0;
     } else if (!strcmp(w, "precision") && a == 1) {
       mode = 1, takes = 0;
+    } else if (!strcmp(w, "lattice") && a == 1) {
+      mode = 2, takes = 0;
     } else if (!strcmp(w, "--fused")) {
       o.fused = 1, takes = 0;
     } else if (!strcmp(w, "--values")) {
@@ -203,15 +209,18 @@ int main(int argc, char **argv)
     o.maths[1] = MSOCL_MATH_RELAXED;
   }
   if (o.nintegrators == 0) {
-    o.nintegrators = mode == 0 ? 1 : 5;
+    o.nintegrators = mode == 1 ? 5 : 1;
     for (int i = 0; i < 5; i++)
       o.integrators[i] = i;
   }
   if (o.ngrids == 0) {
     static const int t1[] = {48, 64, 96, 128, 256, 512, 1024, 2048};
-    static const int t1q[] = {16, 24};
-    const int *g = mode == 1 ? NULL : o.quick ? t1q : t1;
-    o.ngrids = mode == 1 ? 1 : o.quick ? 2 : 8;
+    static const int t1q[] = {16, 24}, lat[] = {16, 32, 64}, latq[] = {6};
+    const int *g = mode == 1   ? NULL
+                   : mode == 2 ? (o.quick ? latq : lat)
+                   : o.quick   ? t1q
+                               : t1;
+    o.ngrids = mode == 1 ? 1 : mode == 2 ? (o.quick ? 1 : 3) : o.quick ? 2 : 8;
     for (int i = 0; i < o.ngrids; i++)
       o.grids[i] = g ? g[i] : o.quick ? 8 : 16;
   }
@@ -227,6 +236,8 @@ int main(int argc, char **argv)
     if (o.copy_mib > 16)
       o.copy_mib = 16;
   }
+  if (mode == 2 && !have_s)
+    o.steps = o.quick ? 5 : 200;
   if (o.big_steps < 0)
     o.big_steps = o.steps;
 
@@ -237,7 +248,9 @@ int main(int argc, char **argv)
   }
   if (csv)
     bench_csv_header(csv);
-  int rc = mode == 0 ? bench_table1(&o, csv) : bench_precision(&o, csv);
+  int rc = mode == 0   ? bench_table1(&o, csv)
+           : mode == 1 ? bench_precision(&o, csv)
+                       : bench_lattice(&o, csv);
   if (csv && fclose(csv) != 0) {
     perror(o.csv);
     rc = 1;
@@ -294,7 +307,9 @@ void bench_row_rates(struct bench_row *r)
 {
   if (r->seconds > 0 && r->steps > 0) {
     r->steps_per_s = (double)r->steps / r->seconds;
-    r->vertex_steps_per_s = r->steps_per_s * r->grid * r->grid;
+    r->vertex_steps_per_s =
+        r->steps_per_s *
+        (r->points > 0 ? (double)r->points : (double)r->grid * r->grid);
   }
   if (isfinite(r->bytes_per_vertex_step) && isfinite(r->vertex_steps_per_s))
     r->effective_gbps = r->bytes_per_vertex_step * r->vertex_steps_per_s / 1e9;

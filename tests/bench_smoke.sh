@@ -32,4 +32,14 @@ done
 rows=$(tail -n +2 "$tmp/p.csv" | wc -l)
 [ "$rows" -ge 5 ] || fail "precision CSV has $rows rows"
 grep -q ',reference$' "$tmp/p.csv" || fail "no reference row"
+# lattice: BUFFER, GRID in float4 and in planes, the GRIDs bitwise BUFFER
+# (error column 0)
+./examples/msocl-bench lattice --quick --csv "$tmp/l.csv" >/dev/null ||
+  fail "lattice exited $?"
+[ "$(head -n 1 "$tmp/l.csv")" = "$header" ] || fail "lattice CSV header"
+grep -q ",buffer,symplectic,precise,6,.*,ok\$" "$tmp/l.csv" || fail "no buffer row"
+for l in grid-float4 grid-planes; do
+  grep -q ",$l,symplectic,precise,6,.*,0,ok\$" "$tmp/l.csv" ||
+    fail "no $l row with error 0"
+done
 echo "PASS"

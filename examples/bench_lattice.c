@@ -1,0 +1,152 @@
+/* msocl-bench lattice: the jello cube of the second seed, n x n x n points
+ * (structural, face shear and bend springs with dashpots, on a floor),
+ * per engine side by side in one run - BUFFER (the stored slots), GRID in
+ * float4 and GRID in planes (both forced) - for each integrator asked
+ * for. The error column is the largest difference of the final positions
+ * from BUFFER's: 0 where the engines agree bit for bit. */
+#include "bench.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { ENGINES = 3 };
+static const char *const engine_names[ENGINES] = {"buffer", "grid-float4",
+                                                  "grid-planes"};
+
+/* The library's cube, n points a side, resting just above the floor. */
+static msocl_model *build(int n)
+{
+  msocl_lattice_desc d;
+  msocl_lattice_desc_init(&d);
+  d.nx = d.ny = d.nz = n;
+  d.origin[0] = d.origin[2] = -0.5f * d.spacing * (float)(n - 1);
+  d.origin[1] = 0.001f;
+  msocl_model *m = NULL;
+  const float up[3] = {0.0f, 1.0f, 0.0f};
+  if (msocl_model_lattice(&m, &d) != MSOCL_OK ||
+      msocl_model_add_plane(m, up, 0.0f, 0.5f) != MSOCL_OK) {
+    msocl_model_destroy(m);
+    return NULL;
+  }
+  return m;
+}
+
+static double max_diff(const float *a, const float *b, size_t n)
+{
+  double d = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    double e = fabs((double)a[i] - (double)b[i]);
+    d = e > d || isnan(e) ? e : d;
+  }
+  return d;
+}
+
+/* One engine: a row, printed and written; pos receives its final
+ * positions. Returns its steps per second, 0 where it failed. */
+static double run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
+                  const msocl_model *m, int n, int in, int engine,
+                  const float *ref, float *pos, double ref_ips)
+{
+  struct bench_row r;
+  bench_row_init(&r);
+  msocl_device_info info;
+  msocl_runtime_device_info(rt, 0, &info);
+  bench_device_label(r.device, sizeof r.device, &info);
+  r.layout = engine_names[engine];
+  r.integrator = bench_integrator_names[in];
+  r.math = "precise";
+  r.grid = n;
+  r.points = (long long)n * n * n;
+  r.dt = 1e-4;
+  r.steps = o->steps;
+  msocl_sim_options so;
+  msocl_sim_options_init(&so);
+  so.dt = (float)r.dt;
+  so.integrator = (msocl_integrator)in;
+  so.layout = engine ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
+  so.planes = engine == 2 ? 1 : 0;
+  so.check_every = 0;
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, rt, m, &so);
+  if (rc == MSOCL_OK)
+    rc = msocl_sim_step(s, 1); /* warm-up */
+  r.seconds = INFINITY;
+  for (int rep = 0; rc == MSOCL_OK && rep < o->repeat; rep++) {
+    double t0 = bench_now();
+    rc = msocl_sim_step(s, o->steps);
+    double t = bench_now() - t0;
+    r.seconds = t < r.seconds ? t : r.seconds;
+  }
+  if (rc == MSOCL_OK)
+    rc = msocl_sim_read_positions(s, pos);
+  if (rc == MSOCL_OK && ref)
+    r.error = max_diff(pos, ref, 3 * (size_t)r.points);
+  r.status = rc == MSOCL_OK ? "ok" : "failed";
+  if (rc != MSOCL_OK) {
+    bench_fail(r.layout, rc);
+    r.seconds = NAN;
+  }
+  bench_row_rates(&r);
+  msocl_sim_destroy(s);
+  char ratio[16] = "-", err[16] = "-";
+  if (ref_ips > 0 && r.steps_per_s > 0)
+    snprintf(ratio, sizeof ratio, "%.2fx", r.steps_per_s / ref_ips);
+  if (isfinite(r.error))
+    snprintf(err, sizeof err, "%.1e", r.error);
+  if (rc == MSOCL_OK)
+    printf("%3d^3 %-10s %-12s %6lld %8.3f %9.1f %10.4f %8s %8s\n", n,
+           r.integrator, r.layout, r.steps, r.seconds, r.steps_per_s,
+           r.vertex_steps_per_s / 1e9, ratio, err);
+  else
+    printf("%3d^3 %-10s %-12s failed\n", n, r.integrator, r.layout);
+  fflush(stdout);
+  bench_csv_row(csv, &r);
+  return rc == MSOCL_OK ? r.steps_per_s : 0.0;
+}
+
+int bench_lattice(const struct bench_opts *o, FILE *csv)
+{
+  msocl_runtime *rt = NULL;
+  int rc = msocl_runtime_create(&rt, o->spec);
+  if (rc != MSOCL_OK)
+    return bench_fail("runtime", rc);
+  msocl_device_info info;
+  msocl_runtime_device_info(rt, 0, &info);
+  printf("msocl-bench lattice on %s [%s]: %d steps, best of %d\n", info.name,
+         info.platform_name, o->steps, o->repeat);
+  printf("%5s %-10s %-12s %6s %8s %9s %10s %8s %8s\n", "size", "integr.",
+         "engine", "steps", "seconds", "steps/s", "Gpt-st/s", "/buffer",
+         "vs buf");
+  int failed = 0;
+  for (int g = 0; g < o->ngrids; g++) {
+    const int n = o->grids[g];
+    msocl_model *m = build(n);
+    const size_t floats = 3 * (size_t)n * n * n;
+    float *ref = malloc(floats * sizeof *ref), *pos = malloc(floats * sizeof *pos);
+    if (!m || !ref || !pos) {
+      fprintf(stderr, "msocl-bench: a %d^3 lattice: %s\n", n,
+              msocl_last_error());
+      failed = 1;
+    }
+    for (int q = 0; !failed && q < o->nintegrators; q++) {
+      const int in = o->integrators[q];
+      /* planes run symplectic Euler, Verlet and RK4 */
+      const int engines = in == 0 || in == 2 || in == 3 ? ENGINES : 2;
+      double ref_ips = 0.0;
+      for (int e = 0; e < engines; e++) {
+        /* BUFFER first: the others are compared with its rate and result */
+        double ips = run(o, rt, csv, m, n, in, e, ref_ips > 0 ? ref : NULL,
+                         e ? pos : ref, ref_ips);
+        failed |= !(ips > 0);
+        if (e == 0)
+          ref_ips = ips;
+      }
+    }
+    msocl_model_destroy(m);
+    free(ref);
+    free(pos);
+  }
+  msocl_runtime_destroy(rt);
+  return failed;
+}
