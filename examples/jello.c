@@ -30,7 +30,8 @@ int main(int argc, char **argv)
   /* The library's cube (2 cm spacing, 2 g points, 10 cm above the ground;
    * see msocl_lattice_desc_init), SIZE points a side. Structural + face
    * shear + bend springs give an inner point 24 springs: more than the
-   * connectivity texture's 16 slots, so AUTO picks the BUFFER layout. */
+   * connectivity texture's 16 slots. AUTO runs the lattice as a GRID in
+   * planes on a CPU, and as BUFFER elsewhere (the README says why). */
   msocl_lattice_desc ld;
   msocl_lattice_desc_init(&ld);
   ld.nx = ld.ny = ld.nz = d.size;
