@@ -30,7 +30,8 @@
  * lattice's layers are `slab` floats apart, each padded by two rows, and
  * two padding layers lie at each end; a cloth has one layer (z 0). */
 #define MSOCL_PLANES_XYZ                                                      \
-  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2)
+  const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2); \
+  (void)z /* a cloth's address leaves it out */
 #ifdef MSOCL_GRID_3D
 #define MSOCL_PLANES_AT(x, y, z) (((z) + 2) * slab + ((y) + 2) * pitch + (x) + 2)
 #else
