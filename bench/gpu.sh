@@ -22,6 +22,10 @@
 #   split      the tablecloth at 1024^2: GPU alone, PoCL's CPU alone, and
 #              split over both with calibrated weights, boundary first
 #              and with -O (kernels then copies)  (about 3 min)
+#   lattice    the jello cube at 32^3..128^3: BUFFER, GRID in float4 and
+#              GRID in planes (forced) with symplectic Euler, Verlet and
+#              RK4, each against BUFFER's speed and final positions (the
+#              error column: 0 where bitwise)          (under a minute)
 # Each stage writes STAGE.txt (and .csv) under OUTDIR with the command at
 # the top. Back on the build machine: bench/plot.sh OUTDIR/precision.csv
 # OUTDIR/precision.png, then commit OUTDIR as bench/results/<gpu>/.
@@ -29,7 +33,7 @@ set -eu
 [ $# -ge 1 ] || { awk 'NR > 1 && !/^#/ { exit } NR > 1' "$0"; exit 2; }
 out=$1
 shift
-stages=${*:-devices verify table1 precision split}
+stages=${*:-devices verify table1 precision split lattice}
 mkdir -p "$out"
 bench=./examples/msocl-bench
 [ -x "$bench" ] || { echo "$0: build first ($bench missing)" >&2; exit 1; }
@@ -125,6 +129,10 @@ for stage in $stages; do
         >> "$out/split.txt"
     fi
     rm -f "$out"/split_*.obj
+    ;;
+  lattice)
+    record lattice env MSOCL_DEVICE=gpu $bench lattice -g 32,64,128 \
+      -i symplectic,verlet,rk4 -s 200 --repeat 3 --csv "$out/lattice.csv"
     ;;
   *)
     echo "$0: unknown stage '$stage'" >&2

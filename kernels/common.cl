@@ -265,7 +265,29 @@ static float3 msocl_dashpot(float3 p, float3 q, float3 vp, float3 vq, float c)
 static void msocl_slot4(MSOCL_CONN, int i, int s0, int n, int4 *j,
                         float4 *rest, float4 *k, float4 *c)
 {
-#if defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_GRID_3D)
+#if defined(MSOCL_LAYOUT_GRID) && defined(MSOCL_GRID_3D)
+  /* msocl_slot's arithmetic on four lanes at once, the point's (x, y, z)
+   * found once; a group of four may mix kinds */
+  int x = i % grid_nx, t = i / grid_nx, y = t % grid_ny, z = t / grid_ny;
+  int4 qx = x + vload4(0, msocl_grid_dx + s0);
+  int4 qy = y + vload4(0, msocl_grid_dy + s0);
+  int4 qz = z + vload4(0, msocl_grid_dz + s0);
+  int4 kind = vload4(0, msocl_grid_kind + s0);
+  float4 kk = select(select(select((float4)(grid_k.w), (float4)(grid_k.z),
+                                   kind == 2),
+                            (float4)(grid_k.y), kind == 1),
+                     (float4)(grid_k.x), kind == 0);
+  *rest = select(select(select((float4)(grid_rest.s3), (float4)(grid_rest.s2),
+                               kind == 2),
+                        (float4)(grid_rest.s1), kind == 1),
+                 (float4)(grid_rest.s0), kind == 0);
+  int4 there = (qx >= 0) & (qx < grid_nx) & (qy >= 0) & (qy < grid_ny) &
+               (qz >= 0) & (qz < grid_nz) & (kk != 0.0f);
+  *j = select((int4)(i), (qz * grid_ny + qy) * grid_nx + qx, there);
+  *k = select((float4)(0.0f), kk, there);
+  *c = select((float4)(0.0f), (float4)(MSOCL_GRID_C), there);
+  (void)n;
+#elif defined(MSOCL_LAYOUT_GRID)
   /* msocl_slot's arithmetic on four lanes at once. Each group of four
    * neighbours is of one kind (stretch, shear, bend). */
   int x = i % grid_nx, y = i / grid_nx, kind = msocl_grid_kind[s0];
