@@ -20,8 +20,8 @@ msocl_layout msocl__layout_auto(const msocl_device_info *info,
    * BUFFER: it reads 12 bytes a slot against the texture's 16, and PoCL's
    * image reads are about 3x slower than buffer reads on a CPU; no device
    * measured so far prefers the texture. A lattice takes GRID only in
-   * planes: 3.3-4.1x BUFFER at 32^3 and 64^3 on PoCL, where its float4
-   * GRID, with a division and a modulo a slot, is 0.3-0.6x. */
+   * planes: 2.3-5.6x BUFFER at 16^3-64^3 on PoCL, where its float4 GRID
+   * is 0.8-1.7x, not reliably faster. */
   (void)info;
   if (m->grid.nx >= 2 && m->grid.ns == m->ns && (m->grid.nz == 0 || planes))
     return MSOCL_LAYOUT_GRID;
