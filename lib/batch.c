@@ -11,8 +11,7 @@
 struct msocl_batch {
   int count;
   msocl_sim **sims;
-  long long *first; /* each simulation's step at the start of a batch */
-  int *bad;         /* a simulation that failed this call */
+  int *bad; /* a simulation that failed this call */
 };
 
 int msocl_batch_create(msocl_batch **out, msocl_runtime *rt, int count,
@@ -30,7 +29,6 @@ int msocl_batch_create(msocl_batch **out, msocl_runtime *rt, int count,
     return msocl__fail(MSOCL_ERR_BAD_COUNT, "batch of %d simulations", count);
   msocl_batch *b = calloc(1, sizeof *b);
   if (!b || !(b->sims = calloc((size_t)count, sizeof *b->sims)) ||
-      !(b->first = calloc((size_t)count, sizeof *b->first)) ||
       !(b->bad = calloc((size_t)count, sizeof *b->bad))) {
     msocl_batch_destroy(b);
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "batch of %d", count);
@@ -63,7 +61,6 @@ void msocl_batch_destroy(msocl_batch *b)
   for (int i = 0; b->sims && i < b->count; i++)
     msocl_sim_destroy(b->sims[i]);
   free(b->sims);
-  free(b->first);
   free(b->bad);
   free(b);
 }
@@ -90,17 +87,20 @@ int msocl_batch_step(msocl_batch *b, int n)
   memset(b->bad, 0, (size_t)b->count * sizeof *b->bad);
   const int every = b->sims[0]->o.check_every;
   for (int done = 0; done < n;) {
-    int batch = every > 0 && n - done > every ? every : n - done;
+    /* up to the first check due (the simulations' counts can differ: a
+     * write starts one's count again) */
+    int batch = n - done;
+    for (int i = 0; every > 0 && i < b->count; i++)
+      if (!b->bad[i] && msocl__batch_room(b->sims[i]) < batch)
+        batch = msocl__batch_room(b->sims[i]);
     for (int i = 0; i < b->count; i++) /* queue everyone's steps */
       if (!b->bad[i])
-        b->bad[i] = note(every > 0
-                             ? msocl__batch_begin(b->sims[i], batch,
-                                                  &b->first[i])
-                             : msocl__sim_steps(b->sims[i], batch),
+        b->bad[i] = note(every > 0 ? msocl__batch_begin(b->sims[i], batch)
+                                   : msocl__sim_steps(b->sims[i], batch),
                          i, &first_rc, msg, sizeof msg) != MSOCL_OK;
     for (int i = 0; i < b->count; i++) /* then check (or wait for) them */
       if (!b->bad[i])
-        b->bad[i] = note(every > 0 ? msocl__batch_end(b->sims[i], b->first[i])
+        b->bad[i] = note(every > 0 ? msocl__batch_end(b->sims[i])
                                    : msocl__sim_finish(b->sims[i]),
                          i, &first_rc, msg, sizeof msg) != MSOCL_OK;
     done += batch;

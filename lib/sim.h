@@ -162,6 +162,10 @@ struct msocl_sim {
   long long steps;
   int e0_valid;           /* baseline energy of the blow-up check */
   double e0, escale;
+  /* The blow-up check counts steps across calls: steps since the state
+   * was last saved for it (0: none pending), and the step it was saved at. */
+  int since_check;
+  long long check_first;
   double total_mass, extent;
 };
 
@@ -234,11 +238,15 @@ int msocl__integrate(msocl__engine *s, int n);
  * simulation. */
 int msocl__energy(msocl__engine *s, msocl_energy *e);
 int msocl__sim_energy(msocl_sim *s, msocl_energy *e);
-/* Stepping pieces (sim_step.c) for batches of simulations: a checked
- * batch is begin (save, queue the steps) then end (check, restore past the
- * bound); unchecked, just queue; finish waits for the devices. */
-int msocl__batch_begin(msocl_sim *s, int batch, long long *first);
-int msocl__batch_end(msocl_sim *s, long long first);
+/* Stepping pieces (sim_step.c) for batches of simulations. Checked, the
+ * steps are counted across calls: room is how many may run before the
+ * next check is due; begin saves the state where a checked stretch of
+ * check_every steps starts, then queues `batch` (at most room) steps; end
+ * checks the energy once the stretch is whole (restoring the saved state
+ * past the bound). Unchecked, just queue; finish waits for the devices. */
+int msocl__batch_room(const msocl_sim *s);
+int msocl__batch_begin(msocl_sim *s, int batch);
+int msocl__batch_end(msocl_sim *s);
 int msocl__sim_steps(msocl_sim *s, int n);
 int msocl__sim_finish(msocl_sim *s);
 /* Sets argument i of kernel k to a buffer, a float, an int. */

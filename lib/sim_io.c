@@ -61,7 +61,8 @@ static int write_state(msocl_sim *s, int velocities, const float *xyz)
                                    s->stage, 0, NULL, NULL));
     e->acc_valid = 0; /* a new state: new Verlet acceleration */
   }
-  s->e0_valid = 0;    /* and a new baseline for the blow-up check */
+  s->e0_valid = 0;    /* and a new baseline for the blow-up check, */
+  s->since_check = 0; /* whose saved state a restore would undo this with */
   return MSOCL_OK;
 }
 

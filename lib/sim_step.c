@@ -1,6 +1,7 @@
 /* Stepping a simulation: every engine runs each phase of a step on its own
  * points, then the points other engines read cross over through host
- * memory; every check_every steps the blow-up check. */
+ * memory; every check_every steps (counted across calls) the blow-up
+ * check. */
 #include "config.h"
 #include "sim.h"
 
@@ -280,19 +281,38 @@ static int backup(msocl_sim *s, int to_backup)
 }
 
 /* A checked batch, in two halves so that many simulations can run theirs
- * at once: begin saves the state and queues the steps; end checks the
- * energy and, past the bound, restores the saved state. */
-int msocl__batch_begin(msocl_sim *s, int batch, long long *first)
+ * at once: begin saves the state (where a stretch of check_every steps
+ * starts) and queues the steps; end, once the stretch is whole, checks the
+ * energy and, past the bound, restores the saved state. The count runs
+ * across calls, so one step a call (a frame loop) pays for the check every
+ * check_every steps, not every call. */
+int msocl__batch_room(const msocl_sim *s)
 {
-  int rc = s->e0_valid ? MSOCL_OK : baseline(s);
-  *first = s->steps;
-  if (rc == MSOCL_OK)
-    rc = backup(s, 1);
-  return rc == MSOCL_OK ? steps(s, batch) : rc;
+  return s->o.check_every - s->since_check;
 }
 
-int msocl__batch_end(msocl_sim *s, long long first)
+int msocl__batch_begin(msocl_sim *s, int batch)
 {
+  int rc = MSOCL_OK;
+  if (s->since_check == 0) {
+    rc = s->e0_valid ? MSOCL_OK : baseline(s);
+    s->check_first = s->steps;
+    if (rc == MSOCL_OK)
+      rc = backup(s, 1);
+  }
+  if (rc == MSOCL_OK)
+    rc = steps(s, batch);
+  if (rc == MSOCL_OK)
+    s->since_check += batch;
+  return rc;
+}
+
+int msocl__batch_end(msocl_sim *s)
+{
+  if (s->since_check < s->o.check_every)
+    return MSOCL_OK;
+  s->since_check = 0;
+  const long long first = s->check_first;
   msocl_energy e;
   int rc = msocl__sim_energy(s, &e);
   if (rc != MSOCL_OK)
@@ -336,11 +356,11 @@ int msocl_sim_step(msocl_sim *s, int n)
   if (s->o.check_every <= 0)
     rc = steps(s, n);
   for (int done = 0; s->o.check_every > 0 && rc == MSOCL_OK && done < n;) {
-    int batch = n - done < s->o.check_every ? n - done : s->o.check_every;
-    long long first;
-    rc = msocl__batch_begin(s, batch, &first);
+    const int room = msocl__batch_room(s);
+    const int batch = n - done < room ? n - done : room;
+    rc = msocl__batch_begin(s, batch);
     if (rc == MSOCL_OK)
-      rc = msocl__batch_end(s, first);
+      rc = msocl__batch_end(s);
     done += batch;
   }
   return rc == MSOCL_OK ? finish_all(s) : rc;

@@ -351,6 +351,69 @@ START_TEST(unstable_rolls_back)
 }
 END_TEST
 
+/* The check counts steps across calls: one step a call runs unchecked
+ * until check_every steps are done, and the call that completes them
+ * reports the blow-up and restores the state saved where they started. A
+ * write starts the count (and the saved state) again. At 3x the stable
+ * step the state is NaN within 20 steps; unchecked, the calls still
+ * return MSOCL_OK. */
+START_TEST(check_counts_across_calls)
+{
+  msocl_model *m = grid();
+  float limit;
+  msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
+  msocl_sim *s = perturbed(m, MSOCL_SYMPLECTIC_EULER, 3.0f * limit);
+  int n;
+  msocl_sim_point_count(s, &n);
+  const size_t bytes = 3 * (size_t)n * sizeof(float);
+  float *p0 = malloc(bytes), *v0 = malloc(bytes), *p = malloc(bytes),
+        *v = malloc(bytes);
+  msocl_sim_read_positions(s, p0);
+  msocl_sim_read_velocities(s, v0);
+  long long steps;
+  /* 49 single steps unchecked; the 50th completes the stretch */
+  for (int q = 0; q < 49; q++)
+    ck_assert_msg(msocl_sim_step(s, 1) == MSOCL_OK, "call %d: %s", q,
+                  msocl_last_error());
+  ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_ERR_UNSTABLE);
+  ck_assert_msg(strstr(msocl_last_error(), "blew up between steps 0 and 50"),
+                "%s", msocl_last_error());
+  msocl_sim_step_count(s, &steps);
+  ck_assert_int_eq(steps, 0);
+  msocl_sim_read_positions(s, p);
+  ck_assert(memcmp(p, p0, bytes) == 0);
+  /* 30 single steps, then the first state written back: the count starts
+   * again there */
+  for (int q = 0; q < 30; q++)
+    ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_write_positions(s, p0), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_write_velocities(s, v0), MSOCL_OK);
+  for (int q = 0; q < 49; q++)
+    ck_assert_msg(msocl_sim_step(s, 1) == MSOCL_OK, "call %d after the "
+                  "write: %s", q, msocl_last_error());
+  ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_ERR_UNSTABLE);
+  ck_assert_msg(strstr(msocl_last_error(), "blew up between steps 30 and 80"),
+                "%s", msocl_last_error());
+  msocl_sim_step_count(s, &steps);
+  ck_assert_int_eq(steps, 30);
+  msocl_sim_read_positions(s, p);
+  msocl_sim_read_velocities(s, v);
+  ck_assert(memcmp(p, p0, bytes) == 0 && memcmp(v, v0, bytes) == 0);
+  /* 20 single steps, then a call of 70 checks at the stretch's end, in
+   * its middle */
+  for (int q = 0; q < 20; q++)
+    ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, 70), MSOCL_ERR_UNSTABLE);
+  ck_assert_msg(strstr(msocl_last_error(), "blew up between steps 30 and 80"),
+                "%s", msocl_last_error());
+  msocl_sim_read_positions(s, p);
+  ck_assert(memcmp(p, p0, bytes) == 0);
+  free(p0); free(v0); free(p); free(v);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 int main(void)
 {
   scene_require_device("check_stability");
@@ -366,6 +429,7 @@ int main(void)
   tcase_add_test(tc, stable_dt_values);
   tcase_add_test(tc, explicit_euler_dashpot_limit);
   tcase_add_test(tc, unstable_rolls_back);
+  tcase_add_test(tc, check_counts_across_calls);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }
