@@ -297,10 +297,11 @@ typedef struct {
   int strain_iterations; /* correction sweeps a step */
   float cg_tolerance;    /* implicit Euler: relative residual to reach */
   int cg_max_iterations;
-  /* Blow-up check every check_every steps (0: off, for benchmarks): a
-   * non-finite state, or total energy above its start by more than
-   * energy_factor times the scene's energy scale, returns
-   * MSOCL_ERR_UNSTABLE with the last good state restored. */
+  /* Blow-up check every check_every steps (0: off, for benchmarks),
+   * counted across calls (a write starts the count again): a non-finite
+   * state, or total energy above its start by more than energy_factor
+   * times the scene's energy scale, returns MSOCL_ERR_UNSTABLE from the
+   * call that completes the steps, with the last good state restored. */
   int check_every;
   float energy_factor;
   /* Symplectic Euler's two passes as one kernel (bitwise the same result;
