@@ -9,7 +9,9 @@
 int msocl__energy(msocl__engine *s, msocl_energy *e)
 {
   cl_kernel k = s->k[MSOCL__K_ENERGY];
-  int rc = msocl__arg_mem(k, s->nconn, s->pos[s->r]);
+  int rc = msocl__planes_current(s);
+  if (rc == MSOCL_OK)
+    rc = msocl__arg_mem(k, s->nconn, s->pos[s->r]);
   if (rc == MSOCL_OK)
     rc = msocl__arg_mem(k, s->nconn + 1, s->vel[s->r]);
   if (rc != MSOCL_OK)

@@ -1,10 +1,10 @@
 /* GRID in planes (options.planes, kernels/planes.cl): a cloth grid's or
  * a lattice's symplectic Euler, Verlet and RK4 steps over x, y, z planes
  * of padded rows, which PoCL's CPU device runs eight points to an
- * instruction. The
- * engine's float4 buffers stay the state everything else reads and
- * writes: a call's steps copy it into the planes, step there, and copy it
- * back. */
+ * instruction. The state is copied into the planes at the first step and
+ * stays there between calls; whatever reads the engine's float4 buffers
+ * (reads, energy, normals, the blow-up check's saved state) first calls
+ * msocl__planes_current, and whatever writes them msocl__planes_written. */
 #include "config.h"
 #include "sim.h"
 
@@ -303,24 +303,50 @@ static int acceleration(msocl__engine *s, int in)
   return launch(s, in ? PL_IN : PL_OUT);
 }
 
+/* The state is copied into the planes at the first step after the float4
+ * buffers were written (or created), and stays there: a frame loop that
+ * steps once a call pays for no copies unless it reads the state, and
+ * then for one copy back. */
 int msocl__planes_steps(msocl__engine *s, int n)
 {
   if (n <= 0)
     return MSOCL_OK;
   const int verlet = s->o.integrator == MSOCL_VERLET;
-  if (verlet) /* the float4 kernel's, when the state is new */
-    TRY(msocl__verlet_accel(s));
-  TRY(copy(s, 0, 1));
-  if (verlet)
-    TRY(acceleration(s, 1));
-  for (int q = 0; q < n; q++) {
-    TRY(step(s, q & 1, 1 - (q & 1)));
+  if (!s->pl_valid) {
+    if (verlet) /* the float4 kernel's, when the state is new */
+      TRY(msocl__verlet_accel(s));
+    TRY(copy(s, 0, 1));
+    if (verlet)
+      TRY(acceleration(s, 1));
+    s->pl_set = 0;
+    s->pl_valid = 1;
+  }
+  int r = s->pl_set;
+  for (int q = 0; q < n; q++, r = 1 - r) {
+    TRY(step(s, r, 1 - r));
     if ((q + 1) % 64 == 0)
       MSOCL__CL(clFlush(s->dev->queue));
   }
-  if (verlet)
-    TRY(acceleration(s, 0));
-  return copy(s, n & 1, 0);
+  s->pl_set = r;
+  s->pl_ahead = 1;
+  return MSOCL_OK;
+}
+
+int msocl__planes_current(msocl__engine *s)
+{
+  if (!s->planes || !s->pl_ahead)
+    return MSOCL_OK;
+  if (s->o.integrator == MSOCL_VERLET)
+    TRY(acceleration(s, 0)); /* acc_valid holds: it is this state's */
+  TRY(copy(s, s->pl_set, 0));
+  s->pl_ahead = 0;
+  return MSOCL_OK;
+}
+
+void msocl__planes_written(msocl__engine *s)
+{
+  s->pl_valid = 0;
+  s->pl_ahead = 0;
 }
 
 void msocl__planes_release(msocl__engine *s)

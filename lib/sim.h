@@ -55,8 +55,11 @@ struct msocl__engine {
   float *stage;           /* 4n floats, the initial upload */
   cl_float4 *partial_host;
   /* GRID in planes (planes.c, kernels/planes.cl): the state as x, y, z
-   * planes of padded rows while a call's steps run */
+   * planes of padded rows, kept there between calls */
   int planes;
+  int pl_valid;           /* the planes hold the current state */
+  int pl_ahead;           /* ... and the float4 buffers are behind */
+  int pl_set;             /* the plane set that holds it */
   cl_mem pl_p[2], pl_v[2], pl_aux; /* ping-pong like pos and vel */
   cl_mem pl_a;            /* Verlet: the acceleration */
   cl_mem pl_sp[2], pl_sv[2], pl_sum[2]; /* RK4: stage states, sums */
@@ -216,14 +219,20 @@ unsigned msocl__phase_mask(const msocl__engine *s, int phase);
  * choose: whether this engine runs in planes (options.planes;
  * MSOCL_ERR_BAD_VALUE when forced where it cannot); create: its buffers
  * and kernels, from the program built with -DMSOCL_PLANES; steps: n steps
- * (symplectic Euler, Verlet or RK4), the state copied into planes and
- * back; release: frees them. */
+ * (symplectic Euler, Verlet or RK4) in the planes; release: frees them. */
 int msocl__planes_would(const struct msocl__device *dev,
                         const msocl_sim_options *o, const msocl_model *m,
                         int lo, int hi);
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m);
 int msocl__planes_create(msocl__engine *s, cl_program prog);
 int msocl__planes_steps(msocl__engine *s, int n);
+/* The state stays in the planes between calls. current: brings the
+ * engine's float4 buffers up to date before anything reads them (a copy
+ * back only when the planes are ahead); written: after anything writes
+ * them, the planes are stale (copied in again at the next step). Both do
+ * nothing for an engine without planes. */
+int msocl__planes_current(msocl__engine *s);
+void msocl__planes_written(msocl__engine *s);
 void msocl__planes_release(msocl__engine *s);
 /* Verlet: the acceleration at the current state into acc, over the whole
  * range, unless acc already holds it. */

@@ -24,6 +24,9 @@ static int read_state(msocl_sim *s, int velocities, float *xyz)
                        s ? "output array" : "sim");
   for (int d = 0; d < s->nparts; d++) {
     msocl__engine *e = s->part[d];
+    int rc = msocl__planes_current(e);
+    if (rc != MSOCL_OK)
+      return rc;
     cl_mem b = velocities ? e->vel[e->r] : e->pos[e->r];
     MSOCL__CL(clEnqueueReadBuffer(e->dev->queue, b, CL_TRUE,
                                   (size_t)e->lo * 4 * sizeof(float),
@@ -55,10 +58,15 @@ static int write_state(msocl_sim *s, int velocities, const float *xyz)
   }
   for (int d = 0; d < s->nparts; d++) {
     msocl__engine *e = s->part[d];
+    /* the half not written must be current where it is copied from */
+    int rc = msocl__planes_current(e);
+    if (rc != MSOCL_OK)
+      return rc;
     MSOCL__CL(clEnqueueWriteBuffer(e->dev->queue,
                                    velocities ? e->vel[e->r] : e->pos[e->r],
                                    CL_TRUE, 0, 4 * (size_t)s->n * sizeof(float),
                                    s->stage, 0, NULL, NULL));
+    msocl__planes_written(e);
     e->acc_valid = 0; /* a new state: new Verlet acceleration */
   }
   s->e0_valid = 0;    /* and a new baseline for the blow-up check, */
@@ -95,6 +103,9 @@ int msocl_sim_read_normals(msocl_sim *s, float *xyz)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
                        s ? "output array" : "sim");
   msocl__engine *e = s->part[0];
+  int rc0 = msocl__planes_current(e);
+  if (rc0 != MSOCL_OK)
+    return rc0;
   if (s->nparts > 1) {
     int rc = read_state(s, 0, xyz);
     if (rc != MSOCL_OK)

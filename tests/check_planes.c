@@ -239,6 +239,94 @@ END_TEST
 
 /* Relaxed math compiles its own arithmetic, so planes and float4 may
  * round differently: they must still agree closely. */
+/* The state stays in the planes between calls: everything that looks at
+ * it between one-step calls - the energy, the normals, a write of only
+ * the velocities or only the positions (the other half comes from the
+ * planes), the blow-up check's saved state and its restore - sees and
+ * leaves what float4 does, bit for bit. q: symplectic Euler, Verlet, RK4. */
+START_TEST(resident_between_calls)
+{
+  static const int modes[3][2] = {{0, 1}, {-3, 3}, {-4, 4}};
+  msocl_model *m = scene_tablecloth(20);
+  const float dt = scene_tablecloth_dt(20);
+  int n = 0;
+  msocl_model_point_count(m, &n);
+  const size_t bytes = 3 * (size_t)n * sizeof(float);
+  struct state out[2];
+  msocl_energy e[2][2];
+  float *nrm[2], *lift = malloc(bytes), *push = malloc(bytes);
+  msocl_model_get_positions(m, lift);
+  for (int i = 0; i < n; i++) {
+    lift[3 * i + 1] += 0.03f;
+    push[3 * i] = 0.1f;
+    push[3 * i + 1] = push[3 * i + 2] = 0.0f;
+  }
+  for (int k = 0; k < 2; k++) {
+    msocl_sim *s = make(m, modes[_i][k], MSOCL_MATH_PRECISE, dt);
+    for (int c = 0; c < 5; c++)
+      ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_energy(s, &e[k][0]), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_step(s, 3), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_write_velocities(s, push), MSOCL_OK);
+    for (int c = 0; c < 4; c++)
+      ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_OK);
+    nrm[k] = malloc(bytes);
+    ck_assert_int_eq(msocl_sim_read_normals(s, nrm[k]), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_step(s, 2), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_write_positions(s, lift), MSOCL_OK);
+    /* across a blow-up check (check_every 100): one-step calls to 150 */
+    for (int c = 0; c < 140; c++)
+      ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_energy(s, &e[k][1]), MSOCL_OK);
+    out[k] = read_state(s);
+    ck_assert_int_eq(out[k].planes, k);
+    msocl_sim_destroy(s);
+  }
+  assert_bitwise(&out[0], &out[1], "resident planes");
+  ck_assert_msg(e[0][0].total == e[1][0].total &&
+                    e[0][1].total == e[1][1].total,
+                "energy: float4 %.17g, %.17g; planes %.17g, %.17g",
+                e[0][0].total, e[0][1].total, e[1][0].total, e[1][1].total);
+  ck_assert(memcmp(nrm[0], nrm[1], bytes) == 0);
+  for (int k = 0; k < 2; k++) {
+    state_free(&out[k]);
+    free(nrm[k]);
+  }
+  free(lift);
+  free(push);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* A blow-up restores the state saved at the last check into the float4
+ * buffers: the planes must start again from it, as float4 does. At 3x the
+ * stable step the cloth blows up before the check at step 100, which
+ * restores step 0. */
+START_TEST(restore_in_planes)
+{
+  msocl_model *m = scene_tablecloth(16);
+  float limit;
+  msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
+  struct state out[2];
+  for (int k = 0; k < 2; k++) {
+    msocl_sim *s = make(m, k, MSOCL_MATH_PRECISE, 3.0f * limit);
+    int rc = MSOCL_OK, c = 0;
+    for (; c < 100 && rc == MSOCL_OK; c++)
+      rc = msocl_sim_step(s, 1);
+    ck_assert_msg(rc == MSOCL_ERR_UNSTABLE && c == 100, "call %d: %s", c,
+                  msocl_last_error());
+    for (c = 0; c < 3; c++) /* on from the restored state */
+      ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_OK);
+    out[k] = read_state(s);
+    msocl_sim_destroy(s);
+  }
+  assert_bitwise(&out[0], &out[1], "after a restore");
+  state_free(&out[0]);
+  state_free(&out[1]);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 START_TEST(relaxed_close)
 {
   msocl_model *m = scene_tablecloth(32);
@@ -361,6 +449,8 @@ int main(void)
                       (int)(sizeof sizes / sizeof sizes[0]));
   tcase_add_loop_test(tc, scenes_in_calls_bitwise, 0, 2);
   tcase_add_test(tc, writes_between_calls);
+  tcase_add_loop_test(tc, resident_between_calls, 0, 3);
+  tcase_add_test(tc, restore_in_planes);
   tcase_add_test(tc, relaxed_close);
   tcase_add_test(tc, auto_and_errors);
   tcase_add_test(tc, split_keeps_float4);
