@@ -29,7 +29,7 @@ static int usage(const char *argv0)
           "[-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
           "[-S none|provot|velocity] [-p PARTS [-c STEPS] [-O]] [-f] [-C|-V] "
-          "[-P|-F] "
+          "[-P|-F] [-k STEPS] "
           "[-o OUT.obj]\n"
           "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n"
           "  -c: weigh the devices by a calibration run of STEPS steps\n"
@@ -40,7 +40,9 @@ static int usage(const char *argv0)
           "      rest length and stiffness in every slot (default: the\n"
           "      library's choice; same result)\n"
           "  -P, -F: GRID with the state in x, y, z planes, or in float4\n"
-          "      (default: planes on a CPU device; same result)\n",
+          "      (default: planes on a CPU device; same result)\n"
+          "  -k: steps a msocl_sim_step call, as a frame loop (default: all\n"
+          "      in one call)\n",
           argv0);
   return 2;
 }
@@ -109,8 +111,8 @@ int main(int argc, char **argv)
   const char *spec = NULL, *out = "tablecloth.obj";
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  int in = 0, strain = 0;
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:fOCVPFh")) != -1) {
+  int in = 0, strain = 0, per_call = 0;
+  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:k:fOCVPFh")) != -1) {
     switch (opt) {
     case 'n': n = atoi(optarg); break;
     case 's': steps = atoi(optarg); break;
@@ -135,6 +137,7 @@ int main(int argc, char **argv)
       break;
     case 'p': o.ndevices = atoi(optarg); break;
     case 'c': o.calibrate_steps = atoi(optarg); break;
+    case 'k': per_call = atoi(optarg); break;
     case 'f': o.fused = 1; break;
     case 'O': o.overlap = 0; break;
     case 'C': o.classes = 1; break;
@@ -148,8 +151,10 @@ int main(int argc, char **argv)
     default: return usage(argv[0]);
     }
   }
-  if (n < 2 || steps < 0)
+  if (n < 2 || steps < 0 || per_call < 0)
     return usage(argv[0]);
+  if (per_call == 0)
+    per_call = steps > 0 ? steps : 1;
 
   msocl_runtime *rt = NULL;
   int rc = msocl_runtime_create(&rt, spec);
@@ -198,8 +203,8 @@ int main(int argc, char **argv)
   /* One warm-up step keeps first-launch costs out of the timing. */
   rc = msocl_sim_step(s, 1);
   double t2 = now();
-  if (rc == MSOCL_OK)
-    rc = msocl_sim_step(s, steps);
+  for (int done = 0; rc == MSOCL_OK && done < steps; done += per_call)
+    rc = msocl_sim_step(s, steps - done < per_call ? steps - done : per_call);
   double t3 = now();
   float *xyz = malloc(3 * (size_t)n * n * sizeof *xyz);
   float *nrm = malloc(3 * (size_t)n * n * sizeof *nrm);
@@ -217,9 +222,12 @@ int main(int argc, char **argv)
     rc = msocl_write_obj(out, n * n, xyz, nrm, ntri, tri);
   if (rc == MSOCL_OK) {
     double secs = t3 - t2;
-    printf("%.3f s: %.1f steps/s, %.3g vertex-steps/s\n", secs,
+    printf("%.3f s: %.1f steps/s, %.3g vertex-steps/s", secs,
            secs > 0 ? steps / secs : 0.0,
            secs > 0 ? (double)steps * n * n / secs : 0.0);
+    if (per_call < steps)
+      printf(" (%d steps a call)", per_call);
+    printf("\n");
     if (split.parts > 1) {
       msocl_sim_split_info(s, &split);
       printf("exchange: %.0f bytes a step through the host\n",
