@@ -320,16 +320,25 @@ START_TEST(stable_dt_values)
 }
 END_TEST
 
+/* The grid at 3x its stable symplectic Euler step, perturbed: it blows
+ * up before its first check (step 50). *m and *n: its model and points. */
+static msocl_sim *unstable(msocl_model **m, int *n)
+{
+  *m = grid();
+  float limit;
+  msocl_stable_dt(*m, MSOCL_SYMPLECTIC_EULER, &limit);
+  msocl_sim *s = perturbed(*m, MSOCL_SYMPLECTIC_EULER, 3.0f * limit);
+  msocl_sim_point_count(s, n);
+  return s;
+}
+
 /* A user who asks for an unstable step gets MSOCL_ERR_UNSTABLE naming the
  * steps, and the state of the last good check, bit for bit. */
 START_TEST(unstable_rolls_back)
 {
-  msocl_model *m = grid();
-  float limit;
-  msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
-  msocl_sim *s = perturbed(m, MSOCL_SYMPLECTIC_EULER, 3.0f * limit);
+  msocl_model *m = NULL;
   int n;
-  msocl_sim_point_count(s, &n);
+  msocl_sim *s = unstable(&m, &n);
   float *before = malloc(3 * (size_t)n * sizeof *before),
         *after = malloc(3 * (size_t)n * sizeof *after),
         *vb = malloc(3 * (size_t)n * sizeof *vb),
@@ -359,12 +368,9 @@ END_TEST
  * return MSOCL_OK. */
 START_TEST(check_counts_across_calls)
 {
-  msocl_model *m = grid();
-  float limit;
-  msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
-  msocl_sim *s = perturbed(m, MSOCL_SYMPLECTIC_EULER, 3.0f * limit);
+  msocl_model *m = NULL;
   int n;
-  msocl_sim_point_count(s, &n);
+  msocl_sim *s = unstable(&m, &n);
   const size_t bytes = 3 * (size_t)n * sizeof(float);
   float *p0 = malloc(bytes), *v0 = malloc(bytes), *p = malloc(bytes),
         *v = malloc(bytes);
