@@ -70,7 +70,7 @@ struct msocl_model {
   struct msocl__collider col[MSOCL__MAX_COLLIDERS];
   /* Set by msocl_model_cloth_grid (nz 0) and msocl_model_lattice (nz >=
    * 2): the grid the GRID layout recomputes neighbours from; valid while
-   * ns == grid.ns (no springs added since). */
+   * no springs or points were added since (msocl__grid_intact). */
   struct {
     int nx, ny, nz, ns;
     float k[4];    /* cloth: stretch, shear, bend; lattice: structural,
@@ -91,6 +91,10 @@ struct msocl__adjacency {
   int *spring; /* 2 ns */
 };
 int msocl__adjacency_build(const msocl_model *m, struct msocl__adjacency *a);
+
+/* 1 when m is still the cloth grid or lattice its builder recorded (no
+ * springs or points added since), so GRID can recompute its springs. */
+int msocl__grid_intact(const msocl_model *m);
 void msocl__adjacency_free(struct msocl__adjacency *a);
 
 /* Point numbering (order.c), so that a model splits into contiguous index

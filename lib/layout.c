@@ -23,7 +23,7 @@ msocl_layout msocl__layout_auto(const msocl_device_info *info,
    * planes: 2.3-5.6x BUFFER at 16^3-64^3 on PoCL, where its float4 GRID
    * is 0.8-1.7x, not reliably faster. */
   (void)info;
-  if (m->grid.nx >= 2 && m->grid.ns == m->ns && (m->grid.nz == 0 || planes))
+  if (msocl__grid_intact(m) && (m->grid.nz == 0 || planes))
     return MSOCL_LAYOUT_GRID;
   return MSOCL_LAYOUT_BUFFER;
 }
@@ -357,12 +357,12 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
     out->slots = msocl__table_slots(adj, table_slots);
     rc = build_buffers(dev, m, adj, has_damping(m), classes, out);
   } else if (out->kind == MSOCL_LAYOUT_GRID) {
-    if (m->grid.nx < 2 || m->grid.ns != m->ns)
+    if (!msocl__grid_intact(m))
       return msocl__fail(MSOCL_ERR_BAD_VALUE,
                          "the GRID layout needs a cloth from "
                          "msocl_model_cloth_grid or a lattice from "
-                         "msocl_model_lattice, with no springs added "
-                         "since (use BUFFER)");
+                         "msocl_model_lattice, with no springs or points "
+                         "added since (use BUFFER)");
     const int lattice = m->grid.nz > 0;
     out->slots = lattice ? 32 : 12;
     out->grid_nx = m->grid.nx;

@@ -464,3 +464,10 @@ int msocl_model_validate(const msocl_model *m) {
   }
   return MSOCL_OK;
 }
+
+int msocl__grid_intact(const msocl_model *m)
+{
+  const long long layers = m->grid.nz > 0 ? m->grid.nz : 1;
+  return m->grid.nx >= 2 && m->grid.ns == m->ns &&
+         (long long)m->grid.nx * m->grid.ny * layers == m->n;
+}

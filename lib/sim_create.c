@@ -255,7 +255,7 @@ static int number_points(msocl_sim *s, const msocl_model *m,
                          msocl_model **renumbered)
 {
   *renumbered = NULL;
-  if (!s->o.renumber || m->n < 3 || (m->grid.nx >= 2 && m->grid.ns == m->ns))
+  if (!s->o.renumber || m->n < 3 || msocl__grid_intact(m))
     return MSOCL_OK;
   int *perm = malloc((size_t)m->n * sizeof *perm),
       *num = malloc((size_t)m->n * sizeof *num);

@@ -249,8 +249,9 @@ START_TEST(split_is_one_device)
 }
 END_TEST
 
-/* GRID recomputes springs from the builder's record: a spring added after
- * it must turn GRID away with a clear error (AUTO then takes BUFFER). */
+/* GRID recomputes springs from the builder's record: a spring or a point
+ * added after it must turn GRID away with a clear error (AUTO then takes
+ * BUFFER, and the added point moves as BUFFER moves it). */
 START_TEST(changed_lattice_refused)
 {
   const int size[3] = {3, 3, 3};
@@ -261,19 +262,32 @@ START_TEST(changed_lattice_refused)
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   msocl_sim_destroy(s);
-  const int ij[2] = {0, 26};
-  const float k = 1.0f;
-  ck_assert_int_eq(msocl_model_add_springs(m, 1, ij, &k, NULL, NULL),
-                   MSOCL_OK);
+  if (_i == 0) {
+    const int ij[2] = {0, 26};
+    const float k = 1.0f;
+    ck_assert_int_eq(msocl_model_add_springs(m, 1, ij, &k, NULL, NULL),
+                     MSOCL_OK);
+  } else { /* a loose point above the cube: it falls */
+    const float xyz[3] = {0.0f, 0.2f, 0.0f}, mass = 0.002f;
+    ck_assert_int_eq(msocl_model_add_points(m, 1, xyz, &mass, NULL),
+                     MSOCL_OK);
+  }
   s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
-  ck_assert_msg(strstr(msocl_last_error(), "lattice"), "unclear error: %s",
-                msocl_last_error());
+  ck_assert_msg(strstr(msocl_last_error(), "lattice") &&
+                    strstr(msocl_last_error(), _i ? "points" : "springs"),
+                "unclear error: %s", msocl_last_error());
   o.layout = MSOCL_LAYOUT_AUTO;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   msocl_layout got;
   ck_assert_int_eq(msocl_sim_layout(s, &got), MSOCL_OK);
   ck_assert_int_eq(got, MSOCL_LAYOUT_BUFFER);
+  if (_i == 1) {
+    float p[3 * 28];
+    ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_read_positions(s, p), MSOCL_OK);
+    ck_assert_msg(p[3 * 27 + 1] < 0.2f, "the added point did not fall");
+  }
   msocl_sim_destroy(s);
   msocl_model_destroy(m);
 }
@@ -289,7 +303,7 @@ int main(void)
   tcase_add_loop_test(tc, grid_is_buffer, 0,
                       (int)(sizeof cases / sizeof cases[0]));
   tcase_add_test(tc, split_is_one_device);
-  tcase_add_test(tc, changed_lattice_refused);
+  tcase_add_loop_test(tc, changed_lattice_refused, 0, 2);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }

@@ -152,6 +152,19 @@ START_TEST(grid_needs_a_cloth_grid)
   ck_assert_ptr_null(s);
   ck_assert_ptr_nonnull(strstr(msocl_last_error(), "GRID"));
   msocl_model_destroy(m);
+  /* a point added: GRID would never step it */
+  m = scene_tablecloth(8);
+  const float xyz[3] = {0.0f, 0.5f, 0.0f}, mass = 0.01f;
+  ck_assert_int_eq(msocl_model_add_points(m, 1, xyz, &mass, NULL), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "points"));
+  o.layout = MSOCL_LAYOUT_AUTO;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  msocl_layout got;
+  msocl_sim_layout(s, &got);
+  ck_assert_int_eq(got, MSOCL_LAYOUT_BUFFER);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
 }
 END_TEST
 
