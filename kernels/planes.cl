@@ -472,6 +472,79 @@ __kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
   MSOCL_PLANES_RK4_CALL(2);
 }
 
+/* Provot's strain limiting in planes, as msocl_strain_position: a Jacobi
+ * sweep from p into p_out, each point moved half (a pinned neighbour:
+ * all) of the way its over-long springs ask; pinned points stay. A
+ * missing neighbour reads the padding or another row, so `there` masks
+ * it (in float4 it is the point itself, whose zero length asks nothing). */
+__kernel void msocl_planes_strain(MSOCL_CONN, __global const float *p,
+                                  __global float *p_out,
+                                  __global const float *aux, int pitch,
+                                  int slab, int plane, float limit)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  __global const float *py_ = p + plane, *pz_ = py_ + plane;
+  const float px = p[a], py = py_[a], pz = pz_[a];
+  float dpx = 0.0f, dpy = 0.0f, dpz = 0.0f;
+#pragma unroll
+  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
+    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+      continue;
+    const int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s];
+    const float kk = MSOCL_GRID_K(s), rest = MSOCL_GRID_R(s);
+#ifdef MSOCL_GRID_3D
+    const int qz = z + msocl_grid_dz[s];
+    const bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
+                       qz >= 0 && qz < grid_nz && kk != 0.0f;
+    const int b = a + msocl_grid_dz[s] * slab + msocl_grid_dy[s] * pitch +
+                  msocl_grid_dx[s];
+#else
+    const bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
+                       kk != 0.0f;
+    const int b = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];
+    (void)slab;
+#endif
+    const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
+    const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+    const float over = len - (1.0f + limit) * rest;
+    const float t = (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) *
+                    MSOCL_DIV(over, len);
+    const bool on = there && over > 0.0f;
+    dpx += on ? t * dx : 0.0f;
+    dpy += on ? t * dy : 0.0f;
+    dpz += on ? t * dz : 0.0f;
+  }
+  const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  if (x < grid_nx) {
+    p_out[a] = pinned ? px : px + dpx;
+    p_out[plane + a] = pinned ? py : py + dpy;
+    p_out[2 * plane + a] = pinned ? pz : pz + dpz;
+  }
+}
+
+/* And its end, as msocl_strain_commit: v += (corrected - p) / dt, then p
+ * takes the corrected position. */
+__kernel void msocl_planes_commit(__global float *p,
+                                  __global const float *corrected,
+                                  __global float *v, int nx, int pitch,
+                                  int slab, int plane, float dt)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab;
+  if (x < nx) {
+    const float cx = corrected[a], cy = corrected[plane + a],
+                cz = corrected[2 * plane + a];
+    v[a] = v[a] + MSOCL_DIV(cx - p[a], dt);
+    v[plane + a] = v[plane + a] + MSOCL_DIV(cy - p[plane + a], dt);
+    v[2 * plane + a] = v[2 * plane + a] + MSOCL_DIV(cz - p[2 * plane + a], dt);
+    p[a] = cx;
+    p[plane + a] = cy;
+    p[2 * plane + a] = cz;
+  }
+}
+
 /* The copy kernels run over the planes' range too: point
  * i = (z ny + y) nx + x of an nx-wide grid (n points; ny the range's
  * second size), at a in a plane - no division a point. */

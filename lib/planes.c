@@ -12,7 +12,8 @@
 
 enum {
   PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_DRIFT, PL_KICK,
-  PL_IN, PL_OUT, PL_RK4, PL_RK4_MID, PL_RK4_LAST, PL_COUNT
+  PL_IN, PL_OUT, PL_RK4, PL_RK4_MID, PL_RK4_LAST, PL_STRAIN, PL_COMMIT,
+  PL_COUNT
 };
 
 _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_k /
@@ -24,7 +25,7 @@ static const char *const names[PL_COUNT] = {
     "msocl_planes_unpack",   "msocl_planes_fused",    "msocl_planes_drift",
     "msocl_planes_vkick",    "msocl_planes_in",       "msocl_planes_out",
     "msocl_planes_rk4_first", "msocl_planes_rk4_middle",
-    "msocl_planes_rk4_last"};
+    "msocl_planes_rk4_last", "msocl_planes_strain", "msocl_planes_commit"};
 
 /* Why a model's GRID cannot run in planes with options o on points
  * [lo, hi) of its n; NULL: it can. */
@@ -34,8 +35,8 @@ static const char *unfit(const msocl_sim_options *o, const msocl_model *m,
   if (o->integrator != MSOCL_SYMPLECTIC_EULER &&
       o->integrator != MSOCL_VERLET && o->integrator != MSOCL_RK4)
     return "runs symplectic Euler, Verlet and RK4 only";
-  if (o->strain != MSOCL_STRAIN_NONE)
-    return "runs without strain limiting only";
+  if (o->strain == MSOCL_STRAIN_VELOCITY)
+    return "runs Provot's strain limiting only (not the velocity kind)";
   if (lo != 0 || hi != m->n)
     return "runs a whole model on one device (not a split)";
   /* the kernels index all three planes with an int */
@@ -139,6 +140,16 @@ static int fixed_args(msocl__engine *s)
         TRY(arg(s->pl_k[q], s->pl_conn + 4 + (cl_uint)u, sizeof sums[u],
                 &sums[u]));
     }
+  /* Provot: the sweep (connectivity, p, p_out, aux, shape, limit) and the
+   * commit (p, corrected, v, nx and shape, dt) */
+  k = s->pl_k[PL_STRAIN];
+  TRY(msocl__layout_set_args(&s->lay, k, &s->pl_strain_conn));
+  TRY(arg(k, s->pl_strain_conn + 2, sizeof s->pl_aux, &s->pl_aux));
+  TRY(shape(s, k, s->pl_strain_conn + 3, 0));
+  TRY(arg(k, s->pl_strain_conn + 6, sizeof(float), &s->o.strain_limit));
+  k = s->pl_k[PL_COMMIT];
+  TRY(shape(s, k, 3, 1));
+  TRY(arg(k, 7, sizeof(float), &s->o.dt));
   /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col), and the
    * acceleration in and out (src, dst, shape, n) */
   if (s->o.integrator != MSOCL_VERLET)
@@ -185,14 +196,17 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
       return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
                          msocl_err_name(e));
   }
-  /* and Verlet's acceleration, or RK4's stage states and sums */
-  cl_mem *bufs[12] = {&s->pl_p[0],  &s->pl_p[1],  &s->pl_v[0],
-                      &s->pl_v[1],  &s->pl_aux,   &s->pl_a,
-                      &s->pl_sp[0], &s->pl_sp[1], &s->pl_sv[0],
-                      &s->pl_sv[1], &s->pl_sum[0], &s->pl_sum[1]};
-  for (int q = 0; q < 12; q++) {
+  /* and Verlet's acceleration, RK4's stage states and sums, Provot's
+   * sweeps */
+  cl_mem *bufs[14] = {&s->pl_p[0],  &s->pl_p[1],   &s->pl_v[0],
+                      &s->pl_v[1],  &s->pl_aux,    &s->pl_a,
+                      &s->pl_sp[0], &s->pl_sp[1],  &s->pl_sv[0],
+                      &s->pl_sv[1], &s->pl_sum[0], &s->pl_sum[1],
+                      &s->pl_s[0],  &s->pl_s[1]};
+  for (int q = 0; q < 14; q++) {
     if ((q == 5 && s->o.integrator != MSOCL_VERLET) ||
-        (q > 5 && s->o.integrator != MSOCL_RK4))
+        (q > 5 && q < 12 && s->o.integrator != MSOCL_RK4) ||
+        (q >= 12 && s->o.strain != MSOCL_STRAIN_PROVOT))
       continue;
     /* the padding is read (and its terms discarded): zeros, not garbage */
     const size_t bytes =
@@ -263,8 +277,36 @@ static int rk4_stage(msocl__engine *s, int q, int r, int w)
   return launch(s, k);
 }
 
-/* One step from plane set r to set w. */
+/* Provot's sweeps on set w's new positions, then the commit that moves
+ * them and their velocities together (as strain.c's). */
+static int provot(msocl__engine *s, int w)
+{
+  cl_mem from = s->pl_p[w];
+  cl_kernel k = s->pl_k[PL_STRAIN];
+  for (int it = 0; it < s->o.strain_iterations; it++) {
+    const cl_mem to = s->pl_s[it & 1];
+    TRY(arg(k, s->pl_strain_conn, sizeof from, &from));
+    TRY(arg(k, s->pl_strain_conn + 1, sizeof to, &to));
+    TRY(launch(s, PL_STRAIN));
+    from = to;
+  }
+  k = s->pl_k[PL_COMMIT];
+  TRY(arg(k, 0, sizeof s->pl_p[w], &s->pl_p[w]));
+  TRY(arg(k, 1, sizeof from, &from));
+  TRY(arg(k, 2, sizeof s->pl_v[w], &s->pl_v[w]));
+  return launch(s, PL_COMMIT);
+}
+
+static int integrator_step(msocl__engine *s, int r, int w);
+
+/* One step from plane set r to set w, Provot's correction after it. */
 static int step(msocl__engine *s, int r, int w)
+{
+  TRY(integrator_step(s, r, w));
+  return s->o.strain == MSOCL_STRAIN_PROVOT ? provot(s, w) : MSOCL_OK;
+}
+
+static int integrator_step(msocl__engine *s, int r, int w)
 {
   const cl_mem *p = s->pl_p, *v = s->pl_v;
   if (s->o.integrator == MSOCL_RK4) {
@@ -354,10 +396,11 @@ void msocl__planes_release(msocl__engine *s)
   for (int q = 0; q < PL_COUNT; q++)
     if (s->pl_k[q])
       clReleaseKernel(s->pl_k[q]);
-  cl_mem m[12] = {s->pl_p[0],  s->pl_p[1],  s->pl_v[0],   s->pl_v[1],
+  cl_mem m[14] = {s->pl_p[0],  s->pl_p[1],  s->pl_v[0],   s->pl_v[1],
                   s->pl_aux,   s->pl_a,     s->pl_sp[0],  s->pl_sp[1],
-                  s->pl_sv[0], s->pl_sv[1], s->pl_sum[0], s->pl_sum[1]};
-  for (int q = 0; q < 12; q++)
+                  s->pl_sv[0], s->pl_sv[1], s->pl_sum[0], s->pl_sum[1],
+                  s->pl_s[0],  s->pl_s[1]};
+  for (int q = 0; q < 14; q++)
     if (m[q])
       clReleaseMemObject(m[q]);
 }
