@@ -344,7 +344,8 @@ typedef struct {
    * stages and sums 72 more). The state stays in the planes between
    * calls; a read copies it back, a write has it copied in again at the
    * next step. 1: whenever it applies (GRID, symplectic Euler - fused too
-   * - Verlet or RK4, no strain limiting, one device); 0: never; -1
+   * - Verlet or RK4, Provot's strain limiting or none, one device); 0:
+   * never; -1
    * (default): where it applies on a CPU device. */
   int planes;
 } msocl_sim_options;
