@@ -93,6 +93,29 @@ static float msocl_planes_gap(float px, float py, float pz,
   return g;
 }
 
+/* Slot s of the point (x, y, z) at a: where its neighbour sits in the
+ * planes (*b), and whether that spring exists. A missing neighbour (past
+ * the grid's edge, or a kind with k 0) reads the padding or another row,
+ * not the point itself as in float4, so every user masks it. */
+static bool msocl_planes_slot(MSOCL_CONN, int s, int x, int y, int z, int a,
+                              int pitch, int slab, int *b)
+{
+  const int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s];
+#ifdef MSOCL_GRID_3D
+  const int qz = z + msocl_grid_dz[s];
+  *b = a + msocl_grid_dz[s] * slab + msocl_grid_dy[s] * pitch +
+       msocl_grid_dx[s];
+  return qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny && qz >= 0 &&
+         qz < grid_nz && MSOCL_GRID_K(s) != 0.0f;
+#else
+  (void)z;
+  (void)slab;
+  *b = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];
+  return qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
+         MSOCL_GRID_K(s) != 0.0f;
+#endif
+}
+
 /* msocl_force at the point at a = (x, y, z), viscous damping included. */
 static void msocl_planes_force(MSOCL_CONN, __global const float *p,
                                __global const float *v, int pitch, int slab,
@@ -110,23 +133,12 @@ static void msocl_planes_force(MSOCL_CONN, __global const float *p,
     /* a kind the model leaves out: BUFFER has no slot for it either */
     if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
       continue;
-    const int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s];
     const float kk = MSOCL_GRID_K(s), rest = MSOCL_GRID_R(s);
-    /* a missing neighbour reads the padding (or another row), and its
-     * terms are replaced by the exact zeros msocl_force adds for it */
-#ifdef MSOCL_GRID_3D
-    const int qz = z + msocl_grid_dz[s];
-    const bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
-                       qz >= 0 && qz < grid_nz && kk != 0.0f;
-    const int b = a + msocl_grid_dz[s] * slab + msocl_grid_dy[s] * pitch +
-                  msocl_grid_dx[s];
-#else
-    const bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
-                       kk != 0.0f;
-    const int b = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];
-    (void)z;
-    (void)slab;
-#endif
+    /* a missing neighbour's terms are replaced by the exact zeros
+     * msocl_force adds for it */
+    int b;
+    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
+                                         pitch, slab, &b);
     const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
     const float len2 = dx * dx + dy * dy + dz * dz;
     const float len = MSOCL_SQRT(len2);
@@ -474,9 +486,9 @@ __kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
 
 /* Provot's strain limiting in planes, as msocl_strain_position: a Jacobi
  * sweep from p into p_out, each point moved half (a pinned neighbour:
- * all) of the way its over-long springs ask; pinned points stay. A
- * missing neighbour reads the padding or another row, so `there` masks
- * it (in float4 it is the point itself, whose zero length asks nothing). */
+ * all) of the way its over-long springs ask; pinned points stay. (In
+ * float4 a missing neighbour is the point itself, whose zero length asks
+ * nothing; here `there` masks it.) */
 __kernel void msocl_planes_strain(MSOCL_CONN, __global const float *p,
                                   __global float *p_out,
                                   __global const float *aux, int pitch,
@@ -491,20 +503,10 @@ __kernel void msocl_planes_strain(MSOCL_CONN, __global const float *p,
   for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
     if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
       continue;
-    const int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s];
-    const float kk = MSOCL_GRID_K(s), rest = MSOCL_GRID_R(s);
-#ifdef MSOCL_GRID_3D
-    const int qz = z + msocl_grid_dz[s];
-    const bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
-                       qz >= 0 && qz < grid_nz && kk != 0.0f;
-    const int b = a + msocl_grid_dz[s] * slab + msocl_grid_dy[s] * pitch +
-                  msocl_grid_dx[s];
-#else
-    const bool there = qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
-                       kk != 0.0f;
-    const int b = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];
-    (void)slab;
-#endif
+    const float rest = MSOCL_GRID_R(s);
+    int b;
+    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
+                                         pitch, slab, &b);
     const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
     const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
     const float over = len - (1.0f + limit) * rest;
