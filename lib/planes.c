@@ -142,11 +142,12 @@ static int fixed_args(msocl__engine *s)
     }
   /* Provot: the sweep (connectivity, p, p_out, aux, shape, limit) and the
    * commit (p, corrected, v, nx and shape, dt) */
-  k = s->pl_k[PL_STRAIN];
-  TRY(msocl__layout_set_args(&s->lay, k, &s->pl_strain_conn));
-  TRY(arg(k, s->pl_strain_conn + 2, sizeof s->pl_aux, &s->pl_aux));
-  TRY(shape(s, k, s->pl_strain_conn + 3, 0));
-  TRY(arg(k, s->pl_strain_conn + 6, sizeof(float), &s->o.strain_limit));
+  k = s->pl_k[PL_STRAIN]; /* its connectivity ends at pl_conn too */
+  cl_uint c;
+  TRY(msocl__layout_set_args(&s->lay, k, &c));
+  TRY(arg(k, c + 2, sizeof s->pl_aux, &s->pl_aux));
+  TRY(shape(s, k, c + 3, 0));
+  TRY(arg(k, c + 6, sizeof(float), &s->o.strain_limit));
   k = s->pl_k[PL_COMMIT];
   TRY(shape(s, k, 3, 1));
   TRY(arg(k, 7, sizeof(float), &s->o.dt));
@@ -285,8 +286,8 @@ static int provot(msocl__engine *s, int w)
   cl_kernel k = s->pl_k[PL_STRAIN];
   for (int it = 0; it < s->o.strain_iterations; it++) {
     const cl_mem to = s->pl_s[it & 1];
-    TRY(arg(k, s->pl_strain_conn, sizeof from, &from));
-    TRY(arg(k, s->pl_strain_conn + 1, sizeof to, &to));
+    TRY(arg(k, s->pl_conn, sizeof from, &from));
+    TRY(arg(k, s->pl_conn + 1, sizeof to, &to));
     TRY(launch(s, PL_STRAIN));
     from = to;
   }
