@@ -485,8 +485,9 @@ __kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
 }
 
 /* Provot's strain limiting in planes, as msocl_strain_position: a Jacobi
- * sweep from p into p_out, each point moved half (a pinned neighbour:
- * all) of the way its over-long springs ask; pinned points stay. (In
+ * sweep from p into p_out, each point moved by the size-weighted average
+ * of what its over-long springs ask (half the excess, a pinned
+ * neighbour's spring all of it); pinned points stay. (In
  * float4 a missing neighbour is the point itself, whose zero length asks
  * nothing; here `there` masks it.) */
 __kernel void msocl_planes_strain(MSOCL_CONN, __global const float *p,
@@ -498,7 +499,7 @@ __kernel void msocl_planes_strain(MSOCL_CONN, __global const float *p,
   const int a = MSOCL_PLANES_AT(x, y, z);
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
   const float px = p[a], py = py_[a], pz = pz_[a];
-  float dpx = 0.0f, dpy = 0.0f, dpz = 0.0f;
+  float dpx = 0.0f, dpy = 0.0f, dpz = 0.0f, weight = 0.0f;
 #pragma unroll
   for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
     if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
@@ -510,12 +511,19 @@ __kernel void msocl_planes_strain(MSOCL_CONN, __global const float *p,
     const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
     const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
     const float over = len - (1.0f + limit) * rest;
-    const float t = (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) *
-                    MSOCL_DIV(over, len);
+    const float ask = (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) *
+                      over;
+    const float t = ask * MSOCL_DIV(ask, len);
     const bool on = there && over > 0.0f;
     dpx += on ? t * dx : 0.0f;
     dpy += on ? t * dy : 0.0f;
     dpz += on ? t * dz : 0.0f;
+    weight += on ? ask : 0.0f;
+  }
+  if (weight > 0.0f) {
+    dpx = MSOCL_DIV(dpx, weight);
+    dpy = MSOCL_DIV(dpy, weight);
+    dpz = MSOCL_DIV(dpz, weight);
   }
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
   if (x < grid_nx) {

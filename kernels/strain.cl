@@ -1,8 +1,16 @@
 /* Strain limiting: keeping springs from stretching past (1 + limit) times
- * their rest length. Both run as Jacobi sweeps (each point gathers the
- * corrections its springs ask of it; a spring to a pinned point asks the
- * free end for all of it, otherwise each end takes half). Needs common.cl
- * before it. */
+ * their rest length. Both run as Jacobi sweeps: each point gathers the
+ * corrections its springs ask of it (a spring to a pinned point asks the
+ * free end for all of it, otherwise each end takes half) and moves by
+ * their average, each weighted by its own size. Their plain sum
+ * overshoots wherever several springs pull one way (a structural and a
+ * bend spring along a row), and the overshoot, taken up by the
+ * velocities, grew without bound: with one to three sweeps a step at half
+ * the stable step, or ten near it (tests/check_strain). An average never
+ * moves a point further than its largest ask; weighting by size keeps the
+ * move continuous as a spring crosses the limit (a plain average over the
+ * springs asking halves a correction when a second spring just starts
+ * to), and lets the largest ask lead. Needs common.cl before it. */
 
 /* Vassilev, Spanlang & Chrysanthou 2001: between the velocity and the
  * position pass, limit the rate at which each spring grows so that after
@@ -25,6 +33,7 @@ __kernel void msocl_strain_velocity(MSOCL_CONN, __global const float4 *pos,
     return;
   }
   float3 p = p4.xyz, v = vel[i].xyz, dv = (float3)(0.0f);
+  float weight = 0.0f;
   for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
     int j;
     float rest, k, c;
@@ -38,9 +47,14 @@ __kernel void msocl_strain_velocity(MSOCL_CONN, __global const float4 *pos,
     float3 u = d / len;
     float allowed = MSOCL_DIV((1.0f + limit) * rest - len, dt);
     float excess = dot(vel[j].xyz - v, u) - allowed;
-    if (excess > 0.0f)
-      dv += (MSOCL_PINNED(q4) ? 1.0f : 0.5f) * excess * u;
+    if (excess > 0.0f) {
+      float ask = (MSOCL_PINNED(q4) ? 1.0f : 0.5f) * excess;
+      dv += (ask * ask) * u;
+      weight += ask;
+    }
   }
+  if (weight > 0.0f)
+    dv = MSOCL_DIV(dv, weight);
   vel_out[i] = (float4)(msocl_collide(p, v + dv, dt, col, ncol, 0.0f), 0.0f);
 }
 
@@ -60,6 +74,7 @@ __kernel void msocl_strain_position(MSOCL_CONN, __global const float4 *pos,
     return;
   }
   float3 p = p4.xyz, dp = (float3)(0.0f);
+  float weight = 0.0f;
   for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
     int j;
     float rest, k, c;
@@ -69,9 +84,14 @@ __kernel void msocl_strain_position(MSOCL_CONN, __global const float4 *pos,
     float3 d = q4.xyz - p;
     float len = MSOCL_SQRT(dot(d, d));
     float over = len - (1.0f + limit) * rest;
-    if (over > 0.0f)
-      dp += (MSOCL_PINNED(q4) ? 1.0f : 0.5f) * MSOCL_DIV(over, len) * d;
+    if (over > 0.0f) {
+      float ask = (MSOCL_PINNED(q4) ? 1.0f : 0.5f) * over;
+      dp += (ask * MSOCL_DIV(ask, len)) * d;
+      weight += ask;
+    }
   }
+  if (weight > 0.0f)
+    dp = MSOCL_DIV(dp, weight);
   pos_out[i] = (float4)(p + dp, p4.w);
 }
 

@@ -348,7 +348,7 @@ int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
     TRY(mems(s->k[MSOCL__K_FUSED], s->nconn, 4, a));
     TRY(msocl__launch(s, MSOCL__K_FUSED));
     if (s->o.strain == MSOCL_STRAIN_PROVOT)
-      TRY(msocl__strain_position(s));
+      TRY(msocl__strain_position(s, s->vel[1 - s->r]));
     return MSOCL_OK;
   }
   switch (s->o.integrator) {
@@ -364,14 +364,23 @@ int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
     TRY(explicit_euler(s));
     break;
   case MSOCL_VERLET:
-    TRY(phase == 0 ? verlet_drift(s) : verlet_kick(s));
-    break;
+    if (phase == 1)
+      return verlet_kick(s);
+    TRY(verlet_drift(s));
+    /* Provot's correction between drift and kick, on v+: the kick then
+     * keeps the corrected positions' acceleration for the next step. After
+     * the kick, the next drift used the acceleration of positions the
+     * correction had moved, and a hanging cloth blew up at half the
+     * stable step. */
+    if (s->o.strain == MSOCL_STRAIN_PROVOT)
+      TRY(msocl__strain_position(s, s->vel[s->r]));
+    return MSOCL_OK;
   case MSOCL_RK4:
     TRY(rk4_stage(s, phase));
     break;
   }
   if (last && s->o.strain == MSOCL_STRAIN_PROVOT)
-    TRY(msocl__strain_position(s));
+    TRY(msocl__strain_position(s, s->vel[1 - s->r]));
   return MSOCL_OK;
 }
 

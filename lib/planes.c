@@ -278,11 +278,11 @@ static int rk4_stage(msocl__engine *s, int q, int r, int w)
   return launch(s, k);
 }
 
-/* Provot's sweeps on set w's new positions, then the commit that moves
- * them and their velocities together (as strain.c's). */
-static int provot(msocl__engine *s, int w)
+/* Provot's sweeps on new positions p, then the commit that moves them
+ * and the velocities v together (as strain.c's). */
+static int provot(msocl__engine *s, cl_mem p, cl_mem v)
 {
-  cl_mem from = s->pl_p[w];
+  cl_mem from = p;
   cl_kernel k = s->pl_k[PL_STRAIN];
   for (int it = 0; it < s->o.strain_iterations; it++) {
     const cl_mem to = s->pl_s[it & 1];
@@ -292,19 +292,23 @@ static int provot(msocl__engine *s, int w)
     from = to;
   }
   k = s->pl_k[PL_COMMIT];
-  TRY(arg(k, 0, sizeof s->pl_p[w], &s->pl_p[w]));
+  TRY(arg(k, 0, sizeof p, &p));
   TRY(arg(k, 1, sizeof from, &from));
-  TRY(arg(k, 2, sizeof s->pl_v[w], &s->pl_v[w]));
+  TRY(arg(k, 2, sizeof v, &v));
   return launch(s, PL_COMMIT);
 }
 
 static int integrator_step(msocl__engine *s, int r, int w);
 
-/* One step from plane set r to set w, Provot's correction after it. */
+/* One step from plane set r to set w, Provot's correction after it
+ * (Verlet's comes between its drift and kick, as in integrate.c). */
 static int step(msocl__engine *s, int r, int w)
 {
   TRY(integrator_step(s, r, w));
-  return s->o.strain == MSOCL_STRAIN_PROVOT ? provot(s, w) : MSOCL_OK;
+  return s->o.strain == MSOCL_STRAIN_PROVOT &&
+                 s->o.integrator != MSOCL_VERLET
+             ? provot(s, s->pl_p[w], s->pl_v[w])
+             : MSOCL_OK;
 }
 
 static int integrator_step(msocl__engine *s, int r, int w)
@@ -321,6 +325,8 @@ static int integrator_step(msocl__engine *s, int r, int w)
     TRY(arg(kd, 1, sizeof v[r], &v[r]));
     TRY(arg(kd, 3, sizeof p[w], &p[w]));
     TRY(launch(s, PL_DRIFT));
+    if (s->o.strain == MSOCL_STRAIN_PROVOT)
+      TRY(provot(s, p[w], v[r]));
     const cl_mem kick[4] = {p[w], v[r], v[w], s->pl_a};
     TRY(gather_args(s, PL_KICK, 4, kick));
     return launch(s, PL_KICK);

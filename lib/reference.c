@@ -110,7 +110,8 @@ static void accel(const msocl_reference *r, const double *pos,
 }
 
 /* Strain sweeps of kernels/strain.cl: velocity (on r->vnew) or Provot's
- * positions (on r->pnew), Jacobi style. */
+ * positions (on r->pnew), Jacobi style, each point moved by the average
+ * of what its springs ask. */
 static void strain_velocity(msocl_reference *r)
 {
   for (int it = 0; it < r->o.strain_iterations; it++) {
@@ -121,7 +122,7 @@ static void strain_velocity(msocl_reference *r)
         out[0] = out[1] = out[2] = 0.0;
         continue;
       }
-      double dv[3] = {0, 0, 0};
+      double dv[3] = {0, 0, 0}, weight = 0.0;
       for (int t = r->adj.off[i]; t < r->adj.off[i + 1]; t++) {
         int j = r->adj.other[t], sp = r->adj.spring[t];
         const double *q = r->pos + 3 * j, *vq = r->vnew + 3 * j;
@@ -133,19 +134,24 @@ static void strain_velocity(msocl_reference *r)
                          r->dt;
         double rel[3] = {vq[0] - v[0], vq[1] - v[1], vq[2] - v[2]};
         double excess = msocl__dot3(rel, d) / len - allowed;
-        if (excess > 0)
+        if (excess > 0) {
+          double ask = (r->pinned[j] ? 1.0 : 0.5) * excess;
           for (int e = 0; e < 3; e++)
-            dv[e] += (r->pinned[j] ? 1.0 : 0.5) * excess * d[e] / len;
+            dv[e] += ask * ask * d[e] / len;
+          weight += ask;
+        }
       }
       for (int e = 0; e < 3; e++)
-        out[e] = v[e] + dv[e];
+        out[e] = v[e] + (weight > 0 ? dv[e] / weight : 0.0);
       msocl__ref_collide(r, p, out, 0.0);
     }
     memcpy(r->vnew, r->tmp, 3 * (size_t)r->n * sizeof(double));
   }
 }
 
-static void strain_position(msocl_reference *r)
+/* On r->pnew; vel (r->vnew, or Verlet's half-step velocity) takes up the
+ * correction. */
+static void strain_position(msocl_reference *r, double *vel)
 {
   memcpy(r->a, r->pnew, 3 * (size_t)r->n * sizeof(double)); /* before */
   for (int it = 0; it < r->o.strain_iterations; it++) {
@@ -155,22 +161,28 @@ static void strain_position(msocl_reference *r)
       memcpy(out, p, 3 * sizeof(double));
       if (r->pinned[i])
         continue;
+      double dp[3] = {0, 0, 0}, weight = 0.0;
       for (int t = r->adj.off[i]; t < r->adj.off[i + 1]; t++) {
         int j = r->adj.other[t], sp = r->adj.spring[t];
         const double *q = r->pnew + 3 * j;
         double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
         double len = sqrt(msocl__dot3(d, d));
         double over = len - (1.0 + r->o.strain_limit) * r->rest[sp];
-        if (over > 0)
+        if (over > 0) {
+          double ask = (r->pinned[j] ? 1.0 : 0.5) * over;
           for (int e = 0; e < 3; e++)
-            out[e] += (r->pinned[j] ? 1.0 : 0.5) * over / len * d[e];
+            dp[e] += ask * ask / len * d[e];
+          weight += ask;
+        }
       }
+      for (int e = 0; e < 3; e++)
+        out[e] += weight > 0 ? dp[e] / weight : 0.0;
     }
     memcpy(r->pnew, r->tmp, 3 * (size_t)r->n * sizeof(double));
   }
   /* msocl_strain_commit: velocities take up the correction */
   for (int i = 0; i < 3 * r->n; i++)
-    r->vnew[i] += (r->pnew[i] - r->a[i]) / r->dt;
+    vel[i] += (r->pnew[i] - r->a[i]) / r->dt;
 }
 
 /* Symplectic Euler's velocity pass into r->vnew. */
@@ -213,7 +225,7 @@ static void verlet(msocl_reference *r)
 {
   if (!r->acc_valid)
     accel(r, r->pos, r->vel, r->acc);
-  double *vh = r->tmp;
+  double *vh = r->vnew; /* v+, then v' in place */
   for (int i = 0; i < r->n; i++) {
     for (int e = 0; e < 3; e++)
       vh[3 * i + e] = r->pinned[i] ? 0.0
@@ -223,6 +235,10 @@ static void verlet(msocl_reference *r)
     for (int e = 0; e < 3; e++)
       r->pnew[3 * i + e] = r->pos[3 * i + e] + r->dt * vh[3 * i + e];
   }
+  /* Provot's correction before a' is taken, so the acceleration kept for
+   * the next step is the corrected positions' (integrate.c) */
+  if (r->o.strain == MSOCL_STRAIN_PROVOT)
+    strain_position(r, vh);
   accel(r, r->pnew, vh, r->acc);
   for (int i = 0; i < 3 * r->n; i++)
     r->vnew[i] = r->air * (vh[i] + 0.5 * r->dt * r->acc[i]);
@@ -288,8 +304,8 @@ int msocl_reference_step(msocl_reference *r, int n)
     case MSOCL_VERLET: verlet(r); break;
     case MSOCL_RK4: rk4(r); break;
     }
-    if (r->o.strain == MSOCL_STRAIN_PROVOT)
-      strain_position(r);
+    if (r->o.strain == MSOCL_STRAIN_PROVOT && r->o.integrator != MSOCL_VERLET)
+      strain_position(r, r->vnew);
     double *t = r->pos;
     r->pos = r->pnew;
     r->pnew = t;

@@ -272,10 +272,11 @@ int msocl__implicit_velocity(msocl__engine *s);
 int msocl__implicit_cg(msocl__engine *const *e, int parts,
                        int (*exchange)(void *ctx), void *ctx);
 /* Strain limiting (strain.c): fixed arguments; the velocity correction on
- * vel[1 - r]; Provot's position correction on pos[1 - r]. */
+ * vel[1 - r]; Provot's position correction on pos[1 - r], taken up by the
+ * velocities vel. */
 int msocl__strain_setup(msocl__engine *s);
 int msocl__strain_velocity(msocl__engine *s);
-int msocl__strain_position(msocl__engine *s);
+int msocl__strain_position(msocl__engine *s, cl_mem vel);
 /* Enqueues kernel k over the engine's current span (run_offset,
  * run_global); _all: over every point. */
 int msocl__launch(msocl__engine *s, int k);

@@ -60,9 +60,10 @@ int msocl__strain_velocity(msocl__engine *s)
   return MSOCL_OK;
 }
 
-/* On the new state pos[1 - r], vel[1 - r], after the step: the sweeps run
- * on a copy, then the commit moves points and velocities together. */
-int msocl__strain_position(msocl__engine *s)
+/* On the new positions pos[1 - r], after the step (Verlet: after its
+ * drift): the sweeps run on a copy, then the commit moves points and the
+ * velocities vel (vel[1 - r]; Verlet's half-step vel[r]) together. */
+int msocl__strain_position(msocl__engine *s, cl_mem vel)
 {
   const int w = 1 - s->r;
   cl_mem result;
@@ -74,6 +75,6 @@ int msocl__strain_position(msocl__engine *s)
   cl_kernel k = s->k[MSOCL__K_STRAIN_COMMIT];
   TRY(msocl__arg_mem(k, 0, s->pos[w]));
   TRY(msocl__arg_mem(k, 1, result));
-  TRY(msocl__arg_mem(k, 2, s->vel[w]));
+  TRY(msocl__arg_mem(k, 2, vel));
   return msocl__launch(s, MSOCL__K_STRAIN_COMMIT);
 }
