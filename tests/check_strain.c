@@ -101,6 +101,33 @@ START_TEST(draped_within_limit)
 }
 END_TEST
 
+/* Runs the device and the reference `steps` steps from model m with
+ * options o; returns the largest position difference (m). planes: what
+ * msocl_sim_planes says of the device's run. */
+static double device_minus_reference(const msocl_model *m,
+                                     const msocl_sim_options *o, int steps,
+                                     int *planes)
+{
+  msocl_sim *s = NULL;
+  msocl_reference *r = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, o), MSOCL_OK);
+  ck_assert_int_eq(msocl_reference_create(&r, m, o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_planes(s, planes), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, steps), MSOCL_OK);
+  ck_assert_int_eq(msocl_reference_step(r, steps), MSOCL_OK);
+  float *p = malloc(3 * (size_t)m->n * sizeof *p);
+  double *q = malloc(3 * (size_t)m->n * sizeof *q), worst = 0.0;
+  ck_assert_int_eq(msocl_sim_read_positions(s, p), MSOCL_OK);
+  ck_assert_int_eq(msocl_reference_positions(r, q), MSOCL_OK);
+  for (int i = 0; i < 3 * m->n; i++)
+    worst = fmax(worst, fabs(p[i] - q[i]));
+  free(p);
+  free(q);
+  msocl_sim_destroy(s);
+  msocl_reference_destroy(r);
+  return worst;
+}
+
 /* Device against reference with each correction, through first contact. */
 START_TEST(matches_reference)
 {
@@ -111,23 +138,11 @@ START_TEST(matches_reference)
   msocl_sim_options_init(&o);
   o.dt = 0.5f * dt;
   o.strain = (msocl_strain)_i;
-  msocl_sim *s = NULL;
-  msocl_reference *r = NULL;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-  ck_assert_int_eq(msocl_reference_create(&r, m, &o), MSOCL_OK);
-  ck_assert_int_eq(msocl_sim_step(s, 60), MSOCL_OK);
-  ck_assert_int_eq(msocl_reference_step(r, 60), MSOCL_OK);
-  float p[3 * 24 * 24];
-  double q[3 * 24 * 24], worst = 0.0;
-  msocl_sim_read_positions(s, p);
-  msocl_reference_positions(r, q);
-  for (int i = 0; i < 3 * 24 * 24; i++)
-    worst = fmax(worst, fabs(p[i] - q[i]));
+  int planes;
+  double worst = device_minus_reference(m, &o, 60, &planes);
   printf("strain limiting %s: max |device - reference| %.3g m\n", names[_i],
          worst);
   ck_assert_double_le(worst, 1e-5);
-  msocl_sim_destroy(s);
-  msocl_reference_destroy(r);
   msocl_model_destroy(m);
 }
 END_TEST
@@ -148,27 +163,13 @@ START_TEST(verlet_rk4_match_reference)
   o.strain_iterations = 3;
   o.layout = MSOCL_LAYOUT_GRID;
   o.planes = _i >> 1;
-  msocl_sim *s = NULL;
-  msocl_reference *r = NULL;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-  ck_assert_int_eq(msocl_reference_create(&r, m, &o), MSOCL_OK);
   int planes;
-  ck_assert_int_eq(msocl_sim_planes(s, &planes), MSOCL_OK);
+  double worst = device_minus_reference(m, &o, 200, &planes);
   ck_assert_int_eq(planes, _i >> 1);
-  ck_assert_int_eq(msocl_sim_step(s, 200), MSOCL_OK);
-  ck_assert_int_eq(msocl_reference_step(r, 200), MSOCL_OK);
-  float p[3 * 16 * 16];
-  double q[3 * 16 * 16], worst = 0.0;
-  msocl_sim_read_positions(s, p);
-  msocl_reference_positions(r, q);
-  for (int i = 0; i < 3 * 16 * 16; i++)
-    worst = fmax(worst, fabs(p[i] - q[i]));
   printf("Provot with %s in %s, hanging cloth: max |device - reference| "
          "%.3g m\n",
          _i & 1 ? "RK4" : "Verlet", planes ? "planes" : "float4", worst);
   ck_assert_double_le(worst, 1e-5);
-  msocl_sim_destroy(s);
-  msocl_reference_destroy(r);
   msocl_model_destroy(m);
 }
 END_TEST
