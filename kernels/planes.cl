@@ -168,10 +168,10 @@ static void msocl_planes_force(MSOCL_CONN, __global const float *p,
   *fz_out = fz;
 }
 
-/* msocl_collide with fscale 1, its branches as selects. */
+/* msocl_collide, its branches as selects. */
 static void msocl_planes_collide(float px, float py, float pz, float *vx_io,
                                  float *vy_io, float *vz_io, float dt,
-                                 __constant float4 *col)
+                                 __constant float4 *col, float fscale)
 {
   float vx = *vx_io, vy = *vy_io, vz = *vz_io;
   __constant const float *cf = (__constant const float *)col;
@@ -180,7 +180,7 @@ static void msocl_planes_collide(float px, float py, float pz, float *vx_io,
     float nx, ny, nz;
     const float g = msocl_planes_gap(px, py, pz, cf + 8 * c, &nx, &ny, &nz);
     /* msocl_respond, its branch as selects */
-    const float fr = cf[8 * c + 1];
+    const float fr = fscale * cf[8 * c + 1];
     const float vn = MSOCL_DOT3(vx, vy, vz, nx, ny, nz);
     const float lim = MSOCL_DIV(-g, dt);
     float hx = vx + (lim - vn) * nx, hy = vy + (lim - vn) * ny,
@@ -229,7 +229,7 @@ static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
   float vz = v[2 * plane + a] + dt * (fz * im + gravity.z);
   msocl_planes_air(air, &vx, &vy, &vz);
   msocl_planes_collide(p[a], p[plane + a], p[2 * plane + a], &vx, &vy, &vz,
-                       dt, col);
+                       dt, col, 1.0f);
   *pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
   *vx_out = *pinned ? 0.0f : vx;
   *vy_out = *pinned ? 0.0f : vy;
@@ -329,7 +329,7 @@ __kernel void msocl_planes_drift(__global const float *p, __global float *v,
   const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
   float vx = v[a] + h * acc[a], vy = v[plane + a] + h * acc[plane + a],
         vz = v[2 * plane + a] + h * acc[2 * plane + a];
-  msocl_planes_collide(px, py, pz, &vx, &vy, &vz, dt, col);
+  msocl_planes_collide(px, py, pz, &vx, &vy, &vz, dt, col, 1.0f);
   if (x < nx) {
     p_out[a] = pinned ? px : px + dt * vx;
     p_out[plane + a] = pinned ? py : py + dt * vy;
@@ -552,6 +552,65 @@ __kernel void msocl_planes_commit(__global float *p,
     p[a] = cx;
     p[plane + a] = cy;
     p[2 * plane + a] = cz;
+  }
+}
+
+/* The velocity kind in planes, as msocl_strain_velocity: a Jacobi sweep
+ * from v into v_out at the step's starting positions p, each point's
+ * velocity changed by the size-weighted average of what its springs ask
+ * (the relative speed along a spring beyond what brings it to the limit
+ * within the step: half of it, a pinned neighbour's spring all of it),
+ * then the collision response again without friction. */
+__kernel void msocl_planes_strain_v(MSOCL_CONN, __global const float *p,
+                                    __global const float *v,
+                                    __global float *v_out,
+                                    __global const float *aux, int pitch,
+                                    int slab, int plane, float limit,
+                                    float dt, __constant float4 *col)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  __global const float *py_ = p + plane, *pz_ = py_ + plane;
+  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
+  const float px = p[a], py = py_[a], pz = pz_[a];
+  const float vx = v[a], vy = vy_[a], vz = vz_[a];
+  float dvx = 0.0f, dvy = 0.0f, dvz = 0.0f, weight = 0.0f;
+#pragma unroll
+  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
+    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+      continue;
+    const float rest = MSOCL_GRID_R(s);
+    int b;
+    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
+                                         pitch, slab, &b);
+    const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
+    const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+    const float allowed = MSOCL_DIV((1.0f + limit) * rest - len, dt);
+    const float excess =
+        MSOCL_DIV(MSOCL_DOT3(v[b] - vx, vy_[b] - vy, vz_[b] - vz, dx, dy, dz),
+                  len) -
+        allowed;
+    const float ask =
+        (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) * excess;
+    const float t = ask * MSOCL_DIV(ask, len);
+    const bool on = there && len > 0.0f && excess > 0.0f;
+    dvx += on ? t * dx : 0.0f;
+    dvy += on ? t * dy : 0.0f;
+    dvz += on ? t * dz : 0.0f;
+    weight += on ? ask : 0.0f;
+  }
+  if (weight > 0.0f) {
+    dvx = MSOCL_DIV(dvx, weight);
+    dvy = MSOCL_DIV(dvy, weight);
+    dvz = MSOCL_DIV(dvz, weight);
+  }
+  float wx = vx + dvx, wy = vy + dvy, wz = vz + dvz;
+  msocl_planes_collide(px, py, pz, &wx, &wy, &wz, dt, col, 0.0f);
+  const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  if (x < grid_nx) {
+    v_out[a] = pinned ? 0.0f : wx;
+    v_out[plane + a] = pinned ? 0.0f : wy;
+    v_out[2 * plane + a] = pinned ? 0.0f : wz;
   }
 }
 

@@ -44,12 +44,11 @@ __kernel void msocl_strain_velocity(MSOCL_CONN, __global const float4 *pos,
     float len = MSOCL_SQRT(dot(d, d));
     if (!(len > 0.0f))
       continue;
-    float3 u = d / len;
     float allowed = MSOCL_DIV((1.0f + limit) * rest - len, dt);
-    float excess = dot(vel[j].xyz - v, u) - allowed;
+    float excess = MSOCL_DIV(dot(vel[j].xyz - v, d), len) - allowed;
     if (excess > 0.0f) {
       float ask = (MSOCL_PINNED(q4) ? 1.0f : 0.5f) * excess;
-      dv += (ask * ask) * u;
+      dv += (ask * MSOCL_DIV(ask, len)) * d;
       weight += ask;
     }
   }

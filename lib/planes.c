@@ -13,7 +13,7 @@
 enum {
   PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_DRIFT, PL_KICK,
   PL_IN, PL_OUT, PL_RK4, PL_RK4_MID, PL_RK4_LAST, PL_STRAIN, PL_COMMIT,
-  PL_COUNT
+  PL_STRAIN_V, PL_COUNT
 };
 
 _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_k /
@@ -25,7 +25,8 @@ static const char *const names[PL_COUNT] = {
     "msocl_planes_unpack",   "msocl_planes_fused",    "msocl_planes_drift",
     "msocl_planes_vkick",    "msocl_planes_in",       "msocl_planes_out",
     "msocl_planes_rk4_first", "msocl_planes_rk4_middle",
-    "msocl_planes_rk4_last", "msocl_planes_strain", "msocl_planes_commit"};
+    "msocl_planes_rk4_last", "msocl_planes_strain", "msocl_planes_commit",
+    "msocl_planes_strain_v"};
 
 /* Why a model's GRID cannot run in planes with options o on points
  * [lo, hi) of its n; NULL: it can. */
@@ -35,8 +36,6 @@ static const char *unfit(const msocl_sim_options *o, const msocl_model *m,
   if (o->integrator != MSOCL_SYMPLECTIC_EULER &&
       o->integrator != MSOCL_VERLET && o->integrator != MSOCL_RK4)
     return "runs symplectic Euler, Verlet and RK4 only";
-  if (o->strain == MSOCL_STRAIN_VELOCITY)
-    return "runs Provot's strain limiting only (not the velocity kind)";
   if (lo != 0 || hi != m->n)
     return "runs a whole model on one device (not a split)";
   /* the kernels index all three planes with an int */
@@ -151,6 +150,15 @@ static int fixed_args(msocl__engine *s)
   k = s->pl_k[PL_COMMIT];
   TRY(shape(s, k, 3, 1));
   TRY(arg(k, 7, sizeof(float), &s->o.dt));
+  /* the velocity kind's sweep (connectivity, p, v, v_out, aux, shape,
+   * limit, dt, col) */
+  k = s->pl_k[PL_STRAIN_V];
+  TRY(msocl__layout_set_args(&s->lay, k, &c));
+  TRY(arg(k, c + 3, sizeof s->pl_aux, &s->pl_aux));
+  TRY(shape(s, k, c + 4, 0));
+  TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
+  TRY(arg(k, c + 8, sizeof(float), &s->o.dt));
+  TRY(arg(k, c + 9, sizeof s->col, &s->col));
   /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col), and the
    * acceleration in and out (src, dst, shape, n) */
   if (s->o.integrator != MSOCL_VERLET)
@@ -207,7 +215,8 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
   for (int q = 0; q < 14; q++) {
     if ((q == 5 && s->o.integrator != MSOCL_VERLET) ||
         (q > 5 && q < 12 && s->o.integrator != MSOCL_RK4) ||
-        (q >= 12 && s->o.strain != MSOCL_STRAIN_PROVOT))
+        (q >= 12 && s->o.strain == MSOCL_STRAIN_NONE) ||
+        (q == 13 && s->o.strain != MSOCL_STRAIN_PROVOT))
       continue;
     /* the padding is read (and its terms discarded): zeros, not garbage */
     const size_t bytes =
@@ -298,6 +307,27 @@ static int provot(msocl__engine *s, cl_mem p, cl_mem v)
   return launch(s, PL_COMMIT);
 }
 
+/* The velocity kind's sweeps on the new velocities v at the positions p,
+ * ping-ponging with Provot's first scratch set; the result ends in v. */
+static int strain_velocity(msocl__engine *s, cl_mem p, cl_mem v)
+{
+  cl_kernel k = s->pl_k[PL_STRAIN_V];
+  cl_mem from = v;
+  TRY(arg(k, s->pl_conn, sizeof p, &p));
+  for (int it = 0; it < s->o.strain_iterations; it++) {
+    const cl_mem to = from == v ? s->pl_s[0] : v;
+    TRY(arg(k, s->pl_conn + 1, sizeof from, &from));
+    TRY(arg(k, s->pl_conn + 2, sizeof to, &to));
+    TRY(launch(s, PL_STRAIN_V));
+    from = to;
+  }
+  if (from != v)
+    MSOCL__CL(clEnqueueCopyBuffer(s->dev->queue, from, v, 0, 0,
+                                  3 * (size_t)s->pl_plane * sizeof(float), 0,
+                                  NULL, NULL));
+  return MSOCL_OK;
+}
+
 static int integrator_step(msocl__engine *s, int r, int w);
 
 /* One step from plane set r to set w, Provot's correction after it
@@ -339,6 +369,8 @@ static int integrator_step(msocl__engine *s, int r, int w)
   const cl_mem vel[3] = {p[r], v[r], v[w]};
   TRY(gather_args(s, PL_VELOCITY, 3, vel));
   TRY(launch(s, PL_VELOCITY));
+  if (s->o.strain == MSOCL_STRAIN_VELOCITY)
+    TRY(strain_velocity(s, p[r], v[w]));
   cl_kernel kp = s->pl_k[PL_POSITION];
   TRY(arg(kp, 0, sizeof p[r], &p[r]));
   TRY(arg(kp, 1, sizeof v[w], &v[w]));

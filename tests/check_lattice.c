@@ -142,7 +142,7 @@ static const struct {
     {MSOCL_EXPLICIT_EULER, MSOCL_STRAIN_NONE, 0, 0, "explicit Euler"},
     {MSOCL_IMPLICIT_EULER, MSOCL_STRAIN_NONE, 0, 0, "implicit Euler"},
     {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT, 0, 1, "Provot strain"},
-    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_VELOCITY, 0, 0, "velocity strain"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_VELOCITY, 0, 1, "velocity strain"},
 };
 
 /* Each lattice, every method: GRID in float4 and (where it applies) in
