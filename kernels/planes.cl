@@ -1,7 +1,8 @@
 /* GRID in planes (options.planes): symplectic Euler's two passes (or
- * fused), velocity Verlet's and RK4's stages, over a cloth grid whose
- * state is held as separate x, y, z planes of floats, each row padded by
- * two points on every side. Needs common.cl before it.
+ * fused), velocity Verlet's and RK4's stages and both strain limits'
+ * sweeps, over a cloth grid or lattice whose state is held as separate
+ * x, y, z planes of floats, each row padded by two points on every side.
+ * Needs common.cl before it.
  *
  * Why: PoCL's CPU device vectorises across work-items only when a kernel's
  * per-work-item code is all scalar (its loop vectorizer takes no vector-
@@ -13,10 +14,12 @@
  * work-items read it with one vector load, not a gather.
  *
  * Same arithmetic as msocl_force, msocl_kick, msocl_collide, the position
- * pass, Verlet's drift and kick and RK4's stage, slot by slot in the same
- * order, so the result is bitwise theirs (tests/check_planes.c). The state
- * between calls stays in the engine's float4 buffers: msocl_planes_pack
- * copies it in, and msocl_planes_unpack back out.
+ * pass, Verlet's drift and kick, RK4's stage and the strain sweeps, slot
+ * by slot in the same order, so the result is bitwise theirs
+ * (tests/check_planes.c). The state stays in the planes between calls
+ * (lib/planes.c): msocl_planes_pack copies it in after the engine's
+ * float4 buffers were written, msocl_planes_unpack back before they are
+ * read.
  *
  * Point (x, y) sits at (y + 2) * pitch + x + 2 of each plane; p holds the
  * x, y, z planes `plane` floats apart (v likewise); aux holds the inverse
