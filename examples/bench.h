@@ -43,6 +43,7 @@ struct bench_opts {
                                      and with values forced (table1) */
   int planes;                     /* --planes: also GRID in planes and in
                                      float4 forced (table1) */
+  int sweeps[BENCH_MAX_LIST], nsweeps; /* --sweeps (strain) */
   const char *csv;                /* --csv */
 };
 
@@ -58,6 +59,8 @@ struct bench_row {
   double bytes_per_vertex_step, effective_gbps, copy_gbps, fraction;
   double error;
   const char *status;
+  const char *strain; /* the strain limit (strain mode; "" elsewhere) */
+  int sweeps;         /* its sweeps a step (0: none) */
 };
 
 extern const char *const bench_integrator_names[5];
@@ -86,6 +89,7 @@ int bench_fail(const char *what, int rc);
 int bench_table1(const struct bench_opts *o, FILE *csv);
 int bench_precision(const struct bench_opts *o, FILE *csv);
 int bench_lattice(const struct bench_opts *o, FILE *csv);
+int bench_strain(const struct bench_opts *o, FILE *csv);
 
 /* Device-to-device copy bandwidth (bytes read + written per second / 1e9)
  * of the device `info` names, through clEnqueueCopyBuffer on a context of

@@ -25,7 +25,7 @@ const char *const bench_integrator_names[5] = {"symplectic", "explicit",
 static int usage(FILE *f, int code)
 {
   fprintf(f,
-"usage: msocl-bench [table1|precision|lattice] [options]\n"
+"usage: msocl-bench [table1|precision|lattice|strain] [options]\n"
 "  table1     the paper's Table 1: tablecloth on a round table, serial C\n"
 "             (Algorithm 1) against libmsocl per layout, with a roofline\n"
 "             column from the device's measured copy bandwidth (default)\n"
@@ -35,6 +35,10 @@ static int usage(FILE *f, int code)
 "  lattice    the jello cube, n^3 points: BUFFER, GRID in float4 and GRID\n"
 "             in planes side by side, each against BUFFER's speed and\n"
 "             final positions (-g default 16,32,64; -i default symplectic)\n"
+"  strain     strain limiting's cost against its result: a soft tablecloth\n"
+"             draped for -T s (default 2) unlimited and with each limit at\n"
+"             each sweep count; error = largest strain at the end (-g\n"
+"             default 32,64; -i default symplectic)\n"
 "options:\n"
 "  -d SPEC        device spec (MSOCL_DEVICE grammar; 'all' = every device)\n"
 "  -g LIST        grid sizes, e.g. 48,64,96 (table1: default 48,64,96,128,\n"
@@ -56,6 +60,7 @@ static int usage(FILE *f, int code)
 "                 symplectic stable step (precision, default 16)\n"
 "  --levels N     dt values, halving from there (precision, default 11)\n"
 "  --copy-mib N   copy-bandwidth buffer size in MiB (default 256)\n"
+"  --sweeps LIST  strain: sweeps a step to try (default 1,2,3,5,10,20)\n"
 "  --fused        table1: also each gather layout with symplectic Euler's\n"
 "                 two passes as one kernel (layout name +fused)\n"
 "  --values       table1: also BUFFER with a spring-class byte in every\n"
@@ -80,7 +85,7 @@ static int parse_int(const char *s, int lo, int *out)
 }
 
 /* Comma-separated words, each the index of a name in names (n); or, with
- * names NULL, grid sizes >= 3. */
+ * names NULL, integers >= n (grid sizes, sweeps). */
 static int parse_list(const char *s, const char *const *names, int n,
                       int *out, int max, int *count)
 {
@@ -99,7 +104,7 @@ static int parse_list(const char *s, const char *const *names, int n,
           v = i;
       if (v < 0)
         return -1;
-    } else if (parse_int(word, 3, &v)) {
+    } else if (parse_int(word, n, &v)) {
       return -1;
     }
     out[(*count)++] = v;
@@ -136,6 +141,8 @@ int main(int argc, char **argv)
       mode = 1, takes = 0;
     } else if (!strcmp(w, "lattice") && a == 1) {
       mode = 2, takes = 0;
+    } else if (!strcmp(w, "strain") && a == 1) {
+      mode = 3, takes = 0;
     } else if (!strcmp(w, "--fused")) {
       o.fused = 1, takes = 0;
     } else if (!strcmp(w, "--values")) {
@@ -151,7 +158,11 @@ int main(int argc, char **argv)
     } else if (!strcmp(w, "--csv")) {
       o.csv = v;
     } else if (!strcmp(w, "-g")) {
-      bad = parse_list(v, NULL, 0, o.grids, BENCH_MAX_LIST, &o.ngrids);
+      bad = parse_list(v, NULL, 3, o.grids, BENCH_MAX_LIST, &o.ngrids);
+    } else if (!strcmp(w, "--sweeps")) {
+      bad = parse_list(v, NULL, 1, o.sweeps, BENCH_MAX_LIST, &o.nsweeps);
+      for (int i = 0; i < o.nsweeps; i++)
+        bad |= o.sweeps[i] > 1000; /* the library's bound */
     } else if (!strcmp(w, "-s")) {
       bad = parse_int(v, 1, &o.steps), have_s = 1;
     } else if (!strcmp(w, "--big-steps")) {
@@ -216,11 +227,17 @@ int main(int argc, char **argv)
   if (o.ngrids == 0) {
     static const int t1[] = {48, 64, 96, 128, 256, 512, 1024, 2048};
     static const int t1q[] = {16, 24}, lat[] = {16, 32, 64}, latq[] = {6};
+    static const int str[] = {32, 64}, strq[] = {8};
     const int *g = mode == 1   ? NULL
                    : mode == 2 ? (o.quick ? latq : lat)
+                   : mode == 3 ? (o.quick ? strq : str)
                    : o.quick   ? t1q
                                : t1;
-    o.ngrids = mode == 1 ? 1 : mode == 2 ? (o.quick ? 1 : 3) : o.quick ? 2 : 8;
+    o.ngrids = mode == 1   ? 1
+               : mode == 2 ? (o.quick ? 1 : 3)
+               : mode == 3 ? (o.quick ? 1 : 2)
+               : o.quick   ? 2
+                           : 8;
     for (int i = 0; i < o.ngrids; i++)
       o.grids[i] = g ? g[i] : o.quick ? 8 : 16;
   }
@@ -238,6 +255,14 @@ int main(int argc, char **argv)
   }
   if (mode == 2 && !have_s)
     o.steps = o.quick ? 5 : 200;
+  if (mode == 3 && !have_t)
+    o.sim_time = o.quick ? 0.02 : 2.0;
+  if (o.nsweeps == 0) {
+    static const int sw[] = {1, 2, 3, 5, 10, 20};
+    o.nsweeps = o.quick ? 2 : 6;
+    for (int i = 0; i < o.nsweeps; i++)
+      o.sweeps[i] = o.quick ? 1 + 2 * i : sw[i];
+  }
   if (o.big_steps < 0)
     o.big_steps = o.steps;
 
@@ -250,7 +275,8 @@ int main(int argc, char **argv)
     bench_csv_header(csv);
   int rc = mode == 0   ? bench_table1(&o, csv)
            : mode == 1 ? bench_precision(&o, csv)
-                       : bench_lattice(&o, csv);
+           : mode == 2 ? bench_lattice(&o, csv)
+                       : bench_strain(&o, csv);
   if (csv && fclose(csv) != 0) {
     perror(o.csv);
     rc = 1;
@@ -297,7 +323,7 @@ int bench_fail(const char *what, int rc)
 void bench_row_init(struct bench_row *r)
 {
   memset(r, 0, sizeof *r);
-  r->layout = r->integrator = r->math = r->status = "";
+  r->layout = r->integrator = r->math = r->status = r->strain = "";
   r->dt = r->seconds = r->steps_per_s = r->vertex_steps_per_s = NAN;
   r->bytes_per_vertex_step = r->effective_gbps = r->copy_gbps = NAN;
   r->fraction = r->error = NAN;
@@ -330,7 +356,7 @@ void bench_csv_header(FILE *f)
 {
   fputs("device,layout,integrator,math,grid,dt,steps,seconds,steps_per_s,"
         "vertex_steps_per_s,bytes_per_vertex_step,effective_GBps,copy_GBps,"
-        "fraction_of_copy,error,status\n",
+        "fraction_of_copy,error,status,strain,sweeps\n",
         f);
 }
 
@@ -360,6 +386,9 @@ void bench_csv_row(FILE *f, const struct bench_row *r)
   num(f, ",%.6g", r->copy_gbps);
   num(f, ",%.4g", r->fraction);
   num(f, ",%.6g", r->error);
-  fprintf(f, ",%s\n", r->status);
+  fprintf(f, ",%s,%s,", r->status, r->strain);
+  if (r->sweeps > 0)
+    fprintf(f, "%d", r->sweeps);
+  fputc('\n', f);
   fflush(f);
 }

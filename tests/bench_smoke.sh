@@ -1,11 +1,11 @@
 #!/bin/sh
-# Smoke test of msocl-bench: a tiny table1 and precision run must exit 0 and
+# Smoke test of msocl-bench: tiny runs of each mode must exit 0 and
 # write CSVs with the documented header. Asserts nothing about speed.
 # Skips (77) when there is no OpenCL device.
 ./examples/msocl-devices >/dev/null 2>&1 || { echo "no OpenCL device: SKIP"; exit 77; }
 tmp=$(mktemp -d) || exit 99
 trap 'rm -rf "$tmp"' EXIT
-header='device,layout,integrator,math,grid,dt,steps,seconds,steps_per_s,vertex_steps_per_s,bytes_per_vertex_step,effective_GBps,copy_GBps,fraction_of_copy,error,status'
+header='device,layout,integrator,math,grid,dt,steps,seconds,steps_per_s,vertex_steps_per_s,bytes_per_vertex_step,effective_GBps,copy_GBps,fraction_of_copy,error,status,strain,sweeps'
 fail() { echo "FAIL: $*"; exit 1; }
 
 ./examples/msocl-bench table1 --quick -g 8 -s 5 --csv "$tmp/t1.csv" ||
@@ -14,14 +14,14 @@ fail() { echo "FAIL: $*"; exit 1; }
 # serial C + buffer + image2d on each device, all "ok"
 rows=$(tail -n +2 "$tmp/t1.csv" | wc -l)
 [ "$rows" -ge 3 ] || fail "table1 CSV has $rows rows"
-if tail -n +2 "$tmp/t1.csv" | grep -v ',ok$'; then fail "table1 run not ok"; fi
+if tail -n +2 "$tmp/t1.csv" | grep -v ',ok,,$'; then fail "table1 run not ok"; fi
 
 # --fused adds a one-kernel row for each gather layout, bitwise the same
 # final positions as serial C (error column 0)
 ./examples/msocl-bench table1 --quick -g 8 -s 5 -l buffer,grid --fused \
   --csv "$tmp/f.csv" >/dev/null || fail "table1 --fused exited $?"
 for l in buffer+fused grid+fused; do
-  grep -q ",$l,symplectic,precise,8,.*,0,ok\$" "$tmp/f.csv" ||
+  grep -q ",$l,symplectic,precise,8,.*,0,ok,,\$" "$tmp/f.csv" ||
     fail "no $l row with error 0"
 done
 
@@ -31,15 +31,28 @@ done
 # the reference row plus 2 integrators x 2 dt values
 rows=$(tail -n +2 "$tmp/p.csv" | wc -l)
 [ "$rows" -ge 5 ] || fail "precision CSV has $rows rows"
-grep -q ',reference$' "$tmp/p.csv" || fail "no reference row"
+grep -q ',reference,,$' "$tmp/p.csv" || fail "no reference row"
 # lattice: BUFFER, GRID in float4 and in planes, the GRIDs bitwise BUFFER
 # (error column 0)
 ./examples/msocl-bench lattice --quick --csv "$tmp/l.csv" >/dev/null ||
   fail "lattice exited $?"
 [ "$(head -n 1 "$tmp/l.csv")" = "$header" ] || fail "lattice CSV header"
-grep -q ",buffer,symplectic,precise,6,.*,ok\$" "$tmp/l.csv" || fail "no buffer row"
+grep -q ",buffer,symplectic,precise,6,.*,ok,,\$" "$tmp/l.csv" || fail "no buffer row"
 for l in grid-float4 grid-planes; do
-  grep -q ",$l,symplectic,precise,6,.*,0,ok\$" "$tmp/l.csv" ||
+  grep -q ",$l,symplectic,precise,6,.*,0,ok,,\$" "$tmp/l.csv" ||
     fail "no $l row with error 0"
+done
+# strain: unlimited plus each limit at each sweep count; every run ok with
+# a strain in the error column and the limit in the last two
+./examples/msocl-bench strain --quick --csv "$tmp/s.csv" >/dev/null ||
+  fail "strain exited $?"
+[ "$(head -n 1 "$tmp/s.csv")" = "$header" ] || fail "strain CSV header"
+grep -q ",symplectic,precise,8,.*,[0-9.e-]*,ok,none,\$" "$tmp/s.csv" ||
+  fail "no unlimited row"
+for k in provot velocity; do
+  for w in 1 3; do
+    grep -q ",symplectic,precise,8,.*,[0-9.e-]*,ok,$k,$w\$" "$tmp/s.csv" ||
+      fail "no $k row with $w sweeps"
+  done
 done
 echo "PASS"
