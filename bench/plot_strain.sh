@@ -55,7 +55,7 @@ END {
   print "set logscale y" > g
   ylo = 10 ^ (int(log(ymin) / log(10) + 1000) - 1000)
   yhi = 10 ^ (int(log(ymax) / log(10) + 1000.999) - 1000)
-  printf "set xrange [0:%g]; set yrange [%g:%g]\n", (int(xmax / 5) + 1) * 5, ylo, yhi > g
+  printf "set xrange [0:%g]; set yrange [%g:%g]\n", (int(xmax / 5) + 2) * 5, ylo, yhi > g
   print "set xlabel \"largest strain at the end, % (limit 10%)\"" > g
   print "set ylabel \"wall seconds per simulated second\"" > g
   print "set grid xtics ytics mytics lc rgb \"#dddddd\"" > g
