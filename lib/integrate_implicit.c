@@ -22,7 +22,7 @@ static int launch64(msocl__engine *s, int k)
 /* Adds the engine's partials, group by group, to *sum: split over devices
  * whose ranges start at multiples of 64, the additions come in the same
  * order as on one device, and so do the bits of the sum. */
-static int collect(msocl__engine *s, double *sum)
+int msocl__implicit_collect(msocl__engine *s, double *sum)
 {
   MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->partial, CL_TRUE, 0,
                                 s->groups * sizeof(cl_float4),
@@ -86,7 +86,7 @@ static int reduce_all(msocl__engine *const *e, int parts, int k, double *sum)
   for (int d = 0; d < parts; d++)
     TRY(launch64(e[d], k));
   for (int d = 0; d < parts; d++)
-    TRY(collect(e[d], sum));
+    TRY(msocl__implicit_collect(e[d], sum));
   return MSOCL_OK;
 }
 

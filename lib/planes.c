@@ -6,15 +6,9 @@
  * (reads, energy, normals, the blow-up check's saved state) first calls
  * msocl__planes_current, and whatever writes them msocl__planes_written. */
 #include "config.h"
-#include "sim.h"
+#include "planes.h"
 
 #include <limits.h>
-
-enum {
-  PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_DRIFT, PL_KICK,
-  PL_IN, PL_OUT, PL_RK4, PL_RK4_MID, PL_RK4_LAST, PL_STRAIN, PL_COMMIT,
-  PL_STRAIN_V, PL_COUNT
-};
 
 _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_k /
                                sizeof(cl_kernel),
@@ -26,16 +20,17 @@ static const char *const names[PL_COUNT] = {
     "msocl_planes_vkick",    "msocl_planes_in",       "msocl_planes_out",
     "msocl_planes_rk4_first", "msocl_planes_rk4_middle",
     "msocl_planes_rk4_last", "msocl_planes_strain", "msocl_planes_commit",
-    "msocl_planes_strain_v"};
+    "msocl_planes_strain_v", "msocl_planes_ie_rhs", "msocl_planes_ie_apply",
+    "msocl_planes_cg_step", "msocl_planes_cg_direction",
+    "msocl_planes_ie_finish", "msocl_sum_points"};
 
 /* Why a model's GRID cannot run in planes with options o on points
  * [lo, hi) of its n; NULL: it can. */
 static const char *unfit(const msocl_sim_options *o, const msocl_model *m,
                          int lo, int hi)
 {
-  if (o->integrator != MSOCL_SYMPLECTIC_EULER &&
-      o->integrator != MSOCL_VERLET && o->integrator != MSOCL_RK4)
-    return "runs symplectic Euler, Verlet and RK4 only";
+  if (o->integrator == MSOCL_EXPLICIT_EULER)
+    return "runs symplectic and implicit Euler, Verlet and RK4 only";
   if (lo != 0 || hi != m->n)
     return "runs a whole model on one device (not a split)";
   /* the kernels index all three planes with an int */
@@ -75,17 +70,18 @@ int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
   return MSOCL_OK;
 }
 
-static int arg(cl_kernel k, cl_uint i, size_t size, const void *v)
+int msocl__pl_arg(cl_kernel k, cl_uint i, size_t size, const void *v)
 {
   MSOCL__CL(clSetKernelArg(k, i, size, v));
   return MSOCL_OK;
 }
 
+#define arg msocl__pl_arg
+#define shape msocl__pl_shape
+#define launch msocl__pl_launch
 #define TRY MSOCL__TRY
 
-/* The planes' shape from argument i: (nx if with_nx,) pitch, slab,
- * plane. */
-static int shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx)
+int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx)
 {
   if (with_nx)
     TRY(arg(k, i++, sizeof(int), &s->lay.grid_nx));
@@ -159,6 +155,8 @@ static int fixed_args(msocl__engine *s)
   TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
   TRY(arg(k, c + 8, sizeof(float), &s->o.dt));
   TRY(arg(k, c + 9, sizeof s->col, &s->col));
+  if (s->o.integrator == MSOCL_IMPLICIT_EULER)
+    return msocl__pl_implicit_args(s);
   /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col), and the
    * acceleration in and out (src, dst, shape, n) */
   if (s->o.integrator != MSOCL_VERLET)
@@ -214,7 +212,8 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
                       &s->pl_s[0],  &s->pl_s[1]};
   for (int q = 0; q < 14; q++) {
     if ((q == 5 && s->o.integrator != MSOCL_VERLET) ||
-        (q > 5 && q < 12 && s->o.integrator != MSOCL_RK4) ||
+        (q > 5 && q < 12 && s->o.integrator != MSOCL_RK4 &&
+         s->o.integrator != MSOCL_IMPLICIT_EULER) ||
         (q >= 12 && s->o.strain == MSOCL_STRAIN_NONE) ||
         (q == 13 && s->o.strain != MSOCL_STRAIN_PROVOT))
       continue;
@@ -236,7 +235,7 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
 
 /* A pass over the padded grid; CPU devices in work-groups of a row's
  * pl_group points (integrate.c's reason). */
-static int launch(msocl__engine *s, int k)
+int msocl__pl_launch(msocl__engine *s, int k)
 {
   const size_t local[3] = {s->pl_group, 1, 1};
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
@@ -366,9 +365,13 @@ static int integrator_step(msocl__engine *s, int r, int w)
     TRY(gather_args(s, PL_FUSED, 4, fused));
     return launch(s, PL_FUSED);
   }
-  const cl_mem vel[3] = {p[r], v[r], v[w]};
-  TRY(gather_args(s, PL_VELOCITY, 3, vel));
-  TRY(launch(s, PL_VELOCITY));
+  if (s->o.integrator == MSOCL_IMPLICIT_EULER) {
+    TRY(msocl__pl_implicit_velocity(s, r, w));
+  } else {
+    const cl_mem vel[3] = {p[r], v[r], v[w]};
+    TRY(gather_args(s, PL_VELOCITY, 3, vel));
+    TRY(launch(s, PL_VELOCITY));
+  }
   if (s->o.strain == MSOCL_STRAIN_VELOCITY)
     TRY(strain_velocity(s, p[r], v[w]));
   cl_kernel kp = s->pl_k[PL_POSITION];

@@ -64,7 +64,7 @@ struct msocl__engine {
   cl_mem pl_a;            /* Verlet: the acceleration */
   cl_mem pl_sp[2], pl_sv[2], pl_sum[2]; /* RK4: stage states, sums */
   cl_mem pl_s[2];         /* strain sweeps (velocity: pl_s[0]) */
-  cl_kernel pl_k[15];     /* planes.c's kernels */
+  cl_kernel pl_k[21];     /* planes.c's kernels (planes.h) */
   cl_uint pl_conn;        /* the gathering kernels' connectivity args */
   int pl_pitch, pl_slab, pl_plane; /* floats a row, a layer, a plane */
   size_t pl_global[3];    /* the passes' range: rows padded to a group */
@@ -271,6 +271,9 @@ int msocl__implicit_velocity(msocl__engine *s);
  * halo between products. */
 int msocl__implicit_cg(msocl__engine *const *e, int parts,
                        int (*exchange)(void *ctx), void *ctx);
+/* Adds the engine's reduction partials (s->partial), in group order, to
+ * *sum. */
+int msocl__implicit_collect(msocl__engine *s, double *sum);
 /* Strain limiting (strain.c): fixed arguments; the velocity correction on
  * vel[1 - r]; Provot's position correction on pos[1 - r], taken up by the
  * velocities vel. */

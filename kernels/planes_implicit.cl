@@ -1,0 +1,213 @@
+/* Implicit Euler in planes: kernels/implicit.cl's system and conjugate
+ * gradients over x, y, z planes, point by point the same arithmetic. The
+ * dot products are where the two could part: a planes work-group is a
+ * row's stretch, not 64 consecutive points. So each kernel writes its
+ * point's term to dots[i] (i its float4 index) and msocl_sum_points adds
+ * them in work-groups of 64 in index order, as msocl_group_sum does in
+ * float4: the partials, the host's sums, every alpha and beta and so the
+ * whole step are bitwise float4's. Needs implicit.cl and planes.cl before
+ * it. */
+
+/* dots[i] in groups of 64 into partial[group].x (any device). */
+__kernel __attribute__((reqd_work_group_size(MSOCL_CG_GROUP, 1, 1)))
+void msocl_sum_points(__global const float *dots, __global float4 *partial,
+                      int n)
+{
+  __local float part[MSOCL_CG_GROUP];
+  const int i = get_global_id(0);
+  msocl_group_sum(i < n ? dots[i] : 0.0f, part, partial);
+}
+
+#if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID)
+
+/* The point's float4 index, (z ny + y) nx + x. */
+#define MSOCL_PLANES_INDEX(nx) ((z * (int)get_global_size(1) + y) * (nx) + x)
+
+/* msocl_jacobian in scalars, added to *j.. where `on`: J e for the spring
+ * from the point to a neighbour d = (dx, dy, dz) away. */
+static void msocl_planes_jacobian(float dx, float dy, float dz, float rest,
+                                  float k, float ex, float ey, float ez,
+                                  bool on, float *jx, float *jy, float *jz)
+{
+  const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+  const float ux = dx / len, uy = dy / len, uz = dz / len;
+  const float t = fmax(0.0f, 1.0f - MSOCL_DIV(rest, len));
+  const float s = MSOCL_DOT3(ux, uy, uz, ex, ey, ez);
+  const float ax = s * ux, ay = s * uy, az = s * uz;
+  const bool live = on && len > 0.0f;
+  *jx += live ? k * (ax + t * (ex - ax)) : 0.0f;
+  *jy += live ? k * (ay + t * (ey - ay)) : 0.0f;
+  *jz += live ? k * (az + t * (ez - az)) : 0.0f;
+}
+
+/* As msocl_ie_rhs: b = dt (f + dt K v); x = 0, r = d = b; dots: b.b */
+__kernel void msocl_planes_ie_rhs(MSOCL_CONN, __global const float *p,
+                                  __global const float *v,
+                                  __global float *x_out,
+                                  __global float *r_out,
+                                  __global float *d_out,
+                                  __global float *dots,
+                                  __global const float *aux, int pitch,
+                                  int slab, int plane, float4 gravity,
+                                  float viscous, float dt)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  __global const float *py_ = p + plane, *pz_ = py_ + plane;
+  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
+  float fx, fy, fz;
+  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
+                     y, z, a, &fx, &fy, &fz);
+  float kx = 0.0f, ky = 0.0f, kz = 0.0f;
+#pragma unroll
+  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
+    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+      continue;
+    int b;
+    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
+                                         pitch, slab, &b);
+    msocl_planes_jacobian(p[b] - p[a], py_[b] - py_[a], pz_[b] - pz_[a],
+                          MSOCL_GRID_R(s), MSOCL_GRID_K(s), v[b] - v[a],
+                          vy_[b] - vy_[a], vz_[b] - vz_[a], there, &kx, &ky,
+                          &kz);
+  }
+  const float m = 1.0f / aux[a];
+  const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  const float bx = pinned ? 0.0f : dt * (fx + m * gravity.x + dt * kx);
+  const float by = pinned ? 0.0f : dt * (fy + m * gravity.y + dt * ky);
+  const float bz = pinned ? 0.0f : dt * (fz + m * gravity.z + dt * kz);
+  if (x < grid_nx) {
+    x_out[a] = x_out[plane + a] = x_out[2 * plane + a] = 0.0f;
+    r_out[a] = d_out[a] = bx;
+    r_out[plane + a] = d_out[plane + a] = by;
+    r_out[2 * plane + a] = d_out[2 * plane + a] = bz;
+    dots[MSOCL_PLANES_INDEX(grid_nx)] = MSOCL_DOT3(bx, by, bz, bx, by, bz);
+  }
+}
+
+/* As msocl_ie_apply: ap = A d; dots: d.Ad */
+__kernel void msocl_planes_ie_apply(MSOCL_CONN, __global const float *p,
+                                    __global const float *d,
+                                    __global float *ap,
+                                    __global float *dots,
+                                    __global const float *aux, int pitch,
+                                    int slab, int plane, float viscous,
+                                    float dt)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  __global const float *py_ = p + plane, *pz_ = py_ + plane;
+  __global const float *dy_ = d + plane, *dz_ = dy_ + plane;
+  const float px = p[a], py = py_[a], pz = pz_[a];
+  const float ix = d[a], iy = dy_[a], iz = dz_[a];
+  float kx = 0.0f, ky = 0.0f, kz = 0.0f, cx = 0.0f, cy = 0.0f, cz = 0.0f;
+#pragma unroll
+  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
+    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+      continue;
+    int b;
+    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
+                                         pitch, slab, &b);
+    const float qx = p[b] - px, qy = py_[b] - py, qz = pz_[b] - pz;
+    const float ex = d[b] - ix, ey = dy_[b] - iy, ez = dz_[b] - iz;
+    msocl_planes_jacobian(qx, qy, qz, MSOCL_GRID_R(s), MSOCL_GRID_K(s), ex,
+                          ey, ez, there, &kx, &ky, &kz);
+#ifdef MSOCL_DAMPING
+    /* msocl_damp_jacobian */
+    const float len2 = MSOCL_DOT3(qx, qy, qz, qx, qy, qz);
+    const float u =
+        MSOCL_GRID_C * MSOCL_DIV(MSOCL_DOT3(qx, qy, qz, ex, ey, ez), len2);
+    const bool live = there && len2 > 0.0f;
+    cx += live ? u * qx : 0.0f;
+    cy += live ? u * qy : 0.0f;
+    cz += live ? u * qz : 0.0f;
+#endif
+  }
+  const float m = 1.0f / aux[a];
+#ifdef MSOCL_VISCOUS
+  const float mv = m + dt * viscous;
+#else
+  const float mv = m;
+#endif
+  (void)viscous;
+  (void)cx; (void)cy; (void)cz; /* the dashpots' */
+  const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
+  const float yx = pinned ? ix : mv * ix - dt * cx - (dt * dt) * kx;
+  const float yy = pinned ? iy : mv * iy - dt * cy - (dt * dt) * ky;
+  const float yz = pinned ? iz : mv * iz - dt * cz - (dt * dt) * kz;
+  if (x < grid_nx) {
+    ap[a] = yx;
+    ap[plane + a] = yy;
+    ap[2 * plane + a] = yz;
+    dots[MSOCL_PLANES_INDEX(grid_nx)] = MSOCL_DOT3(ix, iy, iz, yx, yy, yz);
+  }
+}
+
+/* As msocl_cg_step: x += alpha d; r -= alpha ap; dots: r.r */
+__kernel void msocl_planes_cg_step(__global float *xs, __global float *r,
+                                   __global const float *d,
+                                   __global const float *ap,
+                                   __global float *dots, int nx, int pitch,
+                                   int slab, int plane, float alpha)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab;
+  if (x >= nx)
+    return;
+  const int ay = plane + a, az = 2 * plane + a;
+  xs[a] = xs[a] + alpha * d[a];
+  xs[ay] = xs[ay] + alpha * d[ay];
+  xs[az] = xs[az] + alpha * d[az];
+  const float rx = r[a] - alpha * ap[a], ry = r[ay] - alpha * ap[ay],
+              rz = r[az] - alpha * ap[az];
+  r[a] = rx;
+  r[ay] = ry;
+  r[az] = rz;
+  dots[MSOCL_PLANES_INDEX(nx)] = MSOCL_DOT3(rx, ry, rz, rx, ry, rz);
+}
+
+/* As msocl_cg_direction: d = r + beta d */
+__kernel void msocl_planes_cg_direction(__global float *d,
+                                        __global const float *r, int nx,
+                                        int pitch, int slab, int plane,
+                                        float beta)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab;
+  if (x >= nx)
+    return;
+  const int ay = plane + a, az = 2 * plane + a;
+  d[a] = r[a] + beta * d[a];
+  d[ay] = r[ay] + beta * d[ay];
+  d[az] = r[az] + beta * d[az];
+}
+
+/* As msocl_ie_finish: v' = v + dv (times air), the collision response on
+ * it; pinned points 0. */
+__kernel void msocl_planes_ie_finish(__global const float *p,
+                                     __global const float *v,
+                                     __global const float *dv,
+                                     __global float *v_out,
+                                     __global const float *aux, int nx,
+                                     int pitch, int slab, int plane,
+                                     float air, float dt,
+                                     __constant float4 *col)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab;
+  const int ay = plane + a, az = 2 * plane + a;
+  float vx = v[a] + dv[a], vy = v[ay] + dv[ay], vz = v[az] + dv[az];
+  msocl_planes_air(air, &vx, &vy, &vz);
+  msocl_planes_collide(p[a], p[ay], p[az], &vx, &vy, &vz, dt, col, 1.0f);
+  const bool pinned = MSOCL_PLANES_PINNED(aux[ay]);
+  if (x < nx) {
+    v_out[a] = pinned ? 0.0f : vx;
+    v_out[ay] = pinned ? 0.0f : vy;
+    v_out[az] = pinned ? 0.0f : vz;
+  }
+}
+
+#endif

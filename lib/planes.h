@@ -1,0 +1,26 @@
+/* What planes.c shares with planes_implicit.c: the planes kernels' slots
+ * in msocl__engine.pl_k, and launching and arguing them. */
+#ifndef MSOCL_PLANES_H
+#define MSOCL_PLANES_H
+
+#include "sim.h"
+
+enum {
+  PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_DRIFT, PL_KICK,
+  PL_IN, PL_OUT, PL_RK4, PL_RK4_MID, PL_RK4_LAST, PL_STRAIN, PL_COMMIT,
+  PL_STRAIN_V, PL_IE_RHS, PL_IE_APPLY, PL_CG_STEP, PL_CG_DIR, PL_IE_FINISH,
+  PL_SUM, PL_COUNT
+};
+
+int msocl__pl_arg(cl_kernel k, cl_uint i, size_t size, const void *v);
+/* The planes' shape from argument i: (nx if with_nx,) pitch, slab, plane. */
+int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx);
+/* Kernel k over the padded grid. */
+int msocl__pl_launch(msocl__engine *s, int k);
+
+/* planes_implicit.c: its kernels' fixed arguments, and implicit Euler's
+ * new velocities from plane set r into v[w]. */
+int msocl__pl_implicit_args(msocl__engine *s);
+int msocl__pl_implicit_velocity(msocl__engine *s, int r, int w);
+
+#endif
