@@ -1,6 +1,6 @@
 /* GRID in planes (options.planes, kernels/planes.cl): a cloth grid's or
- * a lattice's symplectic Euler, Verlet and RK4 steps over x, y, z planes
- * of padded rows, which PoCL's CPU device runs eight points to an
+ * a lattice's symplectic Euler, Verlet and RK4 steps (implicit Euler's:
+ * planes_implicit.c) over x, y, z planes of padded rows, which PoCL's CPU device runs eight points to an
  * instruction. The state is copied into the planes at the first step and
  * stays there between calls; whatever reads the engine's float4 buffers
  * (reads, energy, normals, the blow-up check's saved state) first calls
