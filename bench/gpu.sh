@@ -23,17 +23,22 @@
 #              split over both with calibrated weights, boundary first
 #              and with -O (kernels then copies)  (about 3 min)
 #   lattice    the jello cube at 32^3..128^3: BUFFER, GRID in float4 and
-#              GRID in planes (forced) with symplectic Euler, Verlet and
-#              RK4, each against BUFFER's speed and final positions (the
-#              error column: 0 where bitwise)          (under a minute)
+#              GRID in planes (forced) with symplectic Euler, Verlet, RK4
+#              and implicit Euler, each against BUFFER's speed and final
+#              positions (the error column: 0 where bitwise)  (minutes)
+#   strain     strain limiting's cost against its result on the GPU: the
+#              soft tablecloth at 64^2 and 256^2 draped for 1 s,
+#              unlimited and each limit at 1..20 sweeps, symplectic
+#              Euler, Verlet, RK4 and implicit Euler       (a few minutes)
 # Each stage writes STAGE.txt (and .csv) under OUTDIR with the command at
 # the top. Back on the build machine: bench/plot.sh OUTDIR/precision.csv
-# OUTDIR/precision.png, then commit OUTDIR as bench/results/<gpu>/.
+# OUTDIR/precision.png and bench/plot_strain.sh OUTDIR/strain.csv
+# OUTDIR/strain.png, then commit OUTDIR as bench/results/<gpu>/.
 set -eu
 [ $# -ge 1 ] || { awk 'NR > 1 && !/^#/ { exit } NR > 1' "$0"; exit 2; }
 out=$1
 shift
-stages=${*:-devices verify table1 precision split lattice}
+stages=${*:-devices verify table1 precision split lattice strain}
 mkdir -p "$out"
 bench=./examples/msocl-bench
 [ -x "$bench" ] || { echo "$0: build first ($bench missing)" >&2; exit 1; }
@@ -132,7 +137,12 @@ for stage in $stages; do
     ;;
   lattice)
     record lattice env MSOCL_DEVICE=gpu $bench lattice -g 32,64,128 \
-      -i symplectic,verlet,rk4 -s 200 --repeat 3 --csv "$out/lattice.csv"
+      -i symplectic,verlet,rk4,implicit -s 200 --repeat 3 \
+      --csv "$out/lattice.csv"
+    ;;
+  strain)
+    record strain env MSOCL_DEVICE=gpu $bench strain -g 64,256 -T 1 \
+      -i symplectic,verlet,rk4,implicit --csv "$out/strain.csv"
     ;;
   *)
     echo "$0: unknown stage '$stage'" >&2
