@@ -61,18 +61,21 @@ int msocl__strain_velocity(msocl__engine *s)
 }
 
 /* On the new positions pos[1 - r], after the step (Verlet: after its
- * drift): the sweeps run on a copy, then the commit moves points and the
+ * drift): the sweeps read them and alternate between the stage buffers,
+ * leaving them as they were, then the commit moves points and the
  * velocities vel (vel[1 - r]; Verlet's half-step vel[r]) together. */
 int msocl__strain_position(msocl__engine *s, cl_mem vel)
 {
   const int w = 1 - s->r;
-  cl_mem result;
-  MSOCL__CL(clEnqueueCopyBuffer(s->dev->queue, s->pos[w], s->stage_p[1], 0,
-                                0, 4 * (size_t)s->n * sizeof(float), 0, NULL,
-                                NULL));
-  TRY(sweeps(s, MSOCL__K_STRAIN_POS, 0, 1, s->stage_p[1], s->stage_p[0],
-             &result));
-  cl_kernel k = s->k[MSOCL__K_STRAIN_COMMIT];
+  cl_kernel k = s->k[MSOCL__K_STRAIN_POS];
+  cl_mem result = s->pos[w];
+  for (int it = 0; it < s->o.strain_iterations; it++) {
+    TRY(msocl__arg_mem(k, s->nconn, result));
+    TRY(msocl__arg_mem(k, s->nconn + 1, s->stage_p[it & 1]));
+    TRY(msocl__launch(s, MSOCL__K_STRAIN_POS));
+    result = s->stage_p[it & 1];
+  }
+  k = s->k[MSOCL__K_STRAIN_COMMIT];
   TRY(msocl__arg_mem(k, 0, s->pos[w]));
   TRY(msocl__arg_mem(k, 1, result));
   TRY(msocl__arg_mem(k, 2, vel));
