@@ -131,10 +131,8 @@ int bench_lattice(const struct bench_opts *o, FILE *csv)
     }
     for (int q = 0; !failed && q < o->nintegrators; q++) {
       const int in = o->integrators[q];
-      /* planes run every integrator but explicit Euler */
-      const int engines = in != MSOCL_EXPLICIT_EULER ? ENGINES : 2;
       double ref_ips = 0.0;
-      for (int e = 0; e < engines; e++) {
+      for (int e = 0; e < ENGINES; e++) {
         /* BUFFER first: the others are compared with its rate and result */
         double ips = run(o, rt, csv, m, n, in, e, ref_ips > 0 ? ref : NULL,
                          e ? pos : ref, ref_ips);

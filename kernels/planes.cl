@@ -403,6 +403,39 @@ static void msocl_planes_project(float *px, float *py, float *pz, float *vx,
   (void)cf;
 }
 
+/* Forward Euler in planes, as msocl_euler: p' = p + dt v, v' = v + dt
+ * a(p, v), times air, projected out of the colliders; pinned points
+ * stay. */
+__kernel void msocl_planes_euler(MSOCL_CONN, __global const float *p,
+                                 __global const float *v,
+                                 __global float *v_out, __global float *p_out,
+                                 MSOCL_PLANES_ARGS)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  float fx, fy, fz;
+  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
+                     y, z, a, &fx, &fy, &fz);
+  const float im = aux[a];
+  const int ay = plane + a, az = 2 * plane + a;
+  float px = p[a] + dt * v[a], py = p[ay] + dt * v[ay],
+        pz = p[az] + dt * v[az];
+  float vx = v[a] + dt * (fx * im + gravity.x),
+        vy = v[ay] + dt * (fy * im + gravity.y),
+        vz = v[az] + dt * (fz * im + gravity.z);
+  msocl_planes_air(air, &vx, &vy, &vz);
+  msocl_planes_project(&px, &py, &pz, &vx, &vy, &vz, col);
+  const bool pinned = MSOCL_PLANES_PINNED(aux[ay]);
+  if (x < grid_nx) {
+    p_out[a] = pinned ? p[a] : px;
+    p_out[ay] = pinned ? p[ay] : py;
+    p_out[az] = pinned ? p[az] : pz;
+    v_out[a] = pinned ? 0.0f : vx;
+    v_out[ay] = pinned ? 0.0f : vy;
+    v_out[az] = pinned ? 0.0f : vz;
+  }
+}
+
 /* One RK4 stage in planes, as msocl_rk4_stage; mode a constant in each of
  * the three kernels below, so its branches fold away. */
 static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,

@@ -335,8 +335,7 @@ typedef struct {
    * (docs/PERFORMANCE.md: 17% at 512x512 on PoCL, 3-14% slower at
    * 96x96-128x128, whose table stays in cache). */
   int classes;
-  /* GRID in planes: every integrator but explicit Euler on a cloth grid or
-   * lattice with the state held as separate x, y, z planes of rows padded
+  /* GRID in planes: every integrator on a cloth grid or lattice with the state held as separate x, y, z planes of rows padded
    * at the edges, which a CPU device runs many points to an instruction
    * (docs/PERFORMANCE.md). Bitwise the same result; 56 bytes a point more
    * device memory for a cloth (two copies of x, y, z of position and
@@ -344,8 +343,8 @@ typedef struct {
    * stages and sums 72 more, implicit Euler's CG vectors 48 more). The
    * state stays in the planes between calls; a read copies it back, a
    * write has it copied in again at the next step. 1: whenever it
-   * applies (GRID, symplectic Euler - fused too - implicit Euler, Verlet
-   * or RK4, either strain limit or none, one device); 0: never; -1
+   * applies (GRID, any integrator, either strain limit or none, one
+   * device); 0: never; -1
    * (default): where it applies on a CPU device. */
   int planes;
 } msocl_sim_options;

@@ -1,6 +1,6 @@
 /* GRID in planes (options.planes, kernels/planes.cl): a cloth grid's or
- * a lattice's symplectic Euler, Verlet and RK4 steps (implicit Euler's:
- * planes_implicit.c) over x, y, z planes of padded rows, which PoCL's CPU device runs eight points to an
+ * a lattice's steps, every integrator's (implicit Euler's CG:
+ * planes_implicit.c), over x, y, z planes of padded rows, which PoCL's CPU device runs eight points to an
  * instruction. The state is copied into the planes at the first step and
  * stays there between calls; whatever reads the engine's float4 buffers
  * (reads, energy, normals, the blow-up check's saved state) first calls
@@ -22,15 +22,12 @@ static const char *const names[PL_COUNT] = {
     "msocl_planes_rk4_last", "msocl_planes_strain", "msocl_planes_commit",
     "msocl_planes_strain_v", "msocl_planes_ie_rhs", "msocl_planes_ie_apply",
     "msocl_planes_cg_step", "msocl_planes_cg_direction",
-    "msocl_planes_ie_finish", "msocl_sum_points"};
+    "msocl_planes_ie_finish", "msocl_sum_points", "msocl_planes_euler"};
 
-/* Why a model's GRID cannot run in planes with options o on points
- * [lo, hi) of its n; NULL: it can. */
-static const char *unfit(const msocl_sim_options *o, const msocl_model *m,
-                         int lo, int hi)
+/* Why a model's GRID cannot run in planes on points [lo, hi) of its n
+ * (every integrator and strain limit can); NULL: it can. */
+static const char *unfit(const msocl_model *m, int lo, int hi)
 {
-  if (o->integrator == MSOCL_EXPLICIT_EULER)
-    return "runs symplectic and implicit Euler, Verlet and RK4 only";
   if (lo != 0 || hi != m->n)
     return "runs a whole model on one device (not a split)";
   /* the kernels index all three planes with an int */
@@ -56,14 +53,14 @@ int msocl__planes_would(const struct msocl__device *dev,
                         const msocl_sim_options *o, const msocl_model *m,
                         int lo, int hi)
 {
-  return chosen(dev, o, unfit(o, m, lo, hi));
+  return chosen(dev, o, unfit(m, lo, hi));
 }
 
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
 {
   const char *why = s->lay.kind != MSOCL_LAYOUT_GRID
                         ? "needs the GRID layout"
-                        : unfit(&s->o, m, s->lo, s->hi);
+                        : unfit(m, s->lo, s->hi);
   if (s->o.planes == 1 && why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "planes %s", why);
   s->planes = chosen(s->dev, &s->o, why);
@@ -94,17 +91,18 @@ int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx)
 static int fixed_args(msocl__engine *s)
 {
   cl_kernel k = NULL;
-  /* velocity (connectivity, p, v, v_out, then these); fused and Verlet's
-   * kick (one more ping-pong argument: p_out, acc_out); RK4's stages
-   * (p0, v0, sp, sv, sum_p, sum_v, np, nv, then these and c) */
-  const int gathers[6] = {PL_VELOCITY, PL_FUSED,   PL_KICK,
+  /* velocity (connectivity, p, v, v_out, then these); fused, explicit
+   * Euler and Verlet's kick (one more ping-pong argument: p_out,
+   * acc_out); RK4's stages (p0, v0, sp, sv, sum_p, sum_v, np, nv, then
+   * these and c) */
+  const int gathers[7] = {PL_VELOCITY, PL_FUSED,   PL_EULER,   PL_KICK,
                           PL_RK4,      PL_RK4_MID, PL_RK4_LAST};
-  for (int q = 0; q < 6; q++) {
+  for (int q = 0; q < 7; q++) {
     k = s->pl_k[gathers[q]];
     cl_uint a;
     TRY(msocl__layout_set_args(&s->lay, k, &a));
     s->pl_conn = a;
-    a += q == 0 ? 3 : q < 3 ? 4 : 8;
+    a += q == 0 ? 3 : q < 4 ? 4 : 8;
     TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
     TRY(shape(s, k, a + 1, 0));
     TRY(arg(k, a + 4, sizeof s->gravity, &s->gravity));
@@ -360,10 +358,11 @@ static int integrator_step(msocl__engine *s, int r, int w)
     TRY(gather_args(s, PL_KICK, 4, kick));
     return launch(s, PL_KICK);
   }
-  if (s->o.fused) {
-    const cl_mem fused[4] = {p[r], v[r], v[w], p[w]};
-    TRY(gather_args(s, PL_FUSED, 4, fused));
-    return launch(s, PL_FUSED);
+  if (s->o.fused || s->o.integrator == MSOCL_EXPLICIT_EULER) {
+    const int k = s->o.fused ? PL_FUSED : PL_EULER; /* both in one pass */
+    const cl_mem both[4] = {p[r], v[r], v[w], p[w]};
+    TRY(gather_args(s, k, 4, both));
+    return launch(s, k);
   }
   if (s->o.integrator == MSOCL_IMPLICIT_EULER) {
     TRY(msocl__pl_implicit_velocity(s, r, w));

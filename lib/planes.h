@@ -9,7 +9,7 @@ enum {
   PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_DRIFT, PL_KICK,
   PL_IN, PL_OUT, PL_RK4, PL_RK4_MID, PL_RK4_LAST, PL_STRAIN, PL_COMMIT,
   PL_STRAIN_V, PL_IE_RHS, PL_IE_APPLY, PL_CG_STEP, PL_CG_DIR, PL_IE_FINISH,
-  PL_SUM, PL_COUNT
+  PL_SUM, PL_EULER, PL_COUNT
 };
 
 int msocl__pl_arg(cl_kernel k, cl_uint i, size_t size, const void *v);

@@ -139,7 +139,7 @@ static const struct {
     {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 1, 1, "fused"},
     {MSOCL_VERLET, MSOCL_STRAIN_NONE, 0, 1, "Verlet"},
     {MSOCL_RK4, MSOCL_STRAIN_NONE, 0, 1, "RK4"},
-    {MSOCL_EXPLICIT_EULER, MSOCL_STRAIN_NONE, 0, 0, "explicit Euler"},
+    {MSOCL_EXPLICIT_EULER, MSOCL_STRAIN_NONE, 0, 1, "explicit Euler"},
     {MSOCL_IMPLICIT_EULER, MSOCL_STRAIN_NONE, 0, 1, "implicit Euler"},
     {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT, 0, 1, "Provot strain"},
     {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_VELOCITY, 0, 1, "velocity strain"},
