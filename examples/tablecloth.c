@@ -3,7 +3,7 @@
  *
  *   tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l auto|image2d|buffer|edges|grid]
  *              [-m precise|relaxed] [-i symplectic|explicit|verlet|rk4|implicit]
- *              [-S none|provot|velocity] [-p PARTS [-c STEPS]] [-f]
+ *              [-S none|provot|velocity [-I SWEEPS]] [-p PARTS [-c STEPS]] [-f]
  *              [-o OUT.obj]
  */
 #include <msocl.h>
@@ -28,9 +28,11 @@ static int usage(const char *argv0)
           "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
           "[-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
           "  [-i symplectic|explicit|verlet|rk4|implicit] "
-          "[-S none|provot|velocity] [-p PARTS [-c STEPS] [-O]] [-f] [-C|-V] "
+          "[-S none|provot|velocity [-I SWEEPS]] [-p PARTS [-c STEPS] [-O]] "
+          "[-f] [-C|-V] "
           "[-P|-F] [-k STEPS] "
           "[-o OUT.obj]\n"
+          "  -I: strain limiting's sweeps a step (default 10)\n"
           "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n"
           "  -c: weigh the devices by a calibration run of STEPS steps\n"
           "  -O: split, all kernels then all copies (default: the points\n"
@@ -112,7 +114,7 @@ int main(int argc, char **argv)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   int in = 0, strain = 0, per_call = 0;
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:p:c:k:fOCVPFh")) != -1) {
+  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:I:p:c:k:fOCVPFh")) != -1) {
     switch (opt) {
     case 'n': n = atoi(optarg); break;
     case 's': steps = atoi(optarg); break;
@@ -138,6 +140,7 @@ int main(int argc, char **argv)
     case 'p': o.ndevices = atoi(optarg); break;
     case 'c': o.calibrate_steps = atoi(optarg); break;
     case 'k': per_call = atoi(optarg); break;
+    case 'I': o.strain_iterations = atoi(optarg); break;
     case 'f': o.fused = 1; break;
     case 'O': o.overlap = 0; break;
     case 'C': o.classes = 1; break;
@@ -181,8 +184,12 @@ int main(int argc, char **argv)
   int classes = 0, planes = 0;
   msocl_sim_connectivity(s, NULL, &classes);
   msocl_sim_planes(s, &planes);
+  char sweeps[32] = "";
+  if (strain)
+    snprintf(sweeps, sizeof sweeps, " (%d sweep%s a step)",
+             o.strain_iterations, o.strain_iterations == 1 ? "" : "s");
   printf("device: %s [%s]\nlayout: %s%s, math: %s, integrator: %s, strain "
-         "limiting: %s\n",
+         "limiting: %s%s\n",
          info.name, info.platform_name,
          layout == MSOCL_LAYOUT_IMAGE2D  ? "image2d"
          : layout == MSOCL_LAYOUT_EDGES ? "edges"
@@ -190,7 +197,7 @@ int main(int argc, char **argv)
                                         : "buffer",
          classes > 0 ? " (spring classes)" : planes ? " (in planes)" : "",
          o.math == MSOCL_MATH_RELAXED ? "relaxed" : "precise",
-         integrators[in], strains[strain]);
+         integrators[in], strains[strain], sweeps);
   printf("grid %dx%d, %d steps of %.3g s (setup %.3f s)\n", n, n, steps,
          (double)o.dt, t1 - t0);
   msocl_split_info split;
