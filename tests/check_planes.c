@@ -220,6 +220,25 @@ START_TEST(scenes_in_calls_bitwise)
 }
 END_TEST
 
+/* Runs float4 (mode f4) and planes (mode pl), 3 calls of `steps` with
+ * strain limit `kind`, asserts that the planes ran and that both end bit
+ * for bit alike (the label: scene, then what); returns the float4 run. */
+static struct state float4_vs_planes(const msocl_model *m, int f4, int pl,
+                                     float dt, int steps, msocl_strain kind,
+                                     const char *scene, const char *what)
+{
+  struct state a = run_strained(m, f4, MSOCL_MATH_PRECISE, dt, 3, steps,
+                                kind);
+  struct state b = run_strained(m, pl, MSOCL_MATH_PRECISE, dt, 3, steps,
+                                kind);
+  ck_assert_int_eq(b.planes, 1);
+  char label[96];
+  snprintf(label, sizeof label, "%s, %s", scene, what);
+  assert_bitwise(&a, &b, label);
+  state_free(&b);
+  return a;
+}
+
 /* Strain limiting in planes (three sweeps a step, the default limit) is
  * bitwise float4's: Provot's after every integrator that runs in planes,
  * two passes and fused, and the velocity kind between symplectic Euler's
@@ -243,21 +262,14 @@ START_TEST(strain_bitwise)
     /* the velocity kind, longer: into the drape, where its corrections
      * push points on the table into it (the response without friction) */
     const int steps = q < 4 ? 67 : 200;
-    struct state f4 = run_strained(m, modes[q][0], MSOCL_MATH_PRECISE, dt,
-                                   3, steps, kind);
-    struct state pl = run_strained(m, modes[q][1], MSOCL_MATH_PRECISE, dt,
-                                   3, steps, kind);
-    ck_assert_int_eq(pl.planes, 1);
-    char what[96];
-    snprintf(what, sizeof what, "%s, %s",
-             _i ? "hanging cloth" : "tablecloth", names[q]);
-    assert_bitwise(&f4, &pl, what);
+    const char *scene = _i ? "hanging cloth" : "tablecloth";
+    struct state f4 = float4_vs_planes(m, modes[q][0], modes[q][1], dt,
+                                       steps, kind, scene, names[q]);
     if (q == 0)
       ck_assert_msg(scene_max_diff(free_.pos, f4.pos, 3 * f4.n) > 1e-5,
-                    "%s: the strain limit changed nothing (%g m)", what,
-                    scene_max_diff(free_.pos, f4.pos, 3 * f4.n));
+                    "%s, %s: the strain limit changed nothing (%g m)", scene,
+                    names[q], scene_max_diff(free_.pos, f4.pos, 3 * f4.n));
     state_free(&f4);
-    state_free(&pl);
   }
   state_free(&free_);
   msocl_model_destroy(m);
@@ -277,20 +289,15 @@ START_TEST(implicit_bitwise)
   dt *= _i ? 4.0f : 2.0f;
   static const msocl_strain kinds[3] = {
       MSOCL_STRAIN_NONE, MSOCL_STRAIN_PROVOT, MSOCL_STRAIN_VELOCITY};
-  static const char *const names[3] = {"unlimited", "Provot", "velocity kind"};
+  static const char *const names[3] = {"implicit Euler, unlimited",
+                                       "implicit Euler, Provot",
+                                       "implicit Euler, velocity kind"};
   for (int k = 0; k < 3; k++) {
-    struct state f4 = run_strained(m, -5, MSOCL_MATH_PRECISE, dt, 3, 40,
-                                   kinds[k]);
-    struct state pl = run_strained(m, 5, MSOCL_MATH_PRECISE, dt, 3, 40,
-                                   kinds[k]);
+    struct state f4 = float4_vs_planes(m, -5, 5, dt, 40, kinds[k],
+                                       _i ? "hanging cloth" : "tablecloth",
+                                       names[k]);
     ck_assert_int_eq(f4.planes, 0);
-    ck_assert_int_eq(pl.planes, 1);
-    char what[96];
-    snprintf(what, sizeof what, "%s, implicit Euler, %s",
-             _i ? "hanging cloth" : "tablecloth", names[k]);
-    assert_bitwise(&f4, &pl, what);
     state_free(&f4);
-    state_free(&pl);
   }
   msocl_model_destroy(m);
 }
@@ -307,17 +314,11 @@ START_TEST(explicit_bitwise)
   ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
   dt *= 0.1f;
   for (int k = MSOCL_STRAIN_NONE; k <= MSOCL_STRAIN_PROVOT; k++) {
-    struct state f4 = run_strained(m, -6, MSOCL_MATH_PRECISE, dt, 3, 100,
-                                   (msocl_strain)k);
-    struct state pl = run_strained(m, 6, MSOCL_MATH_PRECISE, dt, 3, 100,
-                                   (msocl_strain)k);
-    ck_assert_int_eq(pl.planes, 1);
-    char what[96];
-    snprintf(what, sizeof what, "%s, explicit Euler, %s",
-             _i ? "hanging cloth" : "tablecloth", k ? "Provot" : "unlimited");
-    assert_bitwise(&f4, &pl, what);
+    struct state f4 = float4_vs_planes(
+        m, -6, 6, dt, 100, (msocl_strain)k,
+        _i ? "hanging cloth" : "tablecloth",
+        k ? "explicit Euler, Provot" : "explicit Euler, unlimited");
     state_free(&f4);
-    state_free(&pl);
   }
   msocl_model_destroy(m);
 }
