@@ -85,6 +85,12 @@ void bench_progress(int i, int n, const char *fmt, ...)
     ;
 /* Prints the library's error and returns 1. */
 int bench_fail(const char *what, int rc);
+/* The runtime o->spec names, and its first device's info: 0, or 1 after
+ * saying why. */
+int bench_open(const struct bench_opts *o, msocl_runtime **rt,
+               msocl_device_info *info);
+/* r->device: the label of rt's first device. */
+void bench_row_device(struct bench_row *r, msocl_runtime *rt);
 
 int bench_table1(const struct bench_opts *o, FILE *csv);
 int bench_precision(const struct bench_opts *o, FILE *csv);

@@ -50,9 +50,7 @@ static double run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
 {
   struct bench_row r;
   bench_row_init(&r);
-  msocl_device_info info;
-  msocl_runtime_device_info(rt, 0, &info);
-  bench_device_label(r.device, sizeof r.device, &info);
+  bench_row_device(&r, rt);
   r.layout = engine_names[engine];
   r.integrator = bench_integrator_names[in];
   r.math = "precise";
@@ -108,11 +106,9 @@ static double run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
 int bench_lattice(const struct bench_opts *o, FILE *csv)
 {
   msocl_runtime *rt = NULL;
-  int rc = msocl_runtime_create(&rt, o->spec);
-  if (rc != MSOCL_OK)
-    return bench_fail("runtime", rc);
   msocl_device_info info;
-  msocl_runtime_device_info(rt, 0, &info);
+  if (bench_open(o, &rt, &info))
+    return 1;
   printf("msocl-bench lattice on %s [%s]: %d steps, best of %d\n", info.name,
          info.platform_name, o->steps, o->repeat);
   printf("%5s %-10s %-12s %6s %8s %9s %10s %8s %8s\n", "size", "integr.",

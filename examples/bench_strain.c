@@ -91,9 +91,7 @@ static int run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
 {
   struct bench_row r;
   bench_row_init(&r);
-  msocl_device_info info;
-  msocl_runtime_device_info(rt, 0, &info);
-  bench_device_label(r.device, sizeof r.device, &info);
+  bench_row_device(&r, rt);
   r.integrator = bench_integrator_names[in];
   r.math = "precise";
   r.grid = n;
@@ -166,11 +164,9 @@ static int run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
 int bench_strain(const struct bench_opts *o, FILE *csv)
 {
   msocl_runtime *rt = NULL;
-  int rc = msocl_runtime_create(&rt, o->spec);
-  if (rc != MSOCL_OK)
-    return bench_fail("runtime", rc);
   msocl_device_info info;
-  msocl_runtime_device_info(rt, 0, &info);
+  if (bench_open(o, &rt, &info))
+    return 1;
   printf("msocl-bench strain on %s [%s]: soft tablecloth, %.2f s simulated "
          "at half the stable step, limit %.0f%%, best of %d\n",
          info.name, info.platform_name, o->sim_time, 100.0 * LIMIT,

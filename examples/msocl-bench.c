@@ -320,6 +320,23 @@ int bench_fail(const char *what, int rc)
   return 1;
 }
 
+int bench_open(const struct bench_opts *o, msocl_runtime **rt,
+               msocl_device_info *info)
+{
+  int rc = msocl_runtime_create(rt, o->spec);
+  if (rc != MSOCL_OK)
+    return bench_fail("runtime", rc);
+  msocl_runtime_device_info(*rt, 0, info);
+  return 0;
+}
+
+void bench_row_device(struct bench_row *r, msocl_runtime *rt)
+{
+  msocl_device_info info;
+  msocl_runtime_device_info(rt, 0, &info);
+  bench_device_label(r->device, sizeof r->device, &info);
+}
+
 void bench_row_init(struct bench_row *r)
 {
   memset(r, 0, sizeof *r);
