@@ -1,10 +1,11 @@
 /* GRID in planes (options.planes, kernels/planes.cl): a cloth grid's or
  * a lattice's steps, every integrator's (implicit Euler's CG:
- * planes_implicit.c), over x, y, z planes of padded rows, which PoCL's CPU device runs eight points to an
- * instruction. The state is copied into the planes at the first step and
- * stays there between calls; whatever reads the engine's float4 buffers
- * (reads, energy, normals, the blow-up check's saved state) first calls
- * msocl__planes_current, and whatever writes them msocl__planes_written. */
+ * planes_implicit.c), over x, y, z planes of padded rows, which PoCL's
+ * CPU device runs eight points to an instruction. The state is copied
+ * into the planes at the first step and stays there between calls;
+ * whatever reads the engine's float4 buffers (reads, energy, normals, the
+ * blow-up check's saved state) first calls msocl__planes_current, and
+ * whatever writes them msocl__planes_written. */
 #include "config.h"
 #include "planes.h"
 
@@ -73,6 +74,7 @@ int msocl__pl_arg(cl_kernel k, cl_uint i, size_t size, const void *v)
   return MSOCL_OK;
 }
 
+/* planes.h's helpers, by the short names this file has always used */
 #define arg msocl__pl_arg
 #define shape msocl__pl_shape
 #define launch msocl__pl_launch

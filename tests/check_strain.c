@@ -190,7 +190,8 @@ START_TEST(stable_with_few_sweeps)
     msocl_strain strain;
     msocl_integrator integrator;
     const char *name;
-  } cells[5] = {{MSOCL_STRAIN_PROVOT, MSOCL_SYMPLECTIC_EULER, "Provot, symplectic"},
+  } cells[5] = {{MSOCL_STRAIN_PROVOT, MSOCL_SYMPLECTIC_EULER,
+                 "Provot, symplectic"},
                 {MSOCL_STRAIN_PROVOT, MSOCL_VERLET, "Provot, Verlet"},
                 {MSOCL_STRAIN_PROVOT, MSOCL_RK4, "Provot, RK4"},
                 {MSOCL_STRAIN_VELOCITY, MSOCL_SYMPLECTIC_EULER,
