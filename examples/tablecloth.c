@@ -30,8 +30,7 @@ static int usage(void)
       "  [-i symplectic|explicit|verlet|rk4|implicit]\n"
       "  [-S none|provot|velocity [-I SWEEPS]] [-p PARTS [-c STEPS] [-O]]\n"
       "  [-f] [-C|-V] [-P|-F] [-k STEPS] [-o OUT.obj|OUT.ply]\n"
-      "The paper's tablecloth falling onto a round table; prints steps per "
-      "second.\n"
+      "The paper's tablecloth falling onto a round table; prints steps/s.\n"
       "  -n  points along each side of the cloth, 2 to 46340 (default 64)\n"
       "  -s  steps to time, >= 0 (default 2000)\n"
       "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that variable)\n"
@@ -40,12 +39,10 @@ static int usage(void)
       "  -i  integrator (default symplectic)\n"
       "  -S  strain limiting (default none)\n"
       "  -I  strain limiting's sweeps a step, 1 to 1000 (default 10)\n"
-      "  -p  split the cloth over PARTS of the chosen devices, -1 (all) to "
-      "16\n"
-      "      (default 1)\n"
-      "  -c  weigh the devices by a calibration run of STEPS steps (default "
-      "0:\n"
-      "      equal shares)\n"
+      "  -p  split the cloth over PARTS of the chosen devices, -1 (all) to\n"
+      "      16 (default 1)\n"
+      "  -c  weigh the devices by a calibration run of STEPS steps\n"
+      "      (default 0: equal shares)\n"
       "  -O  split, all kernels then all copies (default: the points\n"
       "      other devices read first, their copies beside the rest)\n"
       "  -f  both passes of a step in one kernel (same result)\n"
@@ -54,11 +51,9 @@ static int usage(void)
       "      library's choice; same result)\n"
       "  -P, -F: GRID with the state in x, y, z planes, or in float4\n"
       "      (default: planes on a CPU device; same result)\n"
-      "  -k  steps a msocl_sim_step call, as a frame loop (default 0: all "
-      "in\n"
-      "      one call; on a terminal, calls of about a quarter second for "
-      "the\n"
-      "      progress line)\n"
+      "  -k  steps a msocl_sim_step call, as a frame loop (default 0: all\n"
+      "      in one call; on a terminal, calls of about a quarter second\n"
+      "      for the progress line)\n"
       "  -o  final mesh, OBJ or PLY by extension (default tablecloth.obj)\n"
       "  -h, --help  this text\n");
 }
@@ -121,9 +116,11 @@ static int parse(int argc, char **argv, args *a, int *done)
   opterr = 0;
   while (!rc && (opt = getopt(argc, argv, OPTIONS)) != -1) {
     switch (opt) {
-    case 'n': rc = cli_int(PROG, opt, optarg, "grid size", 2, 46340, &a->n);
+    case 'n':
+      rc = cli_int(PROG, opt, optarg, "grid size", 2, 46340, &a->n);
       break;
-    case 's': rc = cli_int(PROG, opt, optarg, "steps", 0, INT_MAX, &a->steps);
+    case 's':
+      rc = cli_int(PROG, opt, optarg, "steps", 0, INT_MAX, &a->steps);
       break;
     case 'd': a->spec = optarg; break;
     case 'o': a->out = optarg; break;
