@@ -75,9 +75,9 @@ for stage in $stages; do
       set -- $run
       tag=$1
       shift
-      echo "# MSOCL_DEVICE=gpu ./examples/tablecloth -n 128 -s 500 $*" \
+      echo "# MSOCL_DEVICE=gpu ./examples/msocl-tablecloth -n 128 -s 500 $*" \
         >> "$out/verify.txt"
-      MSOCL_DEVICE=gpu ./examples/tablecloth -n 128 -s 500 "$@" \
+      MSOCL_DEVICE=gpu ./examples/msocl-tablecloth -n 128 -s 500 "$@" \
         -o "$out/verify_$tag.obj" >> "$out/verify.txt" 2>&1 ||
         echo "# exit status $?" >> "$out/verify.txt"
     done
@@ -111,9 +111,9 @@ for stage in $stages; do
       set -- $run
       spec=$1 parts=$2 tag=$3
       shift 3
-      echo "# MSOCL_DEVICE=$spec ./examples/tablecloth -n 1024 -s 500 -p $parts $*" \
+      echo "# MSOCL_DEVICE=$spec ./examples/msocl-tablecloth -n 1024 -s 500 -p $parts $*" \
         >> "$out/split.txt"
-      MSOCL_DEVICE=$spec ./examples/tablecloth -n 1024 -s 500 -p "$parts" "$@" \
+      MSOCL_DEVICE=$spec ./examples/msocl-tablecloth -n 1024 -s 500 -p "$parts" "$@" \
         -o "$out/split_$tag.obj" >> "$out/split.txt" 2>&1 ||
         echo "# exit status $?" >> "$out/split.txt"
     done

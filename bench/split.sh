@@ -15,7 +15,7 @@ spec=${1:-0:0,0:1}
 sizes=${2:-128 256 512}
 repeats=${3:-2}
 extra=${EXTRA:-}
-prog=./examples/tablecloth
+prog=./examples/msocl-tablecloth
 [ -x "$prog" ] || { echo "$0: build first ($prog missing)" >&2; exit 1; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

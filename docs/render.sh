@@ -4,7 +4,7 @@
 #
 #   docs/render.sh tablecloth|jello|ball IN.obj OUT.png
 #
-# tablecloth: the round table of examples/tablecloth (radius 0.35 m, top at
+# tablecloth: the round table of examples/tablecloth.c (radius 0.35 m, top at
 # y = 0) under the cloth; jello, ball: the ground y = 0, darkened under the
 # body as if lit from above. The OBJ's y axis is up. Needs gnuplot 5.4
 # (apt-get install gnuplot-nox); uses pngcairo when there is one.

@@ -2,21 +2,13 @@
  * that the jello and solid examples share. */
 #include "drop.h"
 
-#include <errno.h>
+#include "cli.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
-#include <time.h>
 #include <unistd.h>
-
-/* In msocl_integrator order. */
-static const char *const integrators[] = {"symplectic", "explicit", "verlet",
-                                          "rk4", "implicit"};
-/* In msocl_layout order. */
-static const char *const layouts[] = {"auto", "image2d", "buffer", "edges",
-                                      "grid"};
 
 /* At rest: no point moved faster than REST_SPEED (m/s) on average between
  * samples a tenth of REST_SECONDS apart over the last REST_SECONDS. From
@@ -26,91 +18,63 @@ static const char *const layouts[] = {"auto", "image2d", "buffer", "edges",
 #define REST_SPEED 0.01
 #define REST_SECONDS 0.1
 
-static double now(void)
-{
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+#define OPTIONS ":n:t:d:a:T:i:l:o:PFKh"
 
 static int usage(const drop_options *d)
 {
-  fprintf(stderr,
-          "usage: %s [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] "
-          "[-T DT]\n"
-          "  [-i symplectic|verlet|rk4|implicit|explicit] "
-          "[-l auto|buffer|image2d|edges|grid] [-P|-F] [-K]\n"
-          "  [-o OUT.obj|OUT.ply]\n"
-          "  -n  %s (%d to %d, default %d)\n"
-          "  -t  simulated seconds (default %g)\n"
-          "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that "
-          "variable)\n"
-          "  -a  air resistance: every velocity times AIR a step, (0, 1] "
-          "(default %g)\n"
-          "  -T  time step in seconds, 1e-7 to 0.1 (default: half the stable "
-          "step)\n"
-          "  -i  integrator (default symplectic)\n"
-          "  -l  spring layout (default auto)\n"
-          "  -P, -F: GRID with the state in x, y, z planes, or in float4\n"
-          "      (default: planes on a CPU device; same result)\n"
-          "  -K  keep the model's point numbering (default: the library "
-          "renumbers\n      the points so spring neighbours sit close)\n"
-          "  -o  final mesh, OBJ or PLY by extension (default %s)\n",
-          d->prog, d->size_help, d->size_min, d->size_max, d->size,
-          d->seconds, (double)d->air, d->out);
-  return 2;
+  return cli_help(
+      "usage: %s [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] [-T DT]\n"
+      "  [-i symplectic|explicit|verlet|rk4|implicit]\n"
+      "  [-l auto|image2d|buffer|edges|grid] [-P|-F] [-K] "
+      "[-o OUT.obj|OUT.ply]\n"
+      "  -n  %s (%d to %d, default %d)\n"
+      "  -t  simulated seconds, > 0 and <= 1e5 (default %g)\n"
+      "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that "
+      "variable)\n"
+      "  -a  air resistance: every velocity times AIR a step, (0, 1] "
+      "(default %g)\n"
+      "  -T  time step in seconds, 1e-7 to 0.1 (default: half the stable "
+      "step)\n"
+      "  -i  integrator (default symplectic)\n"
+      "  -l  spring layout (default auto: the library's choice)\n"
+      "  -P, -F: GRID with the state in x, y, z planes, or in float4\n"
+      "      (default: planes on a CPU device; same result)\n"
+      "  -K  keep the model's point numbering (default: the library "
+      "renumbers\n      the points so spring neighbours sit close)\n"
+      "  -o  final mesh, OBJ or PLY by extension (default %s)\n"
+      "  -h, --help  this text\n",
+      d->prog, d->size_help, d->size_min, d->size_max, d->size, d->seconds,
+      (double)d->air, d->out);
 }
 
-/* Index of `word` in `names` (count n), or -1. */
-static int pick(const char *word, const char *const *names, int n)
+int drop_parse(drop_options *d, int argc, char **argv, int *done)
 {
-  for (int i = 0; i < n; i++)
-    if (!strcmp(word, names[i]))
-      return i;
-  return -1;
-}
-
-/* A whole finite number, nothing after it. */
-static int number(const char *s, double *x)
-{
-  char *end;
-  errno = 0;
-  *x = strtod(s, &end);
-  return end != s && !*end && !errno && isfinite(*x);
-}
-
-static const char *extension(const char *path)
-{
-  const char *dot = strrchr(path, '.');
-  return dot && !strchr(dot, '/') ? dot + 1 : "";
-}
-
-int drop_parse(drop_options *d, int argc, char **argv)
-{
-  int opt, k;
+  int opt, k, rc = 0;
   double x;
-  while ((opt = getopt(argc, argv, "n:t:d:a:T:i:l:o:PFKh")) != -1) {
+  *done = 0;
+  if ((rc = cli_long_options(d->prog, OPTIONS, argc, argv, done)) || *done)
+    return rc ? rc : usage(d);
+  opterr = 0;
+  while (!rc && (opt = getopt(argc, argv, OPTIONS)) != -1) {
     switch (opt) {
     case 'n':
-      if (!number(optarg, &x) || x != floor(x) || x < d->size_min ||
-          x > d->size_max)
-        return usage(d);
-      d->size = (int)x;
+      rc = cli_int(d->prog, opt, optarg, d->size_name, d->size_min,
+                   d->size_max, &d->size);
       break;
     case 't':
-      if (!number(optarg, &x) || !(x > 0) || x > 1e5)
-        return usage(d);
-      d->seconds = x;
+      if (!(rc = cli_double(d->prog, opt, optarg, "simulated time", 0.0, 1,
+                            1e5, &x)))
+        d->seconds = x;
       break;
     case 'a':
-      if (!number(optarg, &x) || !(x > 0) || x > 1)
-        return usage(d);
-      d->air = (float)x;
+      if (!(rc = cli_double(d->prog, opt, optarg, "air resistance", 0.0, 1,
+                            1.0, &x)))
+        d->air = (float)x;
       break;
     case 'T':
-      if (!number(optarg, &x) || x < 1e-7 || x > 0.1)
-        return usage(d);
-      d->dt = (float)x;
+      if (!(rc = cli_double(d->prog, opt, optarg, "time step", 1e-7, 0, 0.1,
+                            &x)))
+        d->dt = (float)x;
       break;
     case 'd': d->spec = optarg; break;
     case 'o': d->out = optarg; break;
@@ -118,34 +82,24 @@ int drop_parse(drop_options *d, int argc, char **argv)
     case 'P': d->planes = 1; break;
     case 'F': d->planes = 0; break;
     case 'i':
-      if ((k = pick(optarg, integrators, 5)) < 0)
-        return usage(d);
-      d->integrator = (msocl_integrator)k;
+      if (!(rc = cli_pick(d->prog, opt, optarg, "integrator",
+                          cli_integrators, 5, &k)))
+        d->integrator = (msocl_integrator)k;
       break;
     case 'l':
-      if ((k = pick(optarg, layouts, 5)) < 0)
-        return usage(d);
-      d->layout = (msocl_layout)k;
+      if (!(rc = cli_pick(d->prog, opt, optarg, "layout", cli_layouts, 5,
+                          &k)))
+        d->layout = (msocl_layout)k;
       break;
-    default: return usage(d);
+    case 'h': *done = 1; return usage(d);
+    default: return cli_bad_option(d->prog, opt);
     }
   }
-  if (optind != argc)
-    return usage(d);
-  if (strcasecmp(extension(d->out), "obj") &&
-      strcasecmp(extension(d->out), "ply")) {
-    fprintf(stderr, "%s: -o %s: the name must end in .obj or .ply\n",
-            d->prog, d->out);
-    return 2;
-  }
-  return 0;
-}
-
-int drop_fail(const char *prog, const char *what, int rc)
-{
-  fprintf(stderr, "%s: %s: %s (%s)\n%s\n", prog, what, msocl_strerror(rc),
-          msocl_err_name(rc), msocl_last_error());
-  return 1;
+  if (!rc)
+    rc = cli_no_operands(d->prog, optind, argc, argv);
+  if (!rc)
+    rc = cli_output(d->prog, d->out, &d->ply);
+  return rc;
 }
 
 /* Half the largest stable step of symplectic Euler, for every integrator:
@@ -181,24 +135,10 @@ static int choose_dt(const drop_options *d, const msocl_model *m, float *dt,
   return rc;
 }
 
-/* Steps n (possibly more than an int holds), adding the time taken. */
-static int step(msocl_sim *s, long long n, double *secs)
-{
-  int rc = MSOCL_OK;
-  while (n > 0 && rc == MSOCL_OK) {
-    int k = n > 1000000 ? 1000000 : (int)n;
-    double t0 = now();
-    rc = msocl_sim_step(s, k);
-    *secs += now() - t0;
-    n -= k;
-  }
-  return rc;
-}
-
 /* Writes the points on the model's triangles (inner points of a lattice,
  * the centre of a solid are left out), renumbered, with their normals. */
-static int write_mesh(const char *path, const msocl_model *m, int n,
-                      const float *xyz, const float *nrm)
+static int write_mesh(const char *path, int ply, const msocl_model *m,
+                      int n, const float *xyz, const float *nrm)
 {
   int ntri = 0, used = 0;
   const int *tri = NULL;
@@ -223,9 +163,7 @@ static int write_mesh(const char *path, const msocl_model *m, int n,
       }
       ijk[t] = map[i];
     }
-    rc = strcasecmp(extension(path), "ply")
-             ? msocl_write_obj(path, used, p, q, ntri, ijk)
-             : msocl_write_ply(path, used, p, q, ntri, ijk);
+    rc = cli_write_mesh(path, ply, used, p, q, ntri, ijk);
   }
   free(map);
   free(ijk);
@@ -258,21 +196,24 @@ static int run(msocl_sim *s, const msocl_sim_options *o, long long total,
                double *vmax)
 {
   long long chunk = tail >= 10 ? tail / 10 : 1;
+  cli_progress p;
   *secs = *vmax = 0.0;
+  cli_progress_start(&p, total - 1);
   int rc = msocl_sim_step(s, 1);
   if (rc == MSOCL_OK)
-    rc = step(s, total - 1 - tail, secs);
+    rc = cli_step(s, &p, total - 1 - tail, 0, secs);
   if (rc == MSOCL_OK)
     rc = msocl_sim_read_positions(s, prev);
   for (long long done = 0; rc == MSOCL_OK && done < tail; done += chunk) {
     long long k = tail - done < chunk ? tail - done : chunk;
-    if ((rc = step(s, k, secs)) == MSOCL_OK &&
+    if ((rc = cli_step(s, &p, k, 0, secs)) == MSOCL_OK &&
         (rc = msocl_sim_read_positions(s, xyz)) == MSOCL_OK) {
       double v = fastest(prev, xyz, n, k * (double)o->dt);
       if (v > *vmax)
         *vmax = v;
     }
   }
+  cli_progress_end(&p);
   return rc;
 }
 
@@ -292,7 +233,7 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
   const char *why = "-T";
   int rc = d->dt > 0 ? MSOCL_OK : choose_dt(d, m, &o.dt, &why);
   if (rc != MSOCL_OK)
-    return drop_fail(d->prog, "choosing the step", rc);
+    return cli_fail(d->prog, "choosing the step", rc);
   long long total = llround(d->seconds / o.dt);
   if (total < 2)
     total = 2;
@@ -301,11 +242,11 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
     tail = total - 1;
 
   msocl_sim *s = NULL;
-  double t0 = now();
+  double t0 = cli_now();
   rc = msocl_sim_create(&s, rt, m, &o);
-  double setup = now() - t0;
+  double setup = cli_now() - t0;
   if (rc != MSOCL_OK)
-    return drop_fail(d->prog, "setting up the simulation", rc);
+    return cli_fail(d->prog, "setting up the simulation", rc);
   msocl_device_info info;
   msocl_layout layout;
   int planes = 0;
@@ -313,12 +254,12 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
       (rc = msocl_sim_layout(s, &layout)) != MSOCL_OK ||
       (rc = msocl_sim_planes(s, &planes)) != MSOCL_OK) {
     msocl_sim_destroy(s);
-    return drop_fail(d->prog, "asking the simulation", rc);
+    return cli_fail(d->prog, "asking the simulation", rc);
   }
   printf("device: %s [%s]\nlayout: %s%s, integrator: %s\n", info.name,
          info.platform_name,
-         (int)layout >= 0 && (int)layout < 5 ? layouts[layout] : "other",
-         planes ? " (in planes)" : "", integrators[d->integrator]);
+         (int)layout >= 0 && (int)layout < 5 ? cli_layouts[layout] : "other",
+         planes ? " (in planes)" : "", cli_integrators[d->integrator]);
   printf("dt %.3g s (%s), air resistance %g a step (%.3g/s)\n"
          "%.3g s simulated: %lld steps (setup %.3f s)\n",
          (double)o.dt, why, (double)d->air,
@@ -334,7 +275,7 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
     rc = msocl_sim_read_normals(s, nrm);
   msocl_sim_destroy(s);
   if (rc != MSOCL_OK)
-    return drop_fail(d->prog, "simulating", rc);
+    return cli_fail(d->prog, "simulating", rc);
 
   double low = INFINITY;
   for (int i = 0; i < n; i++)
@@ -351,8 +292,8 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
          100 * REST_SPEED);
   printf("lowest point %.3g mm above the plane\n", 1e3 * low);
 
-  if ((rc = write_mesh(d->out, m, n, xyz, nrm)) != MSOCL_OK)
-    return drop_fail(d->prog, d->out, rc);
+  if ((rc = write_mesh(d->out, d->ply, m, n, xyz, nrm)) != MSOCL_OK)
+    return cli_fail(d->prog, d->out, rc);
   printf("wrote %s\n", d->out);
   return 0;
 }
@@ -364,21 +305,21 @@ int drop_run(const drop_options *d, msocl_model *m, double mass,
   int n = 0, rc;
   *xyz = NULL;
   if ((rc = msocl_model_add_plane(m, up, 0.0f, 0.5f)) != MSOCL_OK)
-    return drop_fail(d->prog, "adding the ground", rc);
+    return cli_fail(d->prog, "adding the ground", rc);
   if ((rc = msocl_model_set_air_resistance(m, d->air)) != MSOCL_OK)
-    return drop_fail(d->prog, "air resistance", rc);
+    return cli_fail(d->prog, "air resistance", rc);
   if ((rc = msocl_model_point_count(m, &n)) != MSOCL_OK)
-    return drop_fail(d->prog, "counting points", rc);
+    return cli_fail(d->prog, "counting points", rc);
 
   msocl_runtime *rt = NULL;
   if ((rc = msocl_runtime_create(&rt, d->spec)) != MSOCL_OK)
-    return drop_fail(d->prog, "choosing a device", rc);
+    return cli_fail(d->prog, "choosing a device", rc);
   float *p = malloc(3 * (size_t)n * sizeof *p);
   float *prev = malloc(3 * (size_t)n * sizeof *prev);
   float *nrm = malloc(3 * (size_t)n * sizeof *nrm);
   int status = p && prev && nrm
                    ? simulate(d, rt, m, mass, n, p, prev, nrm)
-                   : drop_fail(d->prog, "positions", MSOCL_ERR_NO_MEMORY);
+                   : cli_fail(d->prog, "positions", MSOCL_ERR_NO_MEMORY);
   free(prev);
   free(nrm);
   msocl_runtime_destroy(rt);

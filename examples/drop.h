@@ -8,10 +8,12 @@
 typedef struct {
   const char *prog;            /* program name, for messages */
   const char *size_help;       /* what -n means, for the usage text */
+  const char *size_name;       /* and in a message: "-n 0: NAME must be" */
   int size, size_min, size_max; /* -n */
   double seconds;              /* -t: simulated time */
   const char *spec;            /* -d: device spec (NULL: MSOCL_DEVICE) */
   const char *out;             /* -o: .obj or .ply */
+  int ply;                     /* out is PLY (by its name) */
   float air;                   /* -a: velocity factor a step, (0, 1] */
   float dt;                    /* -T: time step (0: half the stable one) */
   /* The smallest damping / stiffness of the model's springs (s; 0: no
@@ -23,13 +25,10 @@ typedef struct {
   int planes;                  /* -P 1, -F 0, as options.planes (-1) */
 } drop_options;
 
-/* Reads argv over the defaults already in *d. Returns 0, or 2 after
- * printing the usage (bad option, or -h). */
-int drop_parse(drop_options *d, int argc, char **argv);
-
-/* Prints what failed, the status and the library's detailed message;
- * returns 1 (the exit status). */
-int drop_fail(const char *prog, const char *what, int rc);
+/* Reads argv over the defaults already in *d and checks that d->out can
+ * be written. Returns 0, or the exit status: 0 after the usage for -h
+ * (*done set), 2 after a message naming the bad option. */
+int drop_parse(drop_options *d, int argc, char **argv, int *done);
 
 /* Adds the ground and air resistance to m, simulates d->seconds with half
  * the stable step, prints steps per second, the final kinetic energy,

@@ -3,11 +3,14 @@
  * settles. Prints steps per second, the final kinetic energy, whether it
  * came to rest and its lowest point, and writes the final surface mesh.
  *
- *   jello [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] [-T DT]
- *         [-i symplectic|verlet|rk4|implicit|explicit]
- *         [-l auto|buffer|image2d|edges|grid] [-P|-F] [-o OUT.obj|OUT.ply]
+ *   msocl-jello [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] [-T DT]
+ *               [-i symplectic|verlet|rk4|implicit|explicit]
+ *               [-l auto|buffer|image2d|edges|grid] [-P|-F] [-K]
+ *               [-o OUT.obj|OUT.ply]
  */
 #include "drop.h"
+
+#include "cli.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,11 +23,13 @@ int main(int argc, char **argv)
    * decay rate of 1.05/s at the default step, too weak to slow the 0.1 m
    * fall visibly - leaves 0.28 cm/s. The factor is a step's: a smaller
    * step (-T, or explicit Euler's) damps more per second. */
-  drop_options d = {.prog = "jello", .size_help = "points along each edge",
+  drop_options d = {.prog = "msocl-jello",
+                    .size_help = "points along each edge",
+                    .size_name = "points along an edge",
                     .size = 8, .size_min = 2, .size_max = 64, .seconds = 3.0,
                     .out = "jello.obj", .air = 0.999f, .planes = -1};
-  int rc = drop_parse(&d, argc, argv);
-  if (rc)
+  int done, rc = drop_parse(&d, argc, argv, &done);
+  if (rc || done)
     return rc;
 
   /* The library's cube (2 cm spacing, 2 g points, 10 cm above the ground;
@@ -42,13 +47,13 @@ int main(int argc, char **argv)
   d.dashpot_ratio = ld.damping / (kmax > ld.k_bend ? kmax : ld.k_bend);
   msocl_model *m = NULL;
   if ((rc = msocl_model_lattice(&m, &ld)) != MSOCL_OK)
-    return drop_fail(d.prog, "building the cube", rc);
+    return cli_fail(d.prog, "building the cube", rc);
   int n = 0, springs = 0, degree = 0;
   if ((rc = msocl_model_point_count(m, &n)) != MSOCL_OK ||
       (rc = msocl_model_spring_count(m, &springs)) != MSOCL_OK ||
       (rc = msocl_model_max_degree(m, &degree)) != MSOCL_OK) {
     msocl_model_destroy(m);
-    return drop_fail(d.prog, "counting the cube", rc);
+    return cli_fail(d.prog, "counting the cube", rc);
   }
   printf("jello cube %dx%dx%d: %d points, %d springs, up to %d a point\n",
          d.size, d.size, d.size, n, springs, degree);

@@ -1,7 +1,7 @@
 /* Lists every OpenCL device libmsocl can use and shows which ones a device
  * spec (argv[1], else MSOCL_DEVICE) chooses.
  *
- *   msocl-devices [SPEC]
+ *   msocl-devices [SPEC]   (-h: what SPEC may be)
  *   POCL_DEVICES="pthread pthread" MSOCL_DEVICE=0:1 msocl-devices
  */
 #include <stdio.h>
@@ -9,6 +9,8 @@
 #include <string.h>
 
 #include <msocl.h>
+
+#include "cli.h"
 
 #define MAX_CHOSEN 64
 
@@ -35,30 +37,37 @@ static void print_device(int i, const msocl_device_info *d) {
          d->fp64 ? "yes" : "no", d->name, d->platform_name);
 }
 
-static int fail(const char *what, int rc) {
-  fprintf(stderr, "msocl-devices: %s: %s (%s)\n%s\n", what,
-          msocl_strerror(rc), msocl_err_name(rc), msocl_last_error());
-  return EXIT_FAILURE;
-}
+#define PROG "msocl-devices"
 
 int main(int argc, char **argv) {
   msocl_device_info *devs;
   int ndevs, chosen[MAX_CHOSEN], nchosen, i, rc;
-  const char *spec = argc > 1 ? argv[1] : getenv("MSOCL_DEVICE");
 
-  if (argc > 2 || (argc == 2 && (!strcmp(argv[1], "-h") ||
-                                 !strcmp(argv[1], "--help")))) {
-    fprintf(stderr,
-            "usage: %s [SPEC]\n"
-            "SPEC (default: $MSOCL_DEVICE): cpu, gpu, acc, all, P:D, N, a\n"
-            "substring of a device or platform name, or a comma-separated\n"
-            "list of these.\n",
-            argv[0]);
-    return argc > 2 ? EXIT_FAILURE : EXIT_SUCCESS;
-  }
+  int help;
+  if ((rc = cli_long_options(PROG, "h", argc, argv, &help)))
+    return rc;
+  if (help || (argc > 1 && !strcmp(argv[1], "-h")))
+    return cli_help(
+        "usage: %s [SPEC]\n"
+        "Lists the OpenCL devices and which ones SPEC chooses.\n"
+        "SPEC (default: $MSOCL_DEVICE, else the library's default choice):\n"
+        "cpu, gpu, acc, all, P:D, N, a substring of a device or platform\n"
+        "name, or a comma-separated list of these (after -- when it starts\n"
+        "with -).\n"
+        "  -h, --help  this text\n",
+        PROG);
+  /* Operands start after a "--", or at the first word without a dash. */
+  int first = argc > 1 && !strcmp(argv[1], "--") ? 2 : 1;
+  if (first == 1 && argc > 1 && argv[1][0] == '-' && argv[1][1])
+    return cli_bad(PROG, "%s: unknown option", argv[1]);
+  if (argc > first + 1)
+    return cli_bad(PROG, "%s: unexpected argument (one SPEC at most)",
+                   argv[first + 1]);
+  int given = argc > first;
+  const char *spec = given ? argv[first] : getenv("MSOCL_DEVICE");
   printf("libmsocl %s\n", msocl_version_string());
   if ((rc = msocl_device_list(&devs, &ndevs)) != MSOCL_OK)
-    return fail("listing devices", rc);
+    return cli_fail(PROG, "listing devices", rc);
   printf("%-3s %-5s %-11s %4s  %8s  %9s  %-21s %-4s  %s\n", "#", "P:D",
          "type", "CUs", "MiB", "cache MiB", "images", "fp64",
          "name [platform]");
@@ -68,12 +77,12 @@ int main(int argc, char **argv) {
   rc = msocl_device_select(spec, devs, ndevs, chosen, MAX_CHOSEN, &nchosen);
   if (rc != MSOCL_OK) {
     free(devs);
-    return fail(argc > 1 ? "spec" : "MSOCL_DEVICE", rc);
+    return cli_fail(PROG, given ? "spec" : "MSOCL_DEVICE", rc);
   }
   if (!spec)
     printf("\nno spec (MSOCL_DEVICE unset): the default chooses:\n");
   else
-    printf("\n%s'%s' chooses:\n", argc > 1 ? "" : "MSOCL_DEVICE=", spec);
+    printf("\n%s'%s' chooses:\n", given ? "" : "MSOCL_DEVICE=", spec);
   for (i = 0; i < nchosen; i++)
     printf("  #%d  %d:%d  %s [%s]\n", chosen[i],
            devs[chosen[i]].platform_index, devs[chosen[i]].device_index,

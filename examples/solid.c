@@ -4,11 +4,13 @@
  * kinetic energy, whether it came to rest, and how much of its volume it
  * kept; writes the final surface mesh.
  *
- *   solid [-n SUBDIVISIONS] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] [-T DT]
- *         [-i symplectic|verlet|rk4|implicit|explicit]
- *         [-l auto|buffer|image2d|edges] [-o OUT.obj|OUT.ply]
+ *   msocl-solid [-n SUBDIVISIONS] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR]
+ *               [-T DT] [-i symplectic|verlet|rk4|implicit|explicit]
+ *               [-l auto|buffer|image2d|edges] [-K] [-o OUT.obj|OUT.ply]
  */
 #include "drop.h"
+
+#include "cli.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -36,13 +38,13 @@ int main(int argc, char **argv)
    * bounce as a whole. After 3 s, without it (-a 1) its fastest point still
    * moves at 26 cm/s, at 0.999 a step at 2.6 cm/s, at 0.998 at 0.26 cm/s:
    * at rest. */
-  drop_options d = {.prog = "solid",
-                    .size_help = "icosphere subdivisions: 0 is 12 surface "
-                                 "points, 1 is 42, 2 is 162, ...",
+  drop_options d = {.prog = "msocl-solid", .size_name = "subdivisions",
+                    .size_help = "icosphere subdivisions, 0: 12 surface "
+                                 "points, 1: 42,\n      2: 162, ...",
                     .size = 2, .size_min = 0, .size_max = 7, .seconds = 3.0,
                     .out = "ball.obj", .air = 0.998f, .planes = -1};
-  int rc = drop_parse(&d, argc, argv);
-  if (rc)
+  int done, rc = drop_parse(&d, argc, argv, &done);
+  if (rc || done)
     return rc;
 
   /* The library's ball: radius 0.1 m, 0.2 kg over the surface and 20 g at
@@ -56,7 +58,7 @@ int main(int argc, char **argv)
                                        : sd.k_support);
   msocl_model *m = NULL;
   if ((rc = msocl_model_solid(&m, &sd)) != MSOCL_OK)
-    return drop_fail(d.prog, "building the ball", rc);
+    return cli_fail(d.prog, "building the ball", rc);
   int n = 0, springs = 0, ntri = 0;
   const int *tri = NULL;
   float *start = NULL, *xyz = NULL;
@@ -69,7 +71,7 @@ int main(int argc, char **argv)
       (rc = msocl_model_get_positions(m, start)) != MSOCL_OK) {
     free(start);
     msocl_model_destroy(m);
-    return drop_fail(d.prog, "reading the ball", rc);
+    return cli_fail(d.prog, "reading the ball", rc);
   }
   printf("soft ball: %d surface points + centre, %d springs, %d triangles\n",
          n - 1, springs, ntri);
@@ -77,7 +79,7 @@ int main(int argc, char **argv)
   rc = drop_run(&d, m, (double)sd.surface_mass + sd.centre_mass, &xyz);
   /* (Asked again: the run added the ground to the model.) */
   if (rc == 0 && (rc = msocl_model_triangles(m, &ntri, &tri)) != MSOCL_OK)
-    rc = drop_fail(d.prog, "reading the ball", rc);
+    rc = cli_fail(d.prog, "reading the ball", rc);
   else if (rc == 0) {
     /* The centre (the last point) is on no triangle: the surface alone
      * bounds the volume. */

@@ -1,72 +1,61 @@
 /* The paper's scene: a square tablecloth falls onto a round table. Prints
- * steps per second and writes the final mesh as OBJ.
+ * steps per second and writes the final mesh as OBJ or PLY.
  *
- *   tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l auto|image2d|buffer|edges|grid]
- *              [-m precise|relaxed] [-i symplectic|explicit|verlet|rk4|implicit]
- *              [-S none|provot|velocity [-I SWEEPS]] [-p PARTS [-c STEPS]] [-f]
- *              [-o OUT.obj]
+ *   msocl-tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l LAYOUT]
+ *                    [-m MATH] [-i INTEGRATOR] [-S STRAIN [-I SWEEPS]]
+ *                    [-p PARTS [-c STEPS] [-O]] [-f] [-C|-V] [-P|-F]
+ *                    [-k STEPS] [-o OUT.obj|OUT.ply]   (-h: all of them)
  */
+#include "cli.h"
+
 #include <msocl.h>
 
-#include <math.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
-static double now(void)
-{
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+#define PROG "msocl-tablecloth"
+#define OPTIONS ":n:s:d:l:m:o:i:S:I:p:c:k:fOCVPFh"
 
-static int usage(const char *argv0)
-{
-  fprintf(stderr,
-          "usage: %s [-n GRID] [-s STEPS] [-d DEVICE_SPEC] "
-          "[-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
-          "  [-i symplectic|explicit|verlet|rk4|implicit] "
-          "[-S none|provot|velocity [-I SWEEPS]] [-p PARTS [-c STEPS] [-O]] "
-          "[-f] [-C|-V] "
-          "[-P|-F] [-k STEPS] "
-          "[-o OUT.obj]\n"
-          "  -I: strain limiting's sweeps a step (default 10)\n"
-          "  -p: split the cloth over PARTS of the chosen devices (-1: all)\n"
-          "  -c: weigh the devices by a calibration run of STEPS steps\n"
-          "  -O: split, all kernels then all copies (default: the points\n"
-          "      other devices read first, their copies beside the rest)\n"
-          "  -f: both passes of a step in one kernel (same result)\n"
-          "  -C, -V: BUFFER with a spring-class byte in every slot, or with\n"
-          "      rest length and stiffness in every slot (default: the\n"
-          "      library's choice; same result)\n"
-          "  -P, -F: GRID with the state in x, y, z planes, or in float4\n"
-          "      (default: planes on a CPU device; same result)\n"
-          "  -k: steps a msocl_sim_step call, as a frame loop (default: all\n"
-          "      in one call)\n",
-          argv0);
-  return 2;
-}
-
-/* Index of `word` in `names` (count n), or -1. */
-static int pick(const char *word, const char *const *names, int n)
-{
-  for (int i = 0; i < n; i++)
-    if (!strcmp(word, names[i]))
-      return i;
-  return -1;
-}
-
-static const char *const integrators[] = {"symplectic", "explicit", "verlet",
-                                          "rk4", "implicit"};
+static const char *const maths[] = {"precise", "relaxed"};
 static const char *const strains[] = {"none", "provot", "velocity"};
 
-static int fail(const char *what, int rc)
+static int usage(void)
 {
-  fprintf(stderr, "tablecloth: %s: %s (%s)\n%s\n", what, msocl_strerror(rc),
-          msocl_err_name(rc), msocl_last_error());
-  return 1;
+  return cli_help(
+      "usage: " PROG " [-n GRID] [-s STEPS] [-d DEVICE_SPEC]\n"
+      "  [-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
+      "  [-i symplectic|explicit|verlet|rk4|implicit]\n"
+      "  [-S none|provot|velocity [-I SWEEPS]] [-p PARTS [-c STEPS] [-O]]\n"
+      "  [-f] [-C|-V] [-P|-F] [-k STEPS] [-o OUT.obj|OUT.ply]\n"
+      "The paper's tablecloth falling onto a round table; prints steps/s.\n"
+      "  -n  points along each side of the cloth, 2 to 46340 (default 64)\n"
+      "  -s  steps to time, >= 0 (default 2000)\n"
+      "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that variable)\n"
+      "  -l  spring layout (default auto: the library's choice)\n"
+      "  -m  math mode (default precise)\n"
+      "  -i  integrator (default symplectic)\n"
+      "  -S  strain limiting (default none)\n"
+      "  -I  strain limiting's sweeps a step, 1 to 1000 (default 10)\n"
+      "  -p  split the cloth over PARTS of the chosen devices, -1 (all) to\n"
+      "      16 (default 1)\n"
+      "  -c  weigh the devices by a calibration run of STEPS steps\n"
+      "      (default 0: equal shares)\n"
+      "  -O  split, all kernels then all copies (default: the points\n"
+      "      other devices read first, their copies beside the rest)\n"
+      "  -f  both passes of a step in one kernel (same result)\n"
+      "  -C, -V: BUFFER with a spring-class byte in every slot, or with\n"
+      "      rest length and stiffness in every slot (default: the\n"
+      "      library's choice; same result)\n"
+      "  -P, -F: GRID with the state in x, y, z planes, or in float4\n"
+      "      (default: planes on a CPU device; same result)\n"
+      "  -k  steps a msocl_sim_step call, as a frame loop (default 0: all\n"
+      "      in one call; on a terminal, calls of about a quarter second\n"
+      "      for the progress line)\n"
+      "  -o  final mesh, OBJ or PLY by extension (default tablecloth.obj)\n"
+      "  -h, --help  this text\n");
 }
 
 /* The tablecloth: 1 m square, 0.5 kg, 5 cm above a table of radius 0.35 m;
@@ -90,7 +79,7 @@ static msocl_model *build(int n, float *dt)
   msocl_model *m = NULL;
   int rc = msocl_model_cloth_grid(&m, &d);
   if (rc != MSOCL_OK) {
-    fail("building the cloth", rc);
+    cli_fail(PROG, "building the cloth", rc);
     return NULL;
   }
   const float top[3] = {0, 0, 0};
@@ -99,7 +88,7 @@ static msocl_model *build(int n, float *dt)
   /* Half the largest stable step of symplectic Euler: the step is also
    * what collisions resolve, so the same dt serves every integrator. */
   if ((rc = msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, dt)) != MSOCL_OK) {
-    fail("stable step", rc);
+    cli_fail(PROG, "stable step", rc);
     msocl_model_destroy(m);
     return NULL;
   }
@@ -107,75 +96,113 @@ static msocl_model *build(int n, float *dt)
   return m;
 }
 
-int main(int argc, char **argv)
-{
-  int n = 64, steps = 2000, opt;
-  const char *spec = NULL, *out = "tablecloth.obj";
+/* The command line: the scene's size and run, and the simulation options. */
+typedef struct {
+  int n, steps, per_call, ply;
+  const char *spec, *out;
+  int integrator, layout, math, strain;
   msocl_sim_options o;
-  msocl_sim_options_init(&o);
-  int in = 0, strain = 0, per_call = 0;
-  while ((opt = getopt(argc, argv, "n:s:d:l:m:o:i:S:I:p:c:k:fOCVPFh")) != -1) {
+} args;
+
+/* Fills *a from argv. 0, or the exit status: 0 after -h (*done set), 2
+ * after a message. */
+static int parse(int argc, char **argv, args *a, int *done)
+{
+  int opt, rc = 0;
+  *done = 0;
+  if ((rc = cli_long_options(PROG, OPTIONS, argc, argv, done)) || *done)
+    return rc ? rc : usage();
+  msocl_sim_options *o = &a->o;
+  opterr = 0;
+  while (!rc && (opt = getopt(argc, argv, OPTIONS)) != -1) {
     switch (opt) {
-    case 'n': n = atoi(optarg); break;
-    case 's': steps = atoi(optarg); break;
-    case 'd': spec = optarg; break;
-    case 'o': out = optarg; break;
+    case 'n':
+      rc = cli_int(PROG, opt, optarg, "grid size", 2, 46340, &a->n);
+      break;
+    case 's':
+      rc = cli_int(PROG, opt, optarg, "steps", 0, INT_MAX, &a->steps);
+      break;
+    case 'd': a->spec = optarg; break;
+    case 'o': a->out = optarg; break;
     case 'l':
-      if (!strcmp(optarg, "image2d")) o.layout = MSOCL_LAYOUT_IMAGE2D;
-      else if (!strcmp(optarg, "buffer")) o.layout = MSOCL_LAYOUT_BUFFER;
-      else if (!strcmp(optarg, "edges")) o.layout = MSOCL_LAYOUT_EDGES;
-      else if (!strcmp(optarg, "grid")) o.layout = MSOCL_LAYOUT_GRID;
-      else if (!strcmp(optarg, "auto")) o.layout = MSOCL_LAYOUT_AUTO;
-      else return usage(argv[0]);
+      rc = cli_pick(PROG, opt, optarg, "layout", cli_layouts, 5, &a->layout);
       break;
     case 'm':
-      if (!strcmp(optarg, "relaxed")) o.math = MSOCL_MATH_RELAXED;
-      else if (!strcmp(optarg, "precise")) o.math = MSOCL_MATH_PRECISE;
-      else return usage(argv[0]);
+      rc = cli_pick(PROG, opt, optarg, "math mode", maths, 2, &a->math);
       break;
     case 'i':
-      if ((in = pick(optarg, integrators, 5)) < 0) return usage(argv[0]);
-      o.integrator = (msocl_integrator)in;
+      rc = cli_pick(PROG, opt, optarg, "integrator", cli_integrators, 5,
+                    &a->integrator);
       break;
-    case 'p': o.ndevices = atoi(optarg); break;
-    case 'c': o.calibrate_steps = atoi(optarg); break;
-    case 'k': per_call = atoi(optarg); break;
-    case 'I': o.strain_iterations = atoi(optarg); break;
-    case 'f': o.fused = 1; break;
-    case 'O': o.overlap = 0; break;
-    case 'C': o.classes = 1; break;
-    case 'V': o.classes = 0; break;
-    case 'P': o.planes = 1; break;
-    case 'F': o.planes = 0; break;
     case 'S':
-      if ((strain = pick(optarg, strains, 3)) < 0) return usage(argv[0]);
-      o.strain = (msocl_strain)strain;
+      rc = cli_pick(PROG, opt, optarg, "strain limiting", strains, 3,
+                    &a->strain);
       break;
-    default: return usage(argv[0]);
+    case 'p':
+      rc = cli_int(PROG, opt, optarg, "parts", -1, 16, &o->ndevices);
+      break;
+    case 'c':
+      rc = cli_int(PROG, opt, optarg, "calibration steps", 0, INT_MAX,
+                   &o->calibrate_steps);
+      break;
+    case 'k':
+      rc = cli_int(PROG, opt, optarg, "steps a call", 0, INT_MAX,
+                   &a->per_call);
+      break;
+    case 'I':
+      rc = cli_int(PROG, opt, optarg, "sweeps", 1, 1000,
+                   &o->strain_iterations);
+      break;
+    case 'f': o->fused = 1; break;
+    case 'O': o->overlap = 0; break;
+    case 'C': o->classes = 1; break;
+    case 'V': o->classes = 0; break;
+    case 'P': o->planes = 1; break;
+    case 'F': o->planes = 0; break;
+    case 'h': *done = 1; return usage();
+    default: return cli_bad_option(PROG, opt);
     }
   }
-  if (n < 2 || steps < 0 || per_call < 0)
-    return usage(argv[0]);
-  if (per_call == 0)
-    per_call = steps > 0 ? steps : 1;
+  if (!rc)
+    rc = cli_no_operands(PROG, optind, argc, argv);
+  if (!rc)
+    rc = cli_output(PROG, a->out, &a->ply);
+  o->layout = (msocl_layout)a->layout;
+  o->math = (msocl_math)a->math;
+  o->integrator = (msocl_integrator)a->integrator;
+  o->strain = (msocl_strain)a->strain;
+  return rc;
+}
+
+int main(int argc, char **argv)
+{
+  args a = {.n = 64, .steps = 2000, .out = "tablecloth.obj"};
+  msocl_sim_options_init(&a.o);
+  int done, status = parse(argc, argv, &a, &done);
+  if (status || done)
+    return status;
+  int n = a.n, steps = a.steps, per_call = a.per_call, in = a.integrator;
+  int strain = a.strain;
+  const char *spec = a.spec, *out = a.out;
+  msocl_sim_options o = a.o;
 
   msocl_runtime *rt = NULL;
   int rc = msocl_runtime_create(&rt, spec);
   if (rc != MSOCL_OK)
-    return fail("choosing a device", rc);
+    return cli_fail(PROG, "choosing a device", rc);
   msocl_model *m = build(n, &o.dt);
   if (!m) {
     msocl_runtime_destroy(rt);
     return 1;
   }
   msocl_sim *s = NULL;
-  double t0 = now();
+  double t0 = cli_now();
   rc = msocl_sim_create(&s, rt, m, &o);
-  double t1 = now();
+  double t1 = cli_now();
   if (rc != MSOCL_OK) {
     msocl_model_destroy(m);
     msocl_runtime_destroy(rt);
-    return fail("setting up the simulation", rc);
+    return cli_fail(PROG, "setting up the simulation", rc);
   }
   msocl_device_info info;
   msocl_layout layout;
@@ -197,7 +224,7 @@ int main(int argc, char **argv)
                                         : "buffer",
          classes > 0 ? " (spring classes)" : planes ? " (in planes)" : "",
          o.math == MSOCL_MATH_RELAXED ? "relaxed" : "precise",
-         integrators[in], strains[strain], sweeps);
+         cli_integrators[in], strains[strain], sweeps);
   printf("grid %dx%d, %d steps of %.3g s (setup %.3f s)\n", n, n, steps,
          (double)o.dt, t1 - t0);
   msocl_split_info split;
@@ -208,11 +235,13 @@ int main(int argc, char **argv)
            split.first[d] + split.count[d], split.boundary_points[d]);
 
   /* One warm-up step keeps first-launch costs out of the timing. */
+  double secs = 0.0;
+  cli_progress p;
+  cli_progress_start(&p, steps);
   rc = msocl_sim_step(s, 1);
-  double t2 = now();
-  for (int done = 0; rc == MSOCL_OK && done < steps; done += per_call)
-    rc = msocl_sim_step(s, steps - done < per_call ? steps - done : per_call);
-  double t3 = now();
+  if (rc == MSOCL_OK)
+    rc = cli_step(s, &p, steps, per_call, &secs);
+  cli_progress_end(&p);
   float *xyz = malloc(3 * (size_t)n * n * sizeof *xyz);
   float *nrm = malloc(3 * (size_t)n * n * sizeof *nrm);
   if (rc == MSOCL_OK && (!xyz || !nrm))
@@ -226,13 +255,12 @@ int main(int argc, char **argv)
   if (rc == MSOCL_OK)
     rc = msocl_model_triangles(m, &ntri, &tri);
   if (rc == MSOCL_OK)
-    rc = msocl_write_obj(out, n * n, xyz, nrm, ntri, tri);
+    rc = cli_write_mesh(out, a.ply, n * n, xyz, nrm, ntri, tri);
   if (rc == MSOCL_OK) {
-    double secs = t3 - t2;
     printf("%.3f s: %.1f steps/s, %.3g vertex-steps/s", secs,
            secs > 0 ? steps / secs : 0.0,
            secs > 0 ? (double)steps * n * n / secs : 0.0);
-    if (per_call < steps)
+    if (per_call > 0 && per_call < steps)
       printf(" (%d steps a call)", per_call);
     printf("\n");
     if (split.parts > 1) {
@@ -250,7 +278,7 @@ int main(int argc, char **argv)
     }
     printf("wrote %s\n", out);
   } else {
-    fail("simulating", rc);
+    cli_fail(PROG, "simulating", rc);
   }
   free(xyz);
   free(nrm);
