@@ -255,6 +255,9 @@ int msocl__obj_parse(struct msocl__obj *o, const char *text, size_t len) {
   memset(&r, 0, sizeof r);
   r.o = o;
   if ((rc = no_nul(text, len))) return rc;
+  /* Editors on Windows start UTF-8 text with a byte-order mark; left in, it
+   * would glue onto the first statement and hide it. */
+  if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) p += 3;
   while (p < end && !rc) {
     eol = memchr(p, '\n', (size_t)(end - p));
     if (!eol) eol = end;

@@ -236,6 +236,41 @@ START_TEST(crlf_comments_blanks) {
 }
 END_TEST
 
+/* Two models with the same points, springs and triangles, bit for bit. */
+static void expect_same_model(const msocl_model *a, const msocl_model *b) {
+  ck_assert_int_eq(a->n, b->n);
+  ck_assert_int_eq(a->ns, b->ns);
+  ck_assert_int_eq(a->nt, b->nt);
+  ck_assert(memcmp(a->pos, b->pos, 3 * (size_t)a->n * sizeof *a->pos) == 0);
+  ck_assert(memcmp(a->mass, b->mass, (size_t)a->n * sizeof *a->mass) == 0);
+  ck_assert(memcmp(a->ij, b->ij, 2 * (size_t)a->ns * sizeof *a->ij) == 0);
+  ck_assert(memcmp(a->rest, b->rest, (size_t)a->ns * sizeof *a->rest) == 0);
+  ck_assert(memcmp(a->tri, b->tri, 3 * (size_t)a->nt * sizeof *a->tri) == 0);
+}
+
+#define BOM "\xEF\xBB\xBF"
+
+/* A UTF-8 byte-order mark before the first statement is skipped, not
+ * glued onto it: the square's first vertex stays. */
+START_TEST(byte_order_mark) {
+  msocl_model *plain;
+
+  OK(load(square, NULL));
+  plain = m;
+  m = NULL;
+  OK(load(BOM "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4\n", NULL));
+  expect_same_model(m, plain);
+  msocl_model_destroy(plain);
+  /* Lines are counted as without it. */
+  EXPECT(load(BOM "v 0 0\n", NULL), MSOCL_ERR_BAD_VALUE);
+  SAYS("line 1:");
+  EXPECT(load(BOM, NULL), MSOCL_ERR_EMPTY);
+  /* Only at the start: elsewhere it is not a statement OBJ knows. */
+  EXPECT(load("v 0 0 0\n" BOM "v 2 0 0\nv 2 2 0\nf 1 2 3\n", NULL),
+         MSOCL_ERR_BAD_INDEX);
+}
+END_TEST
+
 START_TEST(polygon_fan) {
   char text[64 * 1024];
   int n = 1000, i, len = 0;
@@ -631,6 +666,7 @@ static void write_file(const char *path, const char *text) {
 START_TEST(from_file) {
   char path[512];
   msocl_obj_desc d;
+  msocl_model *plain;
 
   msocl_obj_desc_init(&d);
   snprintf(path, sizeof path, "%s/mesh.obj", dir);
@@ -646,6 +682,16 @@ START_TEST(from_file) {
   ck_assert_msg(strncmp(msocl_last_error(), path, strlen(path)) == 0,
                 "\"%s\" does not start with the path", msocl_last_error());
   SAYS("line 4:");
+
+  /* The same mesh with a byte-order mark loads the same. */
+  write_file(path, BOM "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  OK(msocl_model_from_obj(&m, path, &d));
+  write_file(path, triangle);
+  OK(msocl_model_from_obj(&plain, path, &d));
+  expect_same_model(m, plain);
+  msocl_model_destroy(plain);
+  msocl_model_destroy(m);
+  m = NULL;
 
   /* An empty file. */
   write_file(path, "");
@@ -691,6 +737,7 @@ static Suite *obj_suite(void) {
   tcase_add_test(t, negative_and_forward_indices);
   tcase_add_test(t, index_forms_and_extras);
   tcase_add_test(t, crlf_comments_blanks);
+  tcase_add_test(t, byte_order_mark);
   tcase_add_test(t, polygon_fan);
   tcase_add_test(t, bending_springs);
   tcase_add_test(t, bending_grid);
