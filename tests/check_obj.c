@@ -594,11 +594,67 @@ START_TEST(numbers) {
     ck_assert_msg(msocl__obj_number(bad[i], strlen(bad[i]), &x) ==
                       MSOCL__NUM_BAD,
                   "'%s' should not be a number", bad[i]);
-  ck_assert_int_eq(msocl__obj_number("3.5e38", 6, &x), MSOCL__NUM_NOT_FINITE);
+  ck_assert_int_eq(msocl__obj_number("3.5e38", 6, &x), MSOCL__NUM_TOO_LARGE);
   ck_assert_int_eq(msocl__obj_number("1e99999999999999999999", 22, &x),
-                   MSOCL__NUM_NOT_FINITE);
+                   MSOCL__NUM_TOO_LARGE);
   ck_assert_int_eq(msocl__obj_number("-INF", 4, &x), MSOCL__NUM_NOT_FINITE);
   ck_assert_int_eq(msocl__obj_number("info", 4, &x), MSOCL__NUM_BAD);
+}
+END_TEST
+
+/* The edges of float: what rounds to FLT_MAX is taken (FLT_MAX printed
+ * with 8 digits is above it), what rounds to infinity refused; denormals
+ * are kept, values below half the smallest become zero with their sign. */
+START_TEST(numbers_near_limits) {
+  static const char *const too_large[] = {"3.4028236e38", "-3.4028236e38",
+                                          "3.40282357e38", "1e39"};
+  float x;
+  size_t i;
+
+  ck_assert(number("3.4028235e38") == FLT_MAX);
+  ck_assert(number("-3.4028235e38") == -FLT_MAX);
+  ck_assert(number("3.40282356e38") == FLT_MAX);
+  for (i = 0; i < sizeof too_large / sizeof too_large[0]; i++)
+    ck_assert_msg(msocl__obj_number(too_large[i], strlen(too_large[i]), &x) ==
+                      MSOCL__NUM_TOO_LARGE,
+                  "'%s' should be too large", too_large[i]);
+  /* The tie between FLT_MAX and 2^128 goes to even: infinity. */
+  ck_assert_int_eq(
+      msocl__obj_number("340282356779733661637539395458142568448", 39, &x),
+      MSOCL__NUM_TOO_LARGE);
+  ck_assert(number("1.17549435e-38") == FLT_MIN);
+  ck_assert(number("1.1754942e-38") == nextafterf(FLT_MIN, 0));
+  ck_assert(number("1.4e-45") == nextafterf(0, 1));
+  ck_assert(number("-1e-45") == -nextafterf(0, 1));
+  ck_assert(number("7.1e-46") == nextafterf(0, 1));
+  x = number("1e-46");
+  ck_assert(x == 0 && !signbit(x));
+  x = number("-1e-46");
+  ck_assert(x == 0 && signbit(x));
+  x = number("-0");
+  ck_assert(x == 0 && signbit(x));
+  /* A vertex at FLT_MAX loads, and a too large one says so. */
+  OK(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 3.4028235e38 -3.4028235E+38 0\n"
+          "f 1 2 3\n",
+          NULL));
+  ck_assert(m->pos[9] == FLT_MAX && m->pos[10] == -FLT_MAX);
+  EXPECT(load("v 0 0 0\nv 0 3.4028236e38 0\n", NULL), MSOCL_ERR_NOT_FINITE);
+  SAYS("line 2: '3.4028236e38' is too large for a float");
+  EXPECT(load("v 0 0 0\nv 0 -inf 0\n", NULL), MSOCL_ERR_NOT_FINITE);
+  SAYS("line 2: '-inf' is not a finite float");
+}
+END_TEST
+
+/* A huge index is quoted as written, not as its clamped value. */
+START_TEST(huge_index_messages) {
+  EXPECT(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 100000000000000000000000\n",
+              NULL),
+         MSOCL_ERR_BAD_INDEX);
+  SAYS("line 4: vertex index '100000000000000000000000' is too large");
+  EXPECT(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -99999999999999999999/1\n",
+              NULL),
+         MSOCL_ERR_BAD_INDEX);
+  SAYS("vertex index '-99999999999999999999' reaches before the first");
 }
 END_TEST
 
@@ -749,12 +805,14 @@ static Suite *obj_suite(void) {
                       (int)(sizeof broken / sizeof broken[0]));
   tcase_add_test(t, mass_overflow_and_nul);
   tcase_add_test(t, huge_faces_and_long_lines);
+  tcase_add_test(t, huge_index_messages);
   tcase_set_timeout(t, 60);
   suite_add_tcase(s, t);
 
   t = tcase_create("numbers");
   tcase_add_checked_fixture(t, NULL, teardown);
   tcase_add_test(t, numbers);
+  tcase_add_test(t, numbers_near_limits);
   tcase_add_test(t, numbers_round_trip);
   tcase_add_test(t, locale_independent);
   suite_add_tcase(s, t);
