@@ -24,6 +24,13 @@ struct msocl__obj {
 int msocl__obj_parse(struct msocl__obj *o, const char *text, size_t len);
 void msocl__obj_free(struct msocl__obj *o);
 
+/* The whole file at path in a malloc'd buffer of *len bytes (no NUL
+ * added), if it is a regular file or a pipe of at most max bytes
+ * (max < SIZE_MAX); else MSOCL_ERR_IO or MSOCL_ERR_TOO_MANY, the message
+ * naming the path (obj_file.c). */
+int msocl__obj_read_file(const char *path, size_t max, char **text,
+                         size_t *len);
+
 /* Tokens, locale-independent (obj_number.c). A number is
  * [+-] digits [. digits] [(e|E) [+-] digits], read into the nearest float
  * (rounded twice, through double): values that round to FLT_MAX are taken,

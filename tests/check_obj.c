@@ -7,9 +7,12 @@
 #include <limits.h>
 #include <locale.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "internal.h"
@@ -708,6 +711,8 @@ static void remove_dir(void) {
   char path[512];
   snprintf(path, sizeof path, "%s/mesh.obj", dir);
   remove(path);
+  snprintf(path, sizeof path, "%s/pipe.obj", dir);
+  remove(path);
   rmdir(dir);
   teardown();
 }
@@ -777,6 +782,75 @@ START_TEST(unreadable_file) {
 }
 END_TEST
 
+/* A child writes text into the FIFO at path (the reader's open waits for
+ * it) and exits; reap it with wait_child. */
+static pid_t feed_fifo(const char *path, const char *text) {
+  pid_t pid = fork();
+
+  ck_assert_int_ge(pid, 0);
+  if (pid == 0) {
+    FILE *f;
+    signal(SIGPIPE, SIG_IGN); /* the reader may stop before the end */
+    if ((f = fopen(path, "wb"))) {
+      fputs(text, f);
+      fclose(f);
+    }
+    _exit(0);
+  }
+  return pid;
+}
+
+static void wait_child(pid_t pid) {
+  int status;
+  ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+}
+
+/* Only regular files and pipes are read, and at most
+ * MSOCL_OBJ_MAX_FILE_BYTES of them: /dev/zero used to be read until the
+ * memory ran out. */
+START_TEST(file_kinds_and_size) {
+  char path[512], *text;
+  size_t len, n = strlen(cube);
+  msocl_obj_desc d;
+  pid_t pid;
+
+  msocl_obj_desc_init(&d);
+  EXPECT(msocl_model_from_obj(&m, "/dev/zero", &d), MSOCL_ERR_IO);
+  SAYS("/dev/zero: not a regular file or a pipe");
+  /* A regular file is judged by its size before it is read (this one is
+   * sparse: no disk space). */
+  snprintf(path, sizeof path, "%s/mesh.obj", dir);
+  write_file(path, "");
+  ck_assert_int_eq(truncate(path, (off_t)MSOCL_OBJ_MAX_FILE_BYTES + 1), 0);
+  EXPECT(msocl_model_from_obj(&m, path, &d), MSOCL_ERR_TOO_MANY);
+  SAYS(path);
+  SAYS("1073741825 bytes, more than the 1073741824");
+  /* The limit itself is allowed, one byte more is not. */
+  write_file(path, cube);
+  OK(msocl__obj_read_file(path, n, &text, &len));
+  ck_assert(len == n && memcmp(text, cube, n) == 0);
+  free(text);
+  EXPECT(msocl__obj_read_file(path, n - 1, &text, &len), MSOCL_ERR_TOO_MANY);
+
+  /* A pipe has no size: it loads, and fails once past the limit. */
+  snprintf(path, sizeof path, "%s/pipe.obj", dir);
+  ck_assert_int_eq(mkfifo(path, 0600), 0);
+  pid = feed_fifo(path, cube);
+  OK(msocl_model_from_obj(&m, path, &d));
+  wait_child(pid);
+  expect_counts(8, 18, 12);
+  pid = feed_fifo(path, cube);
+  OK(msocl__obj_read_file(path, n, &text, &len));
+  wait_child(pid);
+  ck_assert(len == n && memcmp(text, cube, n) == 0);
+  free(text);
+  pid = feed_fifo(path, cube);
+  EXPECT(msocl__obj_read_file(path, n - 1, &text, &len), MSOCL_ERR_TOO_MANY);
+  wait_child(pid);
+  SAYS("pipe.obj: more than the");
+}
+END_TEST
+
 /* ----------------------------------------------------------------- main */
 
 static Suite *obj_suite(void) {
@@ -821,6 +895,7 @@ static Suite *obj_suite(void) {
   tcase_add_checked_fixture(t, make_dir, remove_dir);
   tcase_add_test(t, from_file);
   tcase_add_test(t, unreadable_file);
+  tcase_add_test(t, file_kinds_and_size);
   suite_add_tcase(s, t);
   return s;
 }
