@@ -1,10 +1,8 @@
 /* Triangle-mesh models from Wavefront OBJ: a point per vertex, springs
  * along the edges (and across them to bend), masses from surface area. */
-#include <errno.h>
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -185,47 +183,6 @@ int msocl_model_from_obj_text(msocl_model **m, const char *text, size_t len,
   return rc;
 }
 
-/* The whole file in memory, read in doubling chunks: a pipe has no size to
- * ask for. */
-static int read_file(const char *path, char **text, size_t *len) {
-  FILE *f = fopen(path, "rb");
-  char *buf = NULL, *b;
-  size_t cap = 0, n = 0, want, got;
-  int rc = MSOCL_OK;
-
-  if (!f)
-    return msocl__fail(MSOCL_ERR_IO, "cannot open %s: %s", path,
-                       strerror(errno));
-  for (;;) {
-    if (n == cap) {
-      size_t c = cap ? 2 * cap : 64 * 1024;
-      if (c < cap || !(b = realloc(buf, c))) {
-        rc = msocl__fail(MSOCL_ERR_NO_MEMORY,
-                         "cannot hold %s in memory (%zu bytes read)", path, n);
-        break;
-      }
-      buf = b;
-      cap = c;
-    }
-    want = cap - n;
-    n += got = fread(buf + n, 1, want, f);
-    if (got < want) { /* end of file or an error: fread says no more */
-      if (ferror(f))
-        rc = msocl__fail(MSOCL_ERR_IO, "cannot read %s: %s", path,
-                         strerror(errno));
-      break;
-    }
-  }
-  fclose(f);
-  if (rc) {
-    free(buf);
-    return rc;
-  }
-  *text = buf;
-  *len = n;
-  return MSOCL_OK;
-}
-
 int msocl_model_from_obj(msocl_model **m, const char *path,
                          const msocl_obj_desc *d) {
   char *text = NULL;
@@ -237,7 +194,9 @@ int msocl_model_from_obj(msocl_model **m, const char *path,
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "model out-pointer is NULL");
   *m = NULL;
   if (!path) return msocl__fail(MSOCL_ERR_NULL_HANDLE, "OBJ path is NULL");
-  if ((rc = check_desc(d)) || (rc = read_file(path, &text, &len))) return rc;
+  if ((rc = check_desc(d)) ||
+      (rc = msocl__obj_read_file(path, MSOCL_OBJ_MAX_FILE_BYTES, &text, &len)))
+    return rc;
   /* The message then starts with the file's name, as a compiler's does. */
   if ((rc = msocl_model_from_obj_text(m, text, len, d)))
     rc = msocl__fail(rc, "%s: %s", path, msocl_last_error());

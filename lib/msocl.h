@@ -238,6 +238,11 @@ typedef struct {
 } msocl_obj_desc;
 
 MSOCL_EXTERN void msocl_obj_desc_init(msocl_obj_desc *d);
+/* Reads a regular file or a pipe of at most MSOCL_OBJ_MAX_FILE_BYTES (1 GiB;
+ * MSOCL_ERR_TOO_MANY past it, found before reading for a regular file);
+ * a directory or device (/dev/zero) fails with MSOCL_ERR_IO before any
+ * read. A leading UTF-8 byte-order mark is skipped. */
+#define MSOCL_OBJ_MAX_FILE_BYTES ((size_t)1 << 30)
 MSOCL_EXTERN int msocl_model_from_obj(msocl_model **m, const char *path,
                                       const msocl_obj_desc *d);
 /* The same from text in memory (len bytes, need not be NUL-terminated). */

@@ -13,6 +13,9 @@
 /* An exponent digit string is counted up to this; past it the number is 0
  * or infinite whatever its digits, as no text in memory has that many. */
 #define EXP_CLAMP 100000000000000000LL
+/* Halfway from FLT_MAX to 2^128: a value below it rounds to FLT_MAX, one at
+ * it (a tie, to even) or above rounds to infinity. */
+#define FLT_HALFWAY_TO_INF 0x1.ffffffp127
 
 static const double pow10_exact[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,
                                      1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
@@ -88,7 +91,9 @@ int msocl__obj_number(const char *p, size_t len, float *out) {
   if (p != end) return MSOCL__NUM_BAD;
   e10 += eneg ? -ex : ex;
   v = mant == 0 ? 0.0 : scale((double)mant, e10);
-  if (!(v <= FLT_MAX)) return MSOCL__NUM_NOT_FINITE; /* also catches inf */
+  if (!(v < FLT_HALFWAY_TO_INF)) return MSOCL__NUM_TOO_LARGE;
+  /* C leaves a conversion from past FLT_MAX undefined, so round by hand. */
+  if (v > FLT_MAX) v = FLT_MAX;
   *out = (float)(neg ? -v : v);
   return MSOCL__NUM_OK;
 }

@@ -1,5 +1,6 @@
 /* Reads the `v` and `f` statements of Wavefront OBJ text line by line; every
  * other statement (vt, vn, o, g, s, usemtl, mtllib, l, ...) is skipped. */
+#include <float.h>
 #include <limits.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -81,6 +82,11 @@ static int vertex(struct reader *r) {
       return msocl__fail(MSOCL_ERR_NOT_FINITE,
                          "OBJ line %d: " TOKEN_FMT " is not a finite float",
                          r->line, TOKEN_ARGS(t, len));
+    if (rc == MSOCL__NUM_TOO_LARGE)
+      return msocl__fail(MSOCL_ERR_NOT_FINITE,
+                         "OBJ line %d: " TOKEN_FMT " is too large for a float "
+                         "(past %.9g it rounds to infinity)",
+                         r->line, TOKEN_ARGS(t, len), (double)FLT_MAX);
     if (n < 3) xyz[n++] = x;
     else n = 4;
   }
@@ -137,15 +143,17 @@ static int corner(struct reader *r, const char *t, size_t len, int *out) {
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
                        "OBJ line %d: vertex index 0 (OBJ counts from 1)",
                        r->line);
+  /* The index is quoted as written: its value is clamped when large. */
   if (v < 0 && -v > r->o->nv)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
-                       "OBJ line %d: vertex index %lld reaches before the "
-                       "first vertex (%d read so far)",
-                       r->line, v, r->o->nv);
+                       "OBJ line %d: vertex index " TOKEN_FMT " reaches "
+                       "before the first vertex (%d read so far)",
+                       r->line, TOKEN_ARGS(t, vlen), r->o->nv);
   if (v > MAX_VERTICES)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
-                       "OBJ line %d: vertex index %lld is out of range",
-                       r->line, v);
+                       "OBJ line %d: vertex index " TOKEN_FMT " is too large "
+                       "(a model holds at most %d points)",
+                       r->line, TOKEN_ARGS(t, vlen), MAX_VERTICES);
   *out = v < 0 ? (int)(r->o->nv + v) : (int)(v - 1);
   return MSOCL_OK;
 }
@@ -255,6 +263,9 @@ int msocl__obj_parse(struct msocl__obj *o, const char *text, size_t len) {
   memset(&r, 0, sizeof r);
   r.o = o;
   if ((rc = no_nul(text, len))) return rc;
+  /* Editors on Windows start UTF-8 text with a byte-order mark; left in, it
+   * would glue onto the first statement and hide it. */
+  if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) p += 3;
   while (p < end && !rc) {
     eol = memchr(p, '\n', (size_t)(end - p));
     if (!eol) eol = end;

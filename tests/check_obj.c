@@ -7,9 +7,12 @@
 #include <limits.h>
 #include <locale.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "internal.h"
@@ -233,6 +236,41 @@ START_TEST(crlf_comments_blanks) {
   EXPECT(load("v 0 0 0\r\nv 1 0 0\r\n\r\nv 0 y 0\r\n", NULL),
          MSOCL_ERR_BAD_VALUE);
   SAYS("line 4:");
+}
+END_TEST
+
+/* Two models with the same points, springs and triangles, bit for bit. */
+static void expect_same_model(const msocl_model *a, const msocl_model *b) {
+  ck_assert_int_eq(a->n, b->n);
+  ck_assert_int_eq(a->ns, b->ns);
+  ck_assert_int_eq(a->nt, b->nt);
+  ck_assert(memcmp(a->pos, b->pos, 3 * (size_t)a->n * sizeof *a->pos) == 0);
+  ck_assert(memcmp(a->mass, b->mass, (size_t)a->n * sizeof *a->mass) == 0);
+  ck_assert(memcmp(a->ij, b->ij, 2 * (size_t)a->ns * sizeof *a->ij) == 0);
+  ck_assert(memcmp(a->rest, b->rest, (size_t)a->ns * sizeof *a->rest) == 0);
+  ck_assert(memcmp(a->tri, b->tri, 3 * (size_t)a->nt * sizeof *a->tri) == 0);
+}
+
+#define BOM "\xEF\xBB\xBF"
+
+/* A UTF-8 byte-order mark before the first statement is skipped, not
+ * glued onto it: the square's first vertex stays. */
+START_TEST(byte_order_mark) {
+  msocl_model *plain;
+
+  OK(load(square, NULL));
+  plain = m;
+  m = NULL;
+  OK(load(BOM "v 0 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4\n", NULL));
+  expect_same_model(m, plain);
+  msocl_model_destroy(plain);
+  /* Lines are counted as without it. */
+  EXPECT(load(BOM "v 0 0\n", NULL), MSOCL_ERR_BAD_VALUE);
+  SAYS("line 1:");
+  EXPECT(load(BOM, NULL), MSOCL_ERR_EMPTY);
+  /* Only at the start: elsewhere it is not a statement OBJ knows. */
+  EXPECT(load("v 0 0 0\n" BOM "v 2 0 0\nv 2 2 0\nf 1 2 3\n", NULL),
+         MSOCL_ERR_BAD_INDEX);
 }
 END_TEST
 
@@ -559,11 +597,67 @@ START_TEST(numbers) {
     ck_assert_msg(msocl__obj_number(bad[i], strlen(bad[i]), &x) ==
                       MSOCL__NUM_BAD,
                   "'%s' should not be a number", bad[i]);
-  ck_assert_int_eq(msocl__obj_number("3.5e38", 6, &x), MSOCL__NUM_NOT_FINITE);
+  ck_assert_int_eq(msocl__obj_number("3.5e38", 6, &x), MSOCL__NUM_TOO_LARGE);
   ck_assert_int_eq(msocl__obj_number("1e99999999999999999999", 22, &x),
-                   MSOCL__NUM_NOT_FINITE);
+                   MSOCL__NUM_TOO_LARGE);
   ck_assert_int_eq(msocl__obj_number("-INF", 4, &x), MSOCL__NUM_NOT_FINITE);
   ck_assert_int_eq(msocl__obj_number("info", 4, &x), MSOCL__NUM_BAD);
+}
+END_TEST
+
+/* The edges of float: what rounds to FLT_MAX is taken (FLT_MAX printed
+ * with 8 digits is above it), what rounds to infinity refused; denormals
+ * are kept, values below half the smallest become zero with their sign. */
+START_TEST(numbers_near_limits) {
+  static const char *const too_large[] = {"3.4028236e38", "-3.4028236e38",
+                                          "3.40282357e38", "1e39"};
+  float x;
+  size_t i;
+
+  ck_assert(number("3.4028235e38") == FLT_MAX);
+  ck_assert(number("-3.4028235e38") == -FLT_MAX);
+  ck_assert(number("3.40282356e38") == FLT_MAX);
+  for (i = 0; i < sizeof too_large / sizeof too_large[0]; i++)
+    ck_assert_msg(msocl__obj_number(too_large[i], strlen(too_large[i]), &x) ==
+                      MSOCL__NUM_TOO_LARGE,
+                  "'%s' should be too large", too_large[i]);
+  /* The tie between FLT_MAX and 2^128 goes to even: infinity. */
+  ck_assert_int_eq(
+      msocl__obj_number("340282356779733661637539395458142568448", 39, &x),
+      MSOCL__NUM_TOO_LARGE);
+  ck_assert(number("1.17549435e-38") == FLT_MIN);
+  ck_assert(number("1.1754942e-38") == nextafterf(FLT_MIN, 0));
+  ck_assert(number("1.4e-45") == nextafterf(0, 1));
+  ck_assert(number("-1e-45") == -nextafterf(0, 1));
+  ck_assert(number("7.1e-46") == nextafterf(0, 1));
+  x = number("1e-46");
+  ck_assert(x == 0 && !signbit(x));
+  x = number("-1e-46");
+  ck_assert(x == 0 && signbit(x));
+  x = number("-0");
+  ck_assert(x == 0 && signbit(x));
+  /* A vertex at FLT_MAX loads, and a too large one says so. */
+  OK(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 3.4028235e38 -3.4028235E+38 0\n"
+          "f 1 2 3\n",
+          NULL));
+  ck_assert(m->pos[9] == FLT_MAX && m->pos[10] == -FLT_MAX);
+  EXPECT(load("v 0 0 0\nv 0 3.4028236e38 0\n", NULL), MSOCL_ERR_NOT_FINITE);
+  SAYS("line 2: '3.4028236e38' is too large for a float");
+  EXPECT(load("v 0 0 0\nv 0 -inf 0\n", NULL), MSOCL_ERR_NOT_FINITE);
+  SAYS("line 2: '-inf' is not a finite float");
+}
+END_TEST
+
+/* A huge index is quoted as written, not as its clamped value. */
+START_TEST(huge_index_messages) {
+  EXPECT(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 100000000000000000000000\n",
+              NULL),
+         MSOCL_ERR_BAD_INDEX);
+  SAYS("line 4: vertex index '100000000000000000000000' is too large");
+  EXPECT(load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -99999999999999999999/1\n",
+              NULL),
+         MSOCL_ERR_BAD_INDEX);
+  SAYS("vertex index '-99999999999999999999' reaches before the first");
 }
 END_TEST
 
@@ -617,6 +711,8 @@ static void remove_dir(void) {
   char path[512];
   snprintf(path, sizeof path, "%s/mesh.obj", dir);
   remove(path);
+  snprintf(path, sizeof path, "%s/pipe.obj", dir);
+  remove(path);
   rmdir(dir);
   teardown();
 }
@@ -631,6 +727,7 @@ static void write_file(const char *path, const char *text) {
 START_TEST(from_file) {
   char path[512];
   msocl_obj_desc d;
+  msocl_model *plain;
 
   msocl_obj_desc_init(&d);
   snprintf(path, sizeof path, "%s/mesh.obj", dir);
@@ -646,6 +743,16 @@ START_TEST(from_file) {
   ck_assert_msg(strncmp(msocl_last_error(), path, strlen(path)) == 0,
                 "\"%s\" does not start with the path", msocl_last_error());
   SAYS("line 4:");
+
+  /* The same mesh with a byte-order mark loads the same. */
+  write_file(path, BOM "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  OK(msocl_model_from_obj(&m, path, &d));
+  write_file(path, triangle);
+  OK(msocl_model_from_obj(&plain, path, &d));
+  expect_same_model(m, plain);
+  msocl_model_destroy(plain);
+  msocl_model_destroy(m);
+  m = NULL;
 
   /* An empty file. */
   write_file(path, "");
@@ -675,6 +782,75 @@ START_TEST(unreadable_file) {
 }
 END_TEST
 
+/* A child writes text into the FIFO at path (the reader's open waits for
+ * it) and exits; reap it with wait_child. */
+static pid_t feed_fifo(const char *path, const char *text) {
+  pid_t pid = fork();
+
+  ck_assert_int_ge(pid, 0);
+  if (pid == 0) {
+    FILE *f;
+    signal(SIGPIPE, SIG_IGN); /* the reader may stop before the end */
+    if ((f = fopen(path, "wb"))) {
+      fputs(text, f);
+      fclose(f);
+    }
+    _exit(0);
+  }
+  return pid;
+}
+
+static void wait_child(pid_t pid) {
+  int status;
+  ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+}
+
+/* Only regular files and pipes are read, and at most
+ * MSOCL_OBJ_MAX_FILE_BYTES of them: /dev/zero used to be read until the
+ * memory ran out. */
+START_TEST(file_kinds_and_size) {
+  char path[512], *text;
+  size_t len, n = strlen(cube);
+  msocl_obj_desc d;
+  pid_t pid;
+
+  msocl_obj_desc_init(&d);
+  EXPECT(msocl_model_from_obj(&m, "/dev/zero", &d), MSOCL_ERR_IO);
+  SAYS("/dev/zero: not a regular file or a pipe");
+  /* A regular file is judged by its size before it is read (this one is
+   * sparse: no disk space). */
+  snprintf(path, sizeof path, "%s/mesh.obj", dir);
+  write_file(path, "");
+  ck_assert_int_eq(truncate(path, (off_t)MSOCL_OBJ_MAX_FILE_BYTES + 1), 0);
+  EXPECT(msocl_model_from_obj(&m, path, &d), MSOCL_ERR_TOO_MANY);
+  SAYS(path);
+  SAYS("1073741825 bytes, more than the 1073741824");
+  /* The limit itself is allowed, one byte more is not. */
+  write_file(path, cube);
+  OK(msocl__obj_read_file(path, n, &text, &len));
+  ck_assert(len == n && memcmp(text, cube, n) == 0);
+  free(text);
+  EXPECT(msocl__obj_read_file(path, n - 1, &text, &len), MSOCL_ERR_TOO_MANY);
+
+  /* A pipe has no size: it loads, and fails once past the limit. */
+  snprintf(path, sizeof path, "%s/pipe.obj", dir);
+  ck_assert_int_eq(mkfifo(path, 0600), 0);
+  pid = feed_fifo(path, cube);
+  OK(msocl_model_from_obj(&m, path, &d));
+  wait_child(pid);
+  expect_counts(8, 18, 12);
+  pid = feed_fifo(path, cube);
+  OK(msocl__obj_read_file(path, n, &text, &len));
+  wait_child(pid);
+  ck_assert(len == n && memcmp(text, cube, n) == 0);
+  free(text);
+  pid = feed_fifo(path, cube);
+  EXPECT(msocl__obj_read_file(path, n - 1, &text, &len), MSOCL_ERR_TOO_MANY);
+  wait_child(pid);
+  SAYS("pipe.obj: more than the");
+}
+END_TEST
+
 /* ----------------------------------------------------------------- main */
 
 static Suite *obj_suite(void) {
@@ -691,6 +867,7 @@ static Suite *obj_suite(void) {
   tcase_add_test(t, negative_and_forward_indices);
   tcase_add_test(t, index_forms_and_extras);
   tcase_add_test(t, crlf_comments_blanks);
+  tcase_add_test(t, byte_order_mark);
   tcase_add_test(t, polygon_fan);
   tcase_add_test(t, bending_springs);
   tcase_add_test(t, bending_grid);
@@ -702,12 +879,14 @@ static Suite *obj_suite(void) {
                       (int)(sizeof broken / sizeof broken[0]));
   tcase_add_test(t, mass_overflow_and_nul);
   tcase_add_test(t, huge_faces_and_long_lines);
+  tcase_add_test(t, huge_index_messages);
   tcase_set_timeout(t, 60);
   suite_add_tcase(s, t);
 
   t = tcase_create("numbers");
   tcase_add_checked_fixture(t, NULL, teardown);
   tcase_add_test(t, numbers);
+  tcase_add_test(t, numbers_near_limits);
   tcase_add_test(t, numbers_round_trip);
   tcase_add_test(t, locale_independent);
   suite_add_tcase(s, t);
@@ -716,6 +895,7 @@ static Suite *obj_suite(void) {
   tcase_add_checked_fixture(t, make_dir, remove_dir);
   tcase_add_test(t, from_file);
   tcase_add_test(t, unreadable_file);
+  tcase_add_test(t, file_kinds_and_size);
   suite_add_tcase(s, t);
   return s;
 }
