@@ -107,7 +107,28 @@ START_TEST(points_rejected) {
   OK(msocl_model_add_points(m, 3, xyz, mass, &first));
   ck_assert_int_eq(first, 4);
   ck_assert_int_eq(points(m), 7);
-  ck_assert_str_eq(msocl_last_error(), "");
+  /* The success keeps the last failure's message, as errno. */
+  ck_assert_str_eq(msocl_last_error(), "point 1: mass -1 must be > 0");
+}
+END_TEST
+
+/* The last failure's message stays through later successes, of any call,
+ * until the next failure replaces it. */
+START_TEST(last_error_kept) {
+  float p[3] = {0, 0, 0}, mass = 0;
+  msocl_model *e = NULL;
+
+  EXPECT(msocl_model_add_points(m, 1, p, &mass, NULL), MSOCL_ERR_BAD_MASS);
+  SAYS("point 0: mass 0");
+  mass = 1;
+  OK(msocl_model_add_points(m, 1, p, &mass, NULL));
+  OK(msocl_model_validate(m));
+  OK(msocl_model_create(&e));
+  msocl_model_destroy(e);
+  ck_assert_int_eq(points(m), 5);
+  ck_assert_str_eq(msocl_last_error(), "point 0: mass 0 must be > 0");
+  EXPECT(msocl_model_pin(m, 9, 1), MSOCL_ERR_BAD_INDEX);
+  ck_assert_str_eq(msocl_last_error(), "pin: point index 9 out of range [0, 5)");
 }
 END_TEST
 
@@ -795,6 +816,7 @@ static Suite *model_suite(void) {
   tcase_add_test(t, create_and_defaults);
   tcase_add_test(t, points_rejected);
   tcase_add_test(t, points_grow_and_read_back);
+  tcase_add_test(t, last_error_kept);
   suite_add_tcase(s, t);
 
   t = tcase_create("springs");
