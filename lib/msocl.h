@@ -122,14 +122,26 @@ MSOCL_EXTERN int msocl_model_create(msocl_model **m);
 MSOCL_EXTERN void msocl_model_destroy(msocl_model *m);
 
 /* Appends n points (xyz: 3n floats, mass: n floats > 0); *first (may be
- * NULL) receives the index of the first new point. */
+ * NULL) receives the index of the first new point. Limits that keep a
+ * step finite in float: each coordinate within +-1e18 (squared distances
+ * stay finite), mass in [FLT_MIN, 1/FLT_MIN] (1/m a normal float);
+ * msocl_model_validate adds the combinations below (MSOCL_ERR_BAD_VALUE
+ * or MSOCL_ERR_BAD_MASS, the point named). */
 MSOCL_EXTERN int msocl_model_add_points(msocl_model *m, int n,
                                         const float *xyz, const float *mass,
                                         int *first);
 /* Appends n springs between points ij[2s], ij[2s+1]. stiffness: n floats
  * >= 0. rest: NULL, or n floats where a negative value means "the current
  * distance". damping: NULL (none) or n floats >= 0, a dashpot along the
- * spring. */
+ * spring. Forces (SI units) are limited to 1e30: stiffness times the
+ * larger of 1 m, the rest length and the current distance (and damping
+ * times that as a speed a second) at most 1e30, else MSOCL_ERR_BAD_VALUE
+ * naming the spring. msocl_model_validate (and so msocl_sim_create and
+ * the builders) takes the model's extent (its bounding box's diagonal) as
+ * the length instead where it is longer, and refuses a free point whose
+ * springs and dashpots at that length, and viscous damping at the extent
+ * a second, accelerate it past 1e30 m/s^2 (sum of (k + c) L over its
+ * springs, / mass), or whose weight m |g| passes 1e30. */
 MSOCL_EXTERN int msocl_model_add_springs(msocl_model *m, int n, const int *ij,
                                          const float *stiffness,
                                          const float *rest,
