@@ -46,7 +46,8 @@ extern "C" {
   XX(UNSTABLE, -2019, "simulation became unstable")                           \
   XX(IO, -2020, "file input/output failed")                                   \
   XX(TOO_MANY, -2021, "too many items")                                       \
-  XX(EMPTY, -2022, "model has no points")
+  XX(EMPTY, -2022, "model has no points")                                     \
+  XX(NO_CONVERGENCE, -2023, "implicit solver did not converge")
 
 typedef enum {
   MSOCL_OK = 0,
@@ -370,7 +371,14 @@ MSOCL_EXTERN int msocl_sim_create(msocl_sim **s, msocl_runtime *rt,
                                   const msocl_model *m,
                                   const msocl_sim_options *o);
 MSOCL_EXTERN void msocl_sim_destroy(msocl_sim *s);
-/* n steps of symplectic Euler (two passes each); returns when done. */
+/* n steps of the integrator in the options; returns when done.
+ * Implicit Euler: every step is taken; when a step's CG stopped above
+ * cg_tolerance (at cg_max_iterations, or on a breakdown), the call still
+ * returns after all n steps, with the state they reached (the unconverged
+ * steps' velocities kept), but returns MSOCL_ERR_NO_CONVERGENCE; the
+ * message gives how many steps missed, the worst residual, its
+ * iterations and the tolerance. Treat that code as success to accept
+ * such steps. MSOCL_ERR_UNSTABLE from the blow-up check takes precedence. */
 MSOCL_EXTERN int msocl_sim_step(msocl_sim *s, int n);
 MSOCL_EXTERN int msocl_sim_point_count(const msocl_sim *s, int *n);
 MSOCL_EXTERN int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout);
@@ -480,6 +488,7 @@ MSOCL_EXTERN int msocl_reference_create(msocl_reference **r,
                                         const msocl_model *m,
                                         const msocl_sim_options *o);
 MSOCL_EXTERN void msocl_reference_destroy(msocl_reference *r);
+/* Implicit Euler: MSOCL_ERR_NO_CONVERGENCE as msocl_sim_step. */
 MSOCL_EXTERN int msocl_reference_step(msocl_reference *r, int n);
 MSOCL_EXTERN int msocl_reference_positions(const msocl_reference *r,
                                            double *xyz);

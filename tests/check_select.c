@@ -278,7 +278,7 @@ START_TEST(test_cl_names) {
 END_TEST
 
 START_TEST(test_unknown_codes) {
-  static const int unknown[] = {1, 42, -20, -29, -73, -999, -1999, -2023,
+  static const int unknown[] = {1, 42, -20, -29, -73, -999, -1999, -2024,
                                 -2999, INT_MIN, INT_MAX};
   size_t i;
   for (i = 0; i < sizeof unknown / sizeof unknown[0]; i++) {
