@@ -400,7 +400,9 @@ MSOCL_EXTERN int msocl_sim_write_velocities(msocl_sim *s, const float *xyz);
 MSOCL_EXTERN int msocl_sim_read_normals(msocl_sim *s, float *xyz);
 
 typedef struct {
-  double kinetic, spring, gravity; /* joules; gravity relative to y = 0 */
+  /* joules; gravity: -sum m g . p, zero at the origin (for gravity along
+   * -y, m |g| y: relative to y = 0) */
+  double kinetic, spring, gravity;
   double total;
 } msocl_energy;
 
