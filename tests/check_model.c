@@ -129,7 +129,8 @@ START_TEST(last_error_kept) {
   ck_assert_int_eq(points(m), 5);
   ck_assert_str_eq(msocl_last_error(), "point 0: mass 0 must be > 0");
   EXPECT(msocl_model_pin(m, 9, 1), MSOCL_ERR_BAD_INDEX);
-  ck_assert_str_eq(msocl_last_error(), "pin: point index 9 out of range [0, 5)");
+  ck_assert_str_eq(msocl_last_error(),
+                   "pin: point index 9 out of range [0, 5)");
 }
 END_TEST
 
