@@ -107,7 +107,13 @@ int msocl_batch_step(msocl_batch *b, int n)
   }
   for (int i = 0; i < b->count; i++)
     if (!b->bad[i])
-      note(msocl__sim_finish(b->sims[i]), i, &first_rc, msg, sizeof msg);
+      b->bad[i] = note(msocl__sim_finish(b->sims[i]), i, &first_rc, msg,
+                       sizeof msg) != MSOCL_OK;
+  for (int i = 0; i < b->count; i++) { /* implicit Euler's missed CGs */
+    int rc = msocl__cg_report(b->sims[i], b->bad[i] ? first_rc : MSOCL_OK, n);
+    if (!b->bad[i])
+      note(rc, i, &first_rc, msg, sizeof msg);
+  }
   return first_rc == MSOCL_OK ? MSOCL_OK : msocl__fail(first_rc, "%s", msg);
 }
 

@@ -146,6 +146,8 @@ int msocl__fail(int code, const char *fmt, ...) {
   return code;
 }
 
-void msocl__clear_error(void) { msg[cur][0] = '\0'; }
+/* Kept, as errno is: a later call that succeeds leaves the last failure's
+ * message in place (every failure writes its own through msocl__fail). */
+void msocl__clear_error(void) {}
 
 const char *msocl_last_error(void) { return msg[cur]; }

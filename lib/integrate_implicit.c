@@ -137,6 +137,7 @@ int msocl__implicit_cg(msocl__engine *const *e, int parts,
     const int r = s->r, w = 1 - r;
     s->cg_iterations = it;
     s->cg_residual = bb > 0.0 ? sqrt(rr / bb) : 0.0;
+    msocl__cg_note(s, rr <= goal); /* NaN: not converged */
     cl_kernel k = s->k[MSOCL__K_IE_FINISH];
     TRY(msocl__arg_mem(k, 0, s->pos[r]));
     TRY(msocl__arg_mem(k, 1, s->vel[r]));
@@ -144,6 +145,38 @@ int msocl__implicit_cg(msocl__engine *const *e, int parts,
     TRY(msocl__launch(s, MSOCL__K_IE_FINISH));
   }
   return MSOCL_OK;
+}
+
+/* The worst miss is the largest residual, NaN above all. */
+void msocl__cg_note(msocl__engine *s, int converged)
+{
+  if (converged)
+    return;
+  if (s->cg_missed++ == 0 ||
+      (!isnan(s->cg_worst_residual) &&
+       (isnan(s->cg_residual) || s->cg_residual > s->cg_worst_residual))) {
+    s->cg_worst_residual = s->cg_residual;
+    s->cg_worst_iterations = s->cg_iterations;
+  }
+}
+
+/* Every step is taken even when its CG missed: the state then holds the
+ * solver's last iterate, and the code says so once, for the whole call. */
+int msocl__cg_report(msocl_sim *s, int rc, int n)
+{
+  const msocl__engine *e = s->part[0];
+  const int missed = e->cg_missed, it = e->cg_worst_iterations;
+  const double res = e->cg_worst_residual;
+  for (int d = 0; d < s->nparts; d++)
+    s->part[d]->cg_missed = 0;
+  if (rc != MSOCL_OK || missed == 0)
+    return rc;
+  return msocl__fail(
+      MSOCL_ERR_NO_CONVERGENCE,
+      "implicit Euler: CG stopped above the tolerance %g in %d of %d steps "
+      "(worst: relative residual %g after %d iterations, cap %d); the steps "
+      "were taken with the solver's last iterate",
+      (double)s->o.cg_tolerance, missed, n, res, it, s->o.cg_max_iterations);
 }
 
 /* Writes the new velocity to vel[1 - r]; the caller's position pass moves

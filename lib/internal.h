@@ -19,8 +19,9 @@
 /* Records a detailed message for msocl_last_error() and returns `code`. */
 int msocl__fail(int code, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
-/* Clears the thread's last-error message (call on entry of public calls
- * that may fail, so a stale message is never reported). */
+/* Called on entry of public calls; the thread's last-error message is
+ * kept until the next failure replaces it (as errno), so this does
+ * nothing. */
 void msocl__clear_error(void);
 
 /* Returns from the enclosing function with the OpenCL status if a CL call

@@ -1,5 +1,6 @@
 /* The host-side model: points, springs, triangles and force parameters,
  * checked on the way in so that every later stage may trust them. */
+#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stdint.h>
@@ -109,19 +110,42 @@ static int reserve_triangles(msocl_model *m, int need) {
 
 /* -------------------------------------------------------------- checks */
 
+/* The limits of msocl.h (at msocl_model_add_points and _add_springs) that
+ * keep a step's float arithmetic finite. A coordinate's bound keeps
+ * squared distances, 3 (2 x 1e18)^2, below FLT_MAX; a mass in
+ * [FLT_MIN, 1/FLT_MIN] has a normal 1/m; forces and accelerations (SI
+ * units) stop at 1e30, a factor 3e8 below FLT_MAX, room for stretch past
+ * the extent, sums and the step's products. Compared in double, as the
+ * floats they are. */
+#define COORD_MAX ((double)1e18f)
+#define MASS_MIN ((double)FLT_MIN)
+#define MASS_MAX (1.0 / (double)FLT_MIN)
+#define FORCE_MAX ((double)1e30f)
+
 /* Indices in messages count from the start of the caller's arrays. */
 static int check_point(int i, const float *p, float mass) {
   int c;
-  for (c = 0; c < 3; c++)
+  for (c = 0; c < 3; c++) {
     if (!isfinite(p[c]))
       return msocl__fail(MSOCL_ERR_NOT_FINITE,
                          "point %d: %c = %g is not finite", i, "xyz"[c], p[c]);
+    if (fabs(p[c]) > COORD_MAX)
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "point %d: |%c| = %g exceeds %g, past which squared "
+                         "distances overflow a float",
+                         i, "xyz"[c], fabs(p[c]), COORD_MAX);
+  }
   if (!isfinite(mass))
     return msocl__fail(MSOCL_ERR_NOT_FINITE, "point %d: mass %g is not finite",
                        i, mass);
   if (!(mass > 0))
     return msocl__fail(MSOCL_ERR_BAD_MASS, "point %d: mass %g must be > 0", i,
                        mass);
+  if (mass < MASS_MIN || mass > MASS_MAX)
+    return msocl__fail(MSOCL_ERR_BAD_MASS,
+                       "point %d: mass %g is outside [FLT_MIN, 1/FLT_MIN] = "
+                       "[%g, %g], where 1/m is a normal float",
+                       i, mass, MASS_MIN, MASS_MAX);
   return MSOCL_OK;
 }
 
@@ -153,6 +177,26 @@ static int check_coef(int s, const char *what, float x) {
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "spring %d: %s %g must be >= 0", s,
                        what, x);
   return MSOCL_OK;
+}
+
+/* Stiffness or dashpot x times a length: the spring's force at that
+ * stretch (or closing speed a second) must stay within FORCE_MAX; `len`
+ * at least 1 m, so that a short or unstretched spring is held to it too. */
+static int check_force(int s, const char *what, float x, double len) {
+  double f = (double)x * (len > 1.0 ? len : 1.0);
+  if (f > FORCE_MAX)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "spring %d: %s %g x %s %g = %g exceeds the force limit "
+                       "%g",
+                       s, what, x, what[0] == 's' ? "length" : "speed",
+                       len > 1.0 ? len : 1.0, f, FORCE_MAX);
+  return MSOCL_OK;
+}
+
+static int check_spring_forces(int s, float k, const float *c, double len) {
+  int rc = check_force(s, "stiffness", k, len);
+  if (rc == MSOCL_OK && c) rc = check_force(s, "damping", *c, len);
+  return rc;
 }
 
 /* In double, so a rest length is as exact as a float can hold. */
@@ -286,7 +330,10 @@ int msocl_model_add_springs(msocl_model *m, int n, const int *ij,
     if ((rc = check_spring_ends(s, ij[2 * s], ij[2 * s + 1], m->n)) ||
         (rc = check_coef(s, "stiffness", stiffness[s])) ||
         (damping && (rc = check_coef(s, "damping", damping[s]))) ||
-        (rc = rest_length(m, s, ij[2 * s], ij[2 * s + 1], rest, &r)))
+        (rc = rest_length(m, s, ij[2 * s], ij[2 * s + 1], rest, &r)) ||
+        (rc = check_spring_forces(
+             s, stiffness[s], damping ? &damping[s] : NULL,
+             fmax(r, distance(m, ij[2 * s], ij[2 * s + 1])))))
       return rc;
     if (damping && damping[s] > 0) want_damp = 1;
   }
@@ -434,8 +481,70 @@ int msocl_model_triangles(const msocl_model *m, int *n, const int **ijk) {
   return MSOCL_OK;
 }
 
+/* The diagonal of the points' bounding box, in double. */
+static double extent(const msocl_model *m) {
+  double lo[3], hi[3], d2 = 0;
+  int i, c;
+  for (c = 0; c < 3; c++) lo[c] = hi[c] = m->pos[c];
+  for (i = 1; i < m->n; i++)
+    for (c = 0; c < 3; c++) {
+      lo[c] = fmin(lo[c], m->pos[3 * i + c]);
+      hi[c] = fmax(hi[c], m->pos[3 * i + c]);
+    }
+  for (c = 0; c < 3; c++) d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
+  return sqrt(d2);
+}
+
+/* The combinations no single add can see, with every spring stretched
+ * by (and every dashpot closing at, a second) the larger of its rest
+ * length and the model's extent: each spring's force, and each free
+ * point's acceleration from its springs, its viscous damping and its
+ * weight, within FORCE_MAX. */
+static int check_combined(const msocl_model *m) {
+  const double ext = extent(m), ext1 = ext > 1.0 ? ext : 1.0;
+  const double g = sqrt((double)m->gravity[0] * m->gravity[0] +
+                        (double)m->gravity[1] * m->gravity[1] +
+                        (double)m->gravity[2] * m->gravity[2]);
+  double *pull;
+  int i, s, rc = MSOCL_OK;
+
+  if ((double)m->viscous * ext1 > FORCE_MAX)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "viscous damping %g x speed %g (the model's extent a "
+                       "second) exceeds the force limit %g",
+                       m->viscous, ext1, FORCE_MAX);
+  if (!(pull = calloc((size_t)m->n, sizeof *pull)))
+    return msocl__fail(MSOCL_ERR_NO_MEMORY,
+                       "cannot check the forces on %d points", m->n);
+  for (s = 0; rc == MSOCL_OK && s < m->ns; s++) {
+    const double len = fmax(m->rest[s], ext);
+    const float c = m->damp ? m->damp[s] : 0.0f;
+    rc = check_spring_forces(s, m->k[s], m->damp ? &c : NULL, len);
+    pull[m->ij[2 * s]] += ((double)m->k[s] + c) * fmax(len, 1.0);
+    pull[m->ij[2 * s + 1]] += ((double)m->k[s] + c) * fmax(len, 1.0);
+  }
+  for (i = 0; rc == MSOCL_OK && i < m->n; i++) {
+    const double a = (pull[i] + (double)m->viscous * ext1) / m->mass[i];
+    if (m->pinned[i]) continue; /* never moves: its 1/m is never used */
+    if (a > FORCE_MAX)
+      rc = msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "point %d: its springs and damping at the model's "
+                       "extent %g give its mass %g an acceleration of %g, "
+                       "past the limit %g",
+                       i, ext, m->mass[i], a, FORCE_MAX);
+    else if (m->mass[i] * g > FORCE_MAX)
+      rc = msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "point %d: weight %g x %g = %g exceeds the force limit "
+                       "%g",
+                       i, m->mass[i], g, m->mass[i] * g, FORCE_MAX);
+  }
+  free(pull);
+  return rc;
+}
+
 /* Re-runs the checks of the adding calls over the whole model, so a model
- * that reaches a device is known good whatever path built it. */
+ * that reaches a device is known good whatever path built it, then checks
+ * the combinations. */
 int msocl_model_validate(const msocl_model *m) {
   int i, rc;
 
@@ -462,7 +571,7 @@ int msocl_model_validate(const msocl_model *m) {
       return msocl__fail(MSOCL_ERR_NOT_FINITE,
                          "collider %d: parameter is not finite", i);
   }
-  return MSOCL_OK;
+  return check_combined(m);
 }
 
 int msocl__grid_intact(const msocl_model *m)

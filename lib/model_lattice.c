@@ -305,8 +305,9 @@ int msocl_model_lattice(msocl_model **m, const msocl_lattice_desc *d) {
   if (!d)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "lattice description is NULL");
   if ((rc = check_desc(d)) || (rc = msocl_model_create(m))) return rc;
+  /* validate: the combinations of the model's limits (msocl.h) */
   if ((rc = add_points(*m, d)) || (rc = add_springs(*m, d)) ||
-      (rc = add_triangles(*m, d))) {
+      (rc = add_triangles(*m, d)) || (rc = msocl_model_validate(*m))) {
     msocl_model_destroy(*m);
     *m = NULL;
   }

@@ -157,7 +157,8 @@ static int build(msocl_model **m, const struct msocl__obj *o,
            !(rc = msocl_model_create(m)) &&
            ((rc = msocl_model_add_points(*m, o->nv, o->xyz, mass, NULL)) ||
             (rc = add_springs(*m, o, d)) ||
-            (rc = msocl_model_add_triangles(*m, o->nt, o->tri)))) {
+            (rc = msocl_model_add_triangles(*m, o->nt, o->tri)) ||
+            (rc = msocl_model_validate(*m)))) {
     msocl_model_destroy(*m);
     *m = NULL;
   }

@@ -283,6 +283,8 @@ static int build(msocl_model **out, int np, const float *xyz, int nt,
     rc = msocl_model_add_springs(m, np, ij + 2 * (ns - np), k + ns - np, NULL,
                                  damp);
   if (rc == MSOCL_OK) rc = msocl_model_add_triangles(m, nt, ijk);
+  /* the combinations of the model's limits (msocl.h) */
+  if (rc == MSOCL_OK) rc = msocl_model_validate(m);
 out:
   if (rc) {
     msocl_model_destroy(m);

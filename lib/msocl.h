@@ -46,7 +46,8 @@ extern "C" {
   XX(UNSTABLE, -2019, "simulation became unstable")                           \
   XX(IO, -2020, "file input/output failed")                                   \
   XX(TOO_MANY, -2021, "too many items")                                       \
-  XX(EMPTY, -2022, "model has no points")
+  XX(EMPTY, -2022, "model has no points")                                     \
+  XX(NO_CONVERGENCE, -2023, "implicit solver did not converge")
 
 typedef enum {
   MSOCL_OK = 0,
@@ -122,14 +123,26 @@ MSOCL_EXTERN int msocl_model_create(msocl_model **m);
 MSOCL_EXTERN void msocl_model_destroy(msocl_model *m);
 
 /* Appends n points (xyz: 3n floats, mass: n floats > 0); *first (may be
- * NULL) receives the index of the first new point. */
+ * NULL) receives the index of the first new point. Limits that keep a
+ * step finite in float: each coordinate within +-1e18 (squared distances
+ * stay finite), mass in [FLT_MIN, 1/FLT_MIN] (1/m a normal float);
+ * msocl_model_validate adds the combinations below (MSOCL_ERR_BAD_VALUE
+ * or MSOCL_ERR_BAD_MASS, the point named). */
 MSOCL_EXTERN int msocl_model_add_points(msocl_model *m, int n,
                                         const float *xyz, const float *mass,
                                         int *first);
 /* Appends n springs between points ij[2s], ij[2s+1]. stiffness: n floats
  * >= 0. rest: NULL, or n floats where a negative value means "the current
  * distance". damping: NULL (none) or n floats >= 0, a dashpot along the
- * spring. */
+ * spring. Forces (SI units) are limited to 1e30: stiffness times the
+ * larger of 1 m, the rest length and the current distance (and damping
+ * times that as a speed a second) at most 1e30, else MSOCL_ERR_BAD_VALUE
+ * naming the spring. msocl_model_validate (and so msocl_sim_create and
+ * the builders) takes the model's extent (its bounding box's diagonal) as
+ * the length instead where it is longer, and refuses a free point whose
+ * springs and dashpots at that length, and viscous damping at the extent
+ * a second, accelerate it past 1e30 m/s^2 (sum of (k + c) L over its
+ * springs, / mass), or whose weight m |g| passes 1e30. */
 MSOCL_EXTERN int msocl_model_add_springs(msocl_model *m, int n, const int *ij,
                                          const float *stiffness,
                                          const float *rest,
@@ -363,7 +376,14 @@ MSOCL_EXTERN int msocl_sim_create(msocl_sim **s, msocl_runtime *rt,
                                   const msocl_model *m,
                                   const msocl_sim_options *o);
 MSOCL_EXTERN void msocl_sim_destroy(msocl_sim *s);
-/* n steps of symplectic Euler (two passes each); returns when done. */
+/* n steps of the integrator in the options; returns when done.
+ * Implicit Euler: every step is taken; when a step's CG stopped above
+ * cg_tolerance (at cg_max_iterations, or on a breakdown), the call still
+ * returns after all n steps, with the state they reached (the unconverged
+ * steps' velocities kept), but returns MSOCL_ERR_NO_CONVERGENCE; the
+ * message gives how many steps missed, the worst residual, its
+ * iterations and the tolerance. Treat that code as success to accept
+ * such steps. MSOCL_ERR_UNSTABLE from the blow-up check takes precedence. */
 MSOCL_EXTERN int msocl_sim_step(msocl_sim *s, int n);
 MSOCL_EXTERN int msocl_sim_point_count(const msocl_sim *s, int *n);
 MSOCL_EXTERN int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout);
@@ -385,7 +405,9 @@ MSOCL_EXTERN int msocl_sim_write_velocities(msocl_sim *s, const float *xyz);
 MSOCL_EXTERN int msocl_sim_read_normals(msocl_sim *s, float *xyz);
 
 typedef struct {
-  double kinetic, spring, gravity; /* joules; gravity relative to y = 0 */
+  /* joules; gravity: -sum m g . p, zero at the origin (for gravity along
+   * -y, m |g| y: relative to y = 0) */
+  double kinetic, spring, gravity;
   double total;
 } msocl_energy;
 
@@ -473,6 +495,7 @@ MSOCL_EXTERN int msocl_reference_create(msocl_reference **r,
                                         const msocl_model *m,
                                         const msocl_sim_options *o);
 MSOCL_EXTERN void msocl_reference_destroy(msocl_reference *r);
+/* Implicit Euler: MSOCL_ERR_NO_CONVERGENCE as msocl_sim_step. */
 MSOCL_EXTERN int msocl_reference_step(msocl_reference *r, int n);
 MSOCL_EXTERN int msocl_reference_positions(const msocl_reference *r,
                                            double *xyz);

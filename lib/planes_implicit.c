@@ -110,6 +110,7 @@ int msocl__pl_implicit_velocity(msocl__engine *s, int r, int w)
   }
   s->cg_iterations = it;
   s->cg_residual = bb > 0.0 ? sqrt(rr / bb) : 0.0;
+  msocl__cg_note(s, rr <= goal);
   cl_kernel k = s->pl_k[PL_IE_FINISH];
   TRY(msocl__pl_arg(k, 0, sizeof s->pl_p[r], &s->pl_p[r]));
   TRY(msocl__pl_arg(k, 1, sizeof s->pl_v[r], &s->pl_v[r]));

@@ -313,5 +313,5 @@ int msocl_reference_step(msocl_reference *r, int n)
     r->vel = r->vnew;
     r->vnew = t;
   }
-  return MSOCL_OK;
+  return msocl__ref_cg_report(r, MSOCL_OK, n);
 }

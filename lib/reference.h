@@ -21,6 +21,8 @@ struct msocl_reference {
   int acc_valid;
   int cg_iterations;
   double cg_residual;
+  int cg_missed, cg_worst_iterations; /* as the engine's (sim.h) */
+  double cg_worst_residual;
 };
 
 static inline double msocl__dot3(const double *a, const double *b)
@@ -34,5 +36,7 @@ void msocl__ref_collide(const msocl_reference *r, const double *p, double *v,
                         double fscale);
 /* Backward Euler's new velocities into r->vnew (reference_implicit.c). */
 void msocl__ref_implicit_velocity(msocl_reference *r);
+/* As msocl__cg_report, for msocl_reference_step. */
+int msocl__ref_cg_report(msocl_reference *r, int rc, int n);
 
 #endif

@@ -62,6 +62,21 @@ static double dot(const double *a, const double *b, int n3)
   return s;
 }
 
+int msocl__ref_cg_report(msocl_reference *r, int rc, int n)
+{
+  const int missed = r->cg_missed;
+  r->cg_missed = 0;
+  if (rc != MSOCL_OK || missed == 0)
+    return rc;
+  return msocl__fail(
+      MSOCL_ERR_NO_CONVERGENCE,
+      "reference implicit Euler: CG stopped above the tolerance %g in %d of "
+      "%d steps (worst: relative residual %g after %d iterations, cap %d); "
+      "the steps were taken with the solver's last iterate",
+      (double)r->o.cg_tolerance, missed, n, r->cg_worst_residual,
+      r->cg_worst_iterations, r->o.cg_max_iterations);
+}
+
 void msocl__ref_implicit_velocity(msocl_reference *r)
 {
   const int n3 = 3 * r->n;
@@ -110,6 +125,13 @@ void msocl__ref_implicit_velocity(msocl_reference *r)
   }
   r->cg_iterations = it;
   r->cg_residual = bb > 0 ? sqrt(rr / bb) : 0.0;
+  if (!(rr <= goal) &&
+      (r->cg_missed++ == 0 ||
+       (!isnan(r->cg_worst_residual) &&
+        (isnan(r->cg_residual) || r->cg_residual > r->cg_worst_residual)))) {
+    r->cg_worst_residual = r->cg_residual; /* as msocl__cg_note */
+    r->cg_worst_iterations = it;
+  }
   for (int i = 0; i < r->n; i++) {
     double *v = r->vnew + 3 * i;
     if (r->pinned[i]) {

@@ -49,6 +49,10 @@ struct msocl__engine {
   size_t full_global;     /* n rounded up to 64 */
   int cg_iterations;
   double cg_residual;
+  /* steps since the last msocl__cg_report whose CG stopped above the
+   * tolerance, and the worst of them */
+  int cg_missed, cg_worst_iterations;
+  double cg_worst_residual;
   cl_float4 gravity;
   float viscous, air;
   int ncol;
@@ -271,6 +275,13 @@ int msocl__implicit_velocity(msocl__engine *s);
  * halo between products. */
 int msocl__implicit_cg(msocl__engine *const *e, int parts,
                        int (*exchange)(void *ctx), void *ctx);
+/* Records the last CG's outcome (cg_iterations, cg_residual) when it
+ * stopped above the tolerance (planes_implicit.c uses it too). */
+void msocl__cg_note(msocl__engine *s, int converged);
+/* Ends a stepping call of n steps that returns rc: MSOCL_ERR_NO_CONVERGENCE
+ * with its message if rc is MSOCL_OK and a step's CG missed the tolerance;
+ * clears the record either way. */
+int msocl__cg_report(msocl_sim *s, int rc, int n);
 /* Adds the engine's reduction partials (s->partial), in group order, to
  * *sum. */
 int msocl__implicit_collect(msocl__engine *s, double *sum);

@@ -76,6 +76,11 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
                        "the EDGES layout runs symplectic Euler without strain "
                        "limiting (its per-spring pass feeds one velocity "
                        "update); use BUFFER for other methods");
+  if (o->fused != 0 && o->fused != 1)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "fused is %d: 0 or 1", o->fused);
+  if (o->overlap != 0 && o->overlap != 1)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "overlap is %d: 0 or 1",
+                       o->overlap);
   if (o->fused && (o->integrator != MSOCL_SYMPLECTIC_EULER ||
                    o->layout == MSOCL_LAYOUT_EDGES ||
                    o->strain == MSOCL_STRAIN_VELOCITY))

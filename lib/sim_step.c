@@ -368,5 +368,5 @@ int msocl_sim_step(msocl_sim *s, int n)
       rc = msocl__batch_end(s);
     done += batch;
   }
-  return rc == MSOCL_OK ? finish_all(s) : rc;
+  return msocl__cg_report(s, rc == MSOCL_OK ? finish_all(s) : rc, n);
 }

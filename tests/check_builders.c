@@ -200,8 +200,11 @@ START_TEST(lattice_rejected) {
   REJECT(k_shear_body, -1, MSOCL_ERR_BAD_VALUE);
   REJECT(k_bend, -1, MSOCL_ERR_BAD_VALUE);
   REJECT(damping, -1, MSOCL_ERR_BAD_VALUE);
-  /* Corners past a float's range: the model's own point check. */
-  REJECT(spacing, 3e38f, MSOCL_ERR_NOT_FINITE);
+  /* Corners past the coordinate limit of msocl.h (1e18), or a float's
+   * range: the model's own point check, at the first point past 1e18. */
+  REJECT(spacing, 3e38f, MSOCL_ERR_BAD_VALUE);
+  REJECT(spacing, 1e18f, MSOCL_ERR_BAD_VALUE);
+  SAYS("point 2: |x| = 2e+18 exceeds 1e+18");
 #undef REJECT
 }
 END_TEST

@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static msocl_runtime *rt;
 static const char *const names[] = {"symplectic Euler", "explicit Euler",
@@ -169,6 +170,112 @@ START_TEST(convergence_order)
 }
 END_TEST
 
+/* Implicit Euler whose CG cannot converge within its cap (2 iterations
+ * at 10 ms on the hanging cloth): the float4 engine, the planes and the
+ * host reference take every step with the solver's last iterate and
+ * return MSOCL_ERR_NO_CONVERGENCE naming the tolerance, the iterations
+ * and the residual; the same run with room to converge returns OK. */
+static msocl_sim *capped(const msocl_model *m, msocl_sim_options *o,
+                         int planes, int cap)
+{
+  msocl_sim_options_init(o);
+  o->dt = 1e-2f;
+  o->integrator = MSOCL_IMPLICIT_EULER;
+  o->layout = MSOCL_LAYOUT_GRID;
+  o->planes = planes;
+  o->cg_max_iterations = cap;
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, rt, m, o);
+  ck_assert_msg(rc == MSOCL_OK, "sim_create: %s", msocl_last_error());
+  int on = -1;
+  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
+  ck_assert_int_eq(on, planes);
+  return s;
+}
+
+static void says(const char *text)
+{
+  ck_assert_msg(strstr(msocl_last_error(), text), "\"%s\" lacks \"%s\"",
+                msocl_last_error(), text);
+}
+
+START_TEST(implicit_no_convergence)
+{
+  const int planes = _i;
+  msocl_model *m = scene_hanging(12);
+  int n;
+  msocl_model_point_count(m, &n);
+  msocl_sim_options o;
+  float *p0 = malloc(3 * (size_t)n * sizeof *p0),
+        *p1 = malloc(3 * (size_t)n * sizeof *p1),
+        *p2 = malloc(3 * (size_t)n * sizeof *p2);
+  msocl_model_get_positions(m, p0);
+
+  msocl_sim *s = capped(m, &o, planes, 2);
+  int rc = msocl_sim_step(s, 5);
+  ck_assert_msg(rc == MSOCL_ERR_NO_CONVERGENCE, "got %s: %s",
+                msocl_err_name(rc), msocl_last_error());
+  printf("%s: %s\n", planes ? "planes" : "float4", msocl_last_error());
+  says("tolerance 1e-05 in 5 of 5 steps");
+  says("after 2 iterations, cap 2");
+  says("relative residual ");
+  int it;
+  double res;
+  ck_assert_int_eq(msocl_sim_solver_stats(s, &it, &res), MSOCL_OK);
+  ck_assert_int_eq(it, 2);
+  ck_assert_double_gt(res, 1e-5);
+  /* every step taken, from the last iterate: as five calls of one step */
+  long long steps;
+  ck_assert_int_eq(msocl_sim_step_count(s, &steps), MSOCL_OK);
+  ck_assert_int_eq(steps, 5);
+  ck_assert_int_eq(msocl_sim_read_positions(s, p1), MSOCL_OK);
+  ck_assert_double_gt(scene_max_diff(p0, p1, 3 * n), 1e-4);
+  msocl_sim_destroy(s);
+  s = capped(m, &o, planes, 2);
+  for (int q = 0; q < 5; q++) {
+    ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_ERR_NO_CONVERGENCE);
+    says("in 1 of 1 steps");
+  }
+  ck_assert_int_eq(msocl_sim_read_positions(s, p2), MSOCL_OK);
+  ck_assert(memcmp(p1, p2, 3 * (size_t)n * sizeof *p1) == 0);
+  msocl_sim_destroy(s);
+
+  /* the host reference: the same code, the same state within float's
+   * round-off of two CG iterations */
+  msocl_reference *r = NULL;
+  ck_assert_int_eq(msocl_reference_create(&r, m, &o), MSOCL_OK);
+  rc = msocl_reference_step(r, 5);
+  ck_assert_msg(rc == MSOCL_ERR_NO_CONVERGENCE, "reference: got %s: %s",
+                msocl_err_name(rc), msocl_last_error());
+  says("reference implicit Euler: CG stopped above the tolerance 1e-05 in 5 "
+       "of 5 steps");
+  says("after 2 iterations, cap 2");
+  double *q = malloc(3 * (size_t)n * sizeof *q), worst = 0.0;
+  msocl_reference_positions(r, q);
+  for (int i = 0; i < 3 * n; i++)
+    worst = fmax(worst, fabs(q[i] - p1[i]));
+  printf("%s: capped CG, max |device - reference| = %.3g m\n",
+         planes ? "planes" : "float4", worst);
+  ck_assert_double_le(worst, 1e-5);
+  msocl_reference_destroy(r);
+  free(q);
+
+  /* room to converge: OK, and the message of the last failure stays */
+  s = capped(m, &o, planes, 200);
+  rc = msocl_sim_step(s, 5);
+  ck_assert_msg(rc == MSOCL_OK, "got %s: %s", msocl_err_name(rc),
+                msocl_last_error());
+  ck_assert_int_eq(msocl_sim_solver_stats(s, &it, &res), MSOCL_OK);
+  ck_assert_double_le(res, 1e-5);
+  ck_assert_int_gt(it, 2);
+  msocl_sim_destroy(s);
+  free(p0);
+  free(p1);
+  free(p2);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 int main(void)
 {
   scene_require_device("check_integrators");
@@ -178,6 +285,7 @@ int main(void)
   tcase_set_timeout(tc, 300);
   tcase_add_loop_test(tc, device_matches_reference, 0, 5);
   tcase_add_loop_test(tc, convergence_order, 0, 5);
+  tcase_add_loop_test(tc, implicit_no_convergence, 0, 2);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }

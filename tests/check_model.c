@@ -1,6 +1,7 @@
 /* The host-side model: every input rule with its code, atomic adds, rest
  * lengths, colliders, adjacency order and the cloth builder. No OpenCL. */
 #include <check.h>
+#include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
@@ -107,7 +108,65 @@ START_TEST(points_rejected) {
   OK(msocl_model_add_points(m, 3, xyz, mass, &first));
   ck_assert_int_eq(first, 4);
   ck_assert_int_eq(points(m), 7);
-  ck_assert_str_eq(msocl_last_error(), "");
+  /* The success keeps the last failure's message, as errno. */
+  ck_assert_str_eq(msocl_last_error(), "point 1: mass -1 must be > 0");
+}
+END_TEST
+
+/* The last failure's message stays through later successes, of any call,
+ * until the next failure replaces it. */
+START_TEST(last_error_kept) {
+  float p[3] = {0, 0, 0}, mass = 0;
+  msocl_model *e = NULL;
+
+  EXPECT(msocl_model_add_points(m, 1, p, &mass, NULL), MSOCL_ERR_BAD_MASS);
+  SAYS("point 0: mass 0");
+  mass = 1;
+  OK(msocl_model_add_points(m, 1, p, &mass, NULL));
+  OK(msocl_model_validate(m));
+  OK(msocl_model_create(&e));
+  msocl_model_destroy(e);
+  ck_assert_int_eq(points(m), 5);
+  ck_assert_str_eq(msocl_last_error(), "point 0: mass 0 must be > 0");
+  EXPECT(msocl_model_pin(m, 9, 1), MSOCL_ERR_BAD_INDEX);
+  ck_assert_str_eq(msocl_last_error(),
+                   "pin: point index 9 out of range [0, 5)");
+}
+END_TEST
+
+/* The limits of msocl.h at msocl_model_add_points: coordinates within
+ * +-1e18, masses in [FLT_MIN, 1/FLT_MIN]; the bounds themselves pass. */
+START_TEST(points_limits) {
+  float xyz[6] = {0, 0, 0, 1, 1, 1}, mass[2] = {1, 1};
+
+  mass[1] = 1e-39f; /* the issue's: 1/m overflows, energy went NaN */
+  EXPECT(msocl_model_add_points(m, 2, xyz, mass, NULL), MSOCL_ERR_BAD_MASS);
+  SAYS("point 1: mass 1e-39 is outside [FLT_MIN, 1/FLT_MIN]");
+  mass[1] = 1e-45f;
+  EXPECT(msocl_model_add_points(m, 2, xyz, mass, NULL), MSOCL_ERR_BAD_MASS);
+  SAYS("point 1: mass 1.4013e-45");
+  mass[1] = nextafterf(FLT_MIN, 0);
+  EXPECT(msocl_model_add_points(m, 2, xyz, mass, NULL), MSOCL_ERR_BAD_MASS);
+  mass[1] = nextafterf(1 / FLT_MIN, INFINITY);
+  EXPECT(msocl_model_add_points(m, 2, xyz, mass, NULL), MSOCL_ERR_BAD_MASS);
+  SAYS("point 1");
+  mass[1] = 1;
+  xyz[4] = nextafterf(1e18f, INFINITY);
+  EXPECT(msocl_model_add_points(m, 2, xyz, mass, NULL), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 1: |y| = 1e+18 exceeds 1e+18");
+  xyz[4] = -3e38f;
+  EXPECT(msocl_model_add_points(m, 2, xyz, mass, NULL), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 1: |y| = 3e+38");
+  ck_assert_int_eq(points(m), 4);
+
+  mass[0] = FLT_MIN;
+  mass[1] = 1 / FLT_MIN;
+  xyz[4] = 1e18f;
+  xyz[2] = -1e18f;
+  OK(msocl_model_add_points(m, 2, xyz, mass, NULL));
+  ck_assert_int_eq(points(m), 6);
+  OK(msocl_model_set_gravity(m, 0, 0, 0)); /* a weight of 1/FLT_MIN g */
+  OK(msocl_model_validate(m));
 }
 END_TEST
 
@@ -252,15 +311,66 @@ START_TEST(springs_rest_and_order) {
 }
 END_TEST
 
+/* Points far enough apart for their distance to overflow a float no
+ * longer get in; at the coordinate limit the distance is still finite. */
 START_TEST(springs_rest_overflow) {
   float far[6] = {-3e38f, 0, 0, 3e38f, 0, 0};
   int ij[2] = {4, 5};
   float k = 1;
 
+  EXPECT(msocl_model_add_points(m, 2, far, ones, NULL), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 0: |x| = 3e+38");
+  far[0] = -1e18f;
+  far[3] = 1e18f;
   OK(msocl_model_add_points(m, 2, far, ones, NULL));
-  EXPECT(msocl_model_add_springs(m, 1, ij, &k, NULL, NULL),
-         MSOCL_ERR_NOT_FINITE);
+  OK(msocl_model_add_springs(m, 1, ij, &k, NULL, NULL));
+  NEAR(m->rest[0], 2e18f, 0);
+  OK(msocl_model_validate(m));
+}
+END_TEST
+
+/* The limits of msocl.h at msocl_model_add_springs: stiffness, and
+ * damping, times the larger of 1 m, the rest length and the distance at
+ * most 1e30; the bound itself passes. */
+START_TEST(springs_limits) {
+  int ij[4] = {0, 1, 0, 2}; /* 1 m, then the diagonal */
+  float k[2] = {10, 10}, rest[2] = {-1, -1}, damp[2] = {0, 0};
+
+  k[1] = FLT_MAX; /* the issue's: k L overflows */
+  EXPECT(msocl_model_add_springs(m, 2, ij, k, NULL, NULL), MSOCL_ERR_BAD_VALUE);
+  SAYS("spring 1: stiffness 3.40282e+38 x length 1.41421");
+  k[1] = 1e30f; /* x sqrt 2 */
+  EXPECT(msocl_model_add_springs(m, 2, ij, k, NULL, NULL), MSOCL_ERR_BAD_VALUE);
+  SAYS("spring 1: stiffness 1e+30");
+  k[1] = 10;
+  k[0] = nextafterf(1e30f, INFINITY);
+  EXPECT(msocl_model_add_springs(m, 2, ij, k, NULL, NULL), MSOCL_ERR_BAD_VALUE);
+  SAYS("spring 0: stiffness");
+  k[0] = 1e29f;
+  rest[0] = 20; /* the rest length, when longer than the distance */
+  EXPECT(msocl_model_add_springs(m, 2, ij, k, rest, NULL), MSOCL_ERR_BAD_VALUE);
+  SAYS("spring 0: stiffness 1e+29 x length 20");
+  rest[0] = -1;
+  damp[1] = 1e30f;
+  EXPECT(msocl_model_add_springs(m, 2, ij, k, rest, damp),
+         MSOCL_ERR_BAD_VALUE);
+  SAYS("spring 1: damping 1e+30 x speed 1.41421");
+  damp[1] = 0;
+  damp[0] = 1e31f; /* a unit spring is held to 1 m */
+  rest[0] = 0;
+  EXPECT(msocl_model_add_springs(m, 2, ij, k, rest, damp),
+         MSOCL_ERR_BAD_VALUE);
+  SAYS("spring 0: damping 1e+31 x speed 1");
   ck_assert_int_eq(springs(m), 0);
+
+  /* At the limit: 1e30 x 1 m (a short rest length counts as 1 m too). */
+  k[0] = 1e30f;
+  damp[0] = 1e30f;
+  rest[0] = 0.5f;
+  k[1] = 1e30f / 1.5f;
+  damp[1] = 7e29f;
+  OK(msocl_model_add_springs(m, 2, ij, k, rest, damp));
+  ck_assert_int_eq(springs(m), 2);
 }
 END_TEST
 
@@ -411,8 +521,93 @@ START_TEST(validate_rechecks) {
   m->col[0].p[3] = 0;
   m->mass[2] = 0;
   EXPECT(msocl_model_validate(m), MSOCL_ERR_BAD_MASS);
+  m->mass[2] = 1e-39f;
+  EXPECT(msocl_model_validate(m), MSOCL_ERR_BAD_MASS);
+  SAYS("point 2: mass 1e-39");
   m->mass[2] = 1;
+  m->pos[7] = 2e18f;
+  EXPECT(msocl_model_validate(m), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 2: |y| = 2e+18");
+  m->pos[7] = 1;
+  m->k[0] = FLT_MAX;
+  EXPECT(msocl_model_validate(m), MSOCL_ERR_BAD_VALUE);
+  SAYS("spring 0: stiffness 3.40282e+38");
+  m->k[0] = 1;
   OK(msocl_model_validate(m));
+}
+END_TEST
+
+/* Two points 1 m apart on one spring, no gravity: the combinations
+ * msocl_model_validate checks, each refused past its limit and accepted
+ * at it. */
+static msocl_model *pair(float mass1, float k, float c) {
+  const float xyz[6] = {0, 0, 0, 1, 0, 0};
+  float mass[2] = {1, mass1};
+  const int ij[2] = {0, 1};
+  msocl_model *p = NULL;
+  OK(msocl_model_create(&p));
+  OK(msocl_model_add_points(p, 2, xyz, mass, NULL));
+  OK(msocl_model_add_springs(p, 1, ij, &k, NULL, &c));
+  OK(msocl_model_set_gravity(p, 0, 0, 0));
+  return p;
+}
+
+START_TEST(validate_limits) {
+  msocl_model *p;
+  const float far[3] = {1e6f, 0, 0};
+
+  /* a light point on a spring: k L / m */
+  p = pair(2e-38f, 10, 0);
+  EXPECT(msocl_model_validate(p), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 1: its springs and damping at the model's extent 1 give its "
+       "mass 2e-38 an acceleration of 5e+38");
+  OK(msocl_model_pin(p, 1, 1)); /* a pinned point's 1/m is never used */
+  OK(msocl_model_validate(p));
+  msocl_model_destroy(p);
+  p = pair(9e-31f, 1, 0);
+  EXPECT(msocl_model_validate(p), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 1:");
+  msocl_model_destroy(p);
+  p = pair(1e-30f, 1, 0); /* 1 / 1e-30 */
+  OK(msocl_model_validate(p));
+  msocl_model_destroy(p);
+  /* dashpots count as k does */
+  p = pair(1e-30f, 0.5f, 0.6f);
+  EXPECT(msocl_model_validate(p), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 1:");
+  msocl_model_destroy(p);
+  p = pair(1e-30f, 0.5f, 0.5f);
+  OK(msocl_model_validate(p));
+
+  /* the model's extent stretches every spring: 1e25 x 1e6 */
+  msocl_model_destroy(p);
+  p = pair(1, 1e25f, 0);
+  OK(msocl_model_validate(p));
+  OK(msocl_model_add_points(p, 1, far, ones, NULL));
+  EXPECT(msocl_model_validate(p), MSOCL_ERR_BAD_VALUE);
+  SAYS("spring 0: stiffness 1e+25 x length 1e+06");
+  msocl_model_destroy(p);
+  p = pair(1, 1e24f, 0);
+  OK(msocl_model_add_points(p, 1, far, ones, NULL));
+  OK(msocl_model_validate(p));
+  msocl_model_destroy(p);
+  /* viscous damping at the extent a second */
+  p = pair(1, 1, 0);
+  OK(msocl_model_add_points(p, 1, far, ones, NULL));
+  OK(msocl_model_set_viscous_damping(p, 1e24f));
+  OK(msocl_model_validate(p));
+  OK(msocl_model_set_viscous_damping(p, 2e24f));
+  EXPECT(msocl_model_validate(p), MSOCL_ERR_BAD_VALUE);
+  SAYS("viscous damping 2e+24");
+  msocl_model_destroy(p);
+
+  /* weight m |g| */
+  p = pair(1e29f, 1, 0);
+  OK(msocl_model_validate(p));
+  OK(msocl_model_set_gravity(p, 0, -20, 0));
+  EXPECT(msocl_model_validate(p), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 1: weight 1e+29 x 20");
+  msocl_model_destroy(p);
 }
 END_TEST
 
@@ -795,6 +990,8 @@ static Suite *model_suite(void) {
   tcase_add_test(t, create_and_defaults);
   tcase_add_test(t, points_rejected);
   tcase_add_test(t, points_grow_and_read_back);
+  tcase_add_test(t, last_error_kept);
+  tcase_add_test(t, points_limits);
   suite_add_tcase(s, t);
 
   t = tcase_create("springs");
@@ -803,6 +1000,7 @@ static Suite *model_suite(void) {
   tcase_add_test(t, springs_failed_add_is_atomic);
   tcase_add_test(t, springs_rest_and_order);
   tcase_add_test(t, springs_rest_overflow);
+  tcase_add_test(t, springs_limits);
   tcase_add_test(t, springs_damping_storage);
   tcase_add_test(t, springs_max_degree);
   suite_add_tcase(s, t);
@@ -814,6 +1012,7 @@ static Suite *model_suite(void) {
   tcase_add_test(t, gravity_and_viscous);
   tcase_add_test(t, queries_null);
   tcase_add_test(t, validate_rechecks);
+  tcase_add_test(t, validate_limits);
   suite_add_tcase(s, t);
 
   t = tcase_create("colliders");

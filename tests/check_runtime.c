@@ -246,7 +246,8 @@ START_TEST(test_bad_index) {
   ck_assert_int_eq(msocl_runtime_device_info(rt, 1000, &info),
                    MSOCL_ERR_BAD_INDEX);
   ck_assert_int_eq(msocl_runtime_device_info(rt, n - 1, &info), MSOCL_OK);
-  ck_assert_str_eq(msocl_last_error(), "");
+  /* the success keeps the last failure's message, as errno */
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "1000"));
   msocl_runtime_destroy(rt);
 }
 END_TEST
@@ -282,6 +283,54 @@ START_TEST(test_two_devices) {
 }
 END_TEST
 
+/* Every option is checked at sim creation, fused and overlap too: 0 or 1. */
+START_TEST(test_bad_switches) {
+  static const float xyz[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0},
+                     mass[4] = {1, 1, 1, 1};
+  static const int ij[8] = {0, 1, 1, 2, 2, 3, 3, 0};
+  static const float k[4] = {10, 10, 10, 10};
+  static const struct {
+    int fused, overlap;
+    const char *says;
+  } bad[] = {{7, 1, "fused is 7: 0 or 1"},
+             {-1, 1, "fused is -1: 0 or 1"},
+             {0, 12345, "overlap is 12345: 0 or 1"},
+             {0, -1, "overlap is -1: 0 or 1"}};
+  msocl_runtime *rt = NULL;
+  msocl_model *m = NULL;
+  msocl_sim_options o;
+  msocl_sim *s;
+  size_t q;
+  int rc;
+
+  ck_assert_int_eq(msocl_runtime_create(&rt, "cpu"), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_create(&m), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_points(m, 4, xyz, mass, NULL), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_springs(m, 4, ij, k, NULL, NULL), MSOCL_OK);
+  for (q = 0; q < sizeof bad / sizeof bad[0]; q++) {
+    msocl_sim_options_init(&o);
+    o.fused = bad[q].fused;
+    o.overlap = bad[q].overlap;
+    s = (msocl_sim *)&s;
+    rc = msocl_sim_create(&s, rt, m, &o);
+    ck_assert_msg(rc == MSOCL_ERR_BAD_VALUE, "%s: got %s (%s)", bad[q].says,
+                  msocl_err_name(rc), msocl_last_error());
+    ck_assert_ptr_null(s);
+    ck_assert_msg(strstr(msocl_last_error(), bad[q].says), "message: %s",
+                  msocl_last_error());
+  }
+  /* both values of each are still taken */
+  msocl_sim_options_init(&o);
+  o.fused = 1;
+  o.overlap = 0;
+  rc = msocl_sim_create(&s, rt, m, &o);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+  msocl_runtime_destroy(rt);
+}
+END_TEST
+
 static Suite *runtime_suite(void) {
   Suite *s = suite_create("runtime");
   TCase *tc = tcase_create("runtime");
@@ -298,6 +347,7 @@ static Suite *runtime_suite(void) {
   tcase_add_test(tc, test_null_args);
   tcase_add_test(tc, test_bad_index);
   tcase_add_test(tc, test_two_devices);
+  tcase_add_test(tc, test_bad_switches);
   suite_add_tcase(s, tc);
   return s;
 }
