@@ -171,6 +171,7 @@ struct msocl_sim {
   int since_check;
   long long check_first;
   double total_mass, extent;
+  double efloor;          /* the least energy scale, from the springs */
 };
 
 /* Halo exchange. plan (exchange_plan.c): the slices, spans, staging and

@@ -245,8 +245,12 @@ int msocl__sim_energy(msocl_sim *s, msocl_energy *e)
 }
 
 /* The blow-up check's baseline: energy at the start, and a scale for the
- * scene - its kinetic and spring energy plus the work gravity could do
- * across its extent - so a scene starting at rest has a finite bound. */
+ * scene - its kinetic and spring energy, the work gravity could do across
+ * its extent, and a floor from its springs: their energy with each one
+ * stretched by 1e-3 of its rest length. A scene at rest without gravity
+ * holds only round-off (which grows with the steps); the floor keeps its
+ * bound above that, and at energy_factor 100 allows every spring 1%
+ * strain, which a blow-up passes within a few steps. */
 static int baseline(msocl_sim *s)
 {
   msocl_energy e;
@@ -257,7 +261,8 @@ static int baseline(msocl_sim *s)
   double gn = sqrt((double)g->s[0] * g->s[0] + (double)g->s[1] * g->s[1] +
                    (double)g->s[2] * g->s[2]);
   s->e0 = e.total;
-  s->escale = e.kinetic + e.spring + s->total_mass * gn * s->extent;
+  s->escale = e.kinetic + e.spring + s->total_mass * gn * s->extent +
+              s->efloor;
   s->e0_valid = 1;
   return MSOCL_OK;
 }

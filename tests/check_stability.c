@@ -420,9 +420,140 @@ START_TEST(check_counts_across_calls)
 }
 END_TEST
 
+/* A scene whose energy is only round-off: the grid at rest without
+ * gravity, free (kind 0), lying on a plane (1), or touching a sphere under
+ * its point (6, 6) (2). */
+static msocl_model *at_rest(int kind)
+{
+  msocl_model *m = grid();
+  float xyz[3 * 144];
+  msocl_model_get_positions(m, xyz);
+  const float *p = xyz + 3 * (6 * 12 + 6), up[3] = {0.0f, 1.0f, 0.0f};
+  const float centre[3] = {p[0], p[1] - 0.3f, p[2]};
+  if (kind == 1)
+    ck_assert_int_eq(msocl_model_add_plane(m, up, p[1], 0.3f), MSOCL_OK);
+  if (kind == 2)
+    ck_assert_int_eq(msocl_model_add_sphere(m, centre, 0.3f, 0.3f), MSOCL_OK);
+  return m;
+}
+
+static const char *const rest_kinds[] = {"free", "on a plane",
+                                         "on a sphere"};
+
+/* The ways a scene at rest runs: integrators, the float4 engine beside
+ * the planes, and a split over two devices. */
+struct rest_run {
+  const char *what;
+  msocl_integrator in;
+  int planes, ndevices;
+};
+static const struct rest_run rest_runs[] = {
+    {"symplectic Euler", MSOCL_SYMPLECTIC_EULER, -1, 1},
+    {"symplectic Euler, float4", MSOCL_SYMPLECTIC_EULER, 0, 1},
+    {"Verlet", MSOCL_VERLET, -1, 1},
+    {"RK4", MSOCL_RK4, -1, 1},
+    {"implicit Euler", MSOCL_IMPLICIT_EULER, -1, 1},
+    {"symplectic Euler, two devices", MSOCL_SYMPLECTIC_EULER, 0, 2},
+};
+#define REST_RUNS (int)(sizeof rest_runs / sizeof rest_runs[0])
+
+/* The at-rest runs' runtime: up to two CPU devices, for the split. */
+static char pair_spec[256];
+
+static void setup_pair(void)
+{
+  ck_assert_int_eq(msocl_runtime_create(&rt, pair_spec[0] ? pair_spec
+                                                          : "cpu"),
+                   MSOCL_OK);
+}
+
+static int rest_devices(void)
+{
+  int n = 0;
+  msocl_runtime_device_count(rt, &n);
+  return n;
+}
+
+/* 10 000 steps at half the stable step: round-off is no blow-up, in one
+ * call and in a frame loop. _i runs over scenes, then runs. */
+START_TEST(at_rest_no_false_alarm)
+{
+  const int kind = _i % 3;
+  const struct rest_run *r = &rest_runs[_i / 3];
+  if (r->ndevices > rest_devices()) {
+    printf("at rest, %s: skipped (one device)\n", r->what);
+    return;
+  }
+  msocl_model *m = at_rest(kind);
+  float limit;
+  msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = 0.5f * limit;
+  o.integrator = r->in;
+  o.planes = r->planes;
+  o.ndevices = r->ndevices;
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, rt, m, &o);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  msocl_energy e0, e;
+  msocl_sim_energy(s, &e0);
+  const int steps = r->in == MSOCL_IMPLICIT_EULER ? 2000 : 10000;
+  rc = msocl_sim_step(s, steps / 2);
+  ck_assert_msg(rc == MSOCL_OK, "%s, %s, one call: %s", rest_kinds[kind],
+                r->what, msocl_last_error());
+  for (int q = 0; q < steps / 2 / 10; q++) {
+    rc = msocl_sim_step(s, 10);
+    ck_assert_msg(rc == MSOCL_OK, "%s, %s, frame %d: %s", rest_kinds[kind],
+                  r->what, q, msocl_last_error());
+  }
+  msocl_sim_energy(s, &e);
+  printf("at rest, %s, %s: energy %.3g J -> %.3g J over %d steps\n",
+         rest_kinds[kind], r->what, e0.total, e.total, steps);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* The same scene at 1.2x the stable step blows up from its round-off: the
+ * check catches it while the energy is still finite (the floor under the
+ * energy scale stays below a blow-up), and restores a state still at
+ * rest. */
+START_TEST(at_rest_blow_up_caught)
+{
+  msocl_model *m = at_rest(_i);
+  float limit;
+  msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = 1.2f * limit;
+  o.check_every = 10;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  float p0[3 * 144], p[3 * 144];
+  msocl_sim_read_positions(s, p0);
+  ck_assert_int_eq(msocl_sim_step(s, 10000), MSOCL_ERR_UNSTABLE);
+  const char *at = strstr(msocl_last_error(), "total energy ");
+  double total = NAN;
+  ck_assert_ptr_nonnull(at);
+  ck_assert_int_eq(sscanf(at, "total energy %lg", &total), 1);
+  printf("at rest, %s, at 1.2x: %s\n", rest_kinds[_i], msocl_last_error());
+  ck_assert_msg(isfinite(total), "%s", msocl_last_error());
+  msocl_sim_read_positions(s, p);
+  ck_assert_double_le(scene_max_diff(p, p0, 3 * 144), 1e-3);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 int main(void)
 {
+  /* two PoCL CPU devices for the split runs unless the caller chose
+   * otherwise; before the first OpenCL call */
+  setenv("POCL_DEVICES", "pthread pthread", 0);
   scene_require_device("check_stability");
+  if (scene_cpu_spec(pair_spec, sizeof pair_spec, 2) < 2)
+    pair_spec[0] = '\0';
   Suite *su = suite_create("stability");
   TCase *tc = tcase_create("stability");
   tcase_add_checked_fixture(tc, setup, teardown);
@@ -437,5 +568,11 @@ int main(void)
   tcase_add_test(tc, unstable_rolls_back);
   tcase_add_test(tc, check_counts_across_calls);
   suite_add_tcase(su, tc);
+  TCase *rest = tcase_create("at rest");
+  tcase_add_checked_fixture(rest, setup_pair, teardown);
+  tcase_set_timeout(rest, 300);
+  tcase_add_loop_test(rest, at_rest_no_false_alarm, 0, 3 * REST_RUNS);
+  tcase_add_loop_test(rest, at_rest_blow_up_caught, 0, 3);
+  suite_add_tcase(su, rest);
   return scene_run(su);
 }
