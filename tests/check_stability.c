@@ -548,17 +548,47 @@ START_TEST(at_rest_blow_up_caught)
 }
 END_TEST
 
+/* perturbed()'s simulation split over `parts` devices (when the runtime
+ * has them; else NULL). */
+static msocl_sim *perturbed_split(const msocl_model *m, float dt, int parts)
+{
+  msocl_sim *one = perturbed(m, MSOCL_SYMPLECTIC_EULER, dt);
+  if (parts == 1)
+    return one;
+  float p[3 * 144];
+  msocl_sim_read_positions(one, p);
+  msocl_sim_destroy(one);
+  if (rest_devices() < parts)
+    return NULL;
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = dt;
+  o.check_every = 50;
+  o.ndevices = parts;
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, rt, m, &o);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  ck_assert_int_eq(msocl_sim_write_positions(s, p), MSOCL_OK);
+  return s;
+}
+
 /* A frame loop that writes more often than the check comes round (its
  * own pins, say: here the positions it read, every 10 steps) is checked
  * all the same: at 1.2x the stable step the call that completes step 50
  * reports the blow-up and leaves a finite state, where every call used
- * to return MSOCL_OK until a write met the NaNs. */
+ * to return MSOCL_OK until a write met the NaNs. On one device (in
+ * planes) and split over two (_i). */
 START_TEST(frame_loop_checked)
 {
   msocl_model *m = grid();
   float limit;
   msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
-  msocl_sim *s = perturbed(m, MSOCL_SYMPLECTIC_EULER, 1.2f * limit);
+  msocl_sim *s = perturbed_split(m, 1.2f * limit, _i + 1);
+  if (!s) {
+    printf("frame loop, two devices: skipped (one device)\n");
+    msocl_model_destroy(m);
+    return;
+  }
   int n, rc = MSOCL_OK, frame = 0;
   msocl_sim_point_count(s, &n);
   float *p = malloc(3 * (size_t)n * sizeof *p);
@@ -571,7 +601,8 @@ START_TEST(frame_loop_checked)
     ck_assert_msg(w == MSOCL_OK || w == MSOCL_ERR_NOT_FINITE, "frame %d: %s",
                   frame, msocl_last_error());
   }
-  printf("frame loop at 1.2x, a write every 10 steps: frame %d: %s\n", frame,
+  printf("frame loop at 1.2x, a write every 10 steps, %d device(s): frame "
+         "%d: %s\n", _i + 1, frame,
          rc == MSOCL_OK ? "no blow-up reported" : msocl_last_error());
   ck_assert_int_eq(rc, MSOCL_ERR_UNSTABLE);
   ck_assert_int_eq(frame, 4); /* steps 40 to 50 */
@@ -623,14 +654,20 @@ END_TEST
 /* The work a write does is no blow-up: a hanging cloth whose pins the
  * loop swings by hand, lifted 0.5 m every 10 steps (200 m in all, over
  * the bound's 100 x m g extent = 140 m of lift) and its velocities halved
- * every 100 steps, runs 4000 steps without MSOCL_ERR_UNSTABLE. */
+ * every 100 steps, runs 4000 steps without MSOCL_ERR_UNSTABLE, on one
+ * device (in planes) and split over two (_i). */
 START_TEST(writes_do_work)
 {
+  if (_i + 1 > rest_devices()) {
+    printf("writes do work, two devices: skipped (one device)\n");
+    return;
+  }
   msocl_model *m = scene_hanging(12);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &o.dt);
   o.dt *= 0.5f;
+  o.ndevices = _i + 1;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   float p[3 * 144], v[3 * 144];
@@ -685,11 +722,11 @@ int main(void)
   tcase_add_loop_test(rest, at_rest_blow_up_caught, 0, 3);
   suite_add_tcase(su, rest);
   TCase *writes = tcase_create("writes");
-  tcase_add_checked_fixture(writes, setup, teardown);
+  tcase_add_checked_fixture(writes, setup_pair, teardown);
   tcase_set_timeout(writes, 300);
-  tcase_add_test(writes, frame_loop_checked);
+  tcase_add_loop_test(writes, frame_loop_checked, 0, 2);
   tcase_add_test(writes, write_is_restore_point);
-  tcase_add_test(writes, writes_do_work);
+  tcase_add_loop_test(writes, writes_do_work, 0, 2);
   suite_add_tcase(su, writes);
   return scene_run(su);
 }
