@@ -88,7 +88,7 @@ int msocl_batch_step(msocl_batch *b, int n)
   const int every = b->sims[0]->o.check_every;
   for (int done = 0; done < n;) {
     /* up to the first check due (the simulations' counts can differ: a
-     * write starts one's count again) */
+     * restore after a blow-up starts one's count again) */
     int batch = n - done;
     for (int i = 0; every > 0 && i < b->count; i++)
       if (!b->bad[i] && msocl__batch_room(b->sims[i]) < batch)

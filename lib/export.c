@@ -10,7 +10,7 @@ int msocl_write_obj(const char *path, int npoints, const float *xyz,
                     const float *normals, int ntriangles, const int *ijk)
 {
   msocl__clear_error();
-  int rc = msocl__frame_check(path, npoints, xyz, ntriangles, ijk);
+  int rc = msocl__frame_check(path, npoints, xyz, normals, ntriangles, ijk);
   if (rc != MSOCL_OK)
     return rc;
   FILE *f = fopen(path, "w");

@@ -3,12 +3,27 @@
 #include "internal.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-/* The argument checks of every frame writer: handles, counts, indices. */
+/* Non-finite values would be written as "nan" or "inf", which no reader
+ * (the library's own included) takes back: a blown-up state, refused. */
+static int finite_points(const char *path, int npoints, const float *v,
+                         const char *what)
+{
+  for (int i = 0; v && i < 3 * npoints; i++)
+    if (!isfinite(v[i]))
+      return msocl__fail(MSOCL_ERR_NOT_FINITE,
+                         "%s not written: point %d: %s %d is %g", path,
+                         i / 3, what, i % 3, v[i]);
+  return MSOCL_OK;
+}
+
+/* The argument checks of every frame writer: handles, counts, indices,
+ * finite points and normals. */
 int msocl__frame_check(const char *path, int npoints, const float *xyz,
-                       int ntriangles, const int *ijk)
+                       const float *normals, int ntriangles, const int *ijk)
 {
   if (!path || !xyz || (ntriangles > 0 && !ijk))
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "path or array is NULL");
@@ -20,7 +35,9 @@ int msocl__frame_check(const char *path, int npoints, const float *xyz,
       return msocl__fail(MSOCL_ERR_BAD_INDEX,
                          "triangle %d: index %d out of range [0, %d)", t / 3,
                          ijk[t], npoints);
-  return MSOCL_OK;
+  int rc = finite_points(path, npoints, xyz, "coordinate");
+  return rc == MSOCL_OK ? finite_points(path, npoints, normals, "normal")
+                        : rc;
 }
 
 /* Closes f, reporting a write error seen at any point (stdio buffers, so
@@ -42,7 +59,7 @@ int msocl_write_ply(const char *path, int npoints, const float *xyz,
                     const float *normals, int ntriangles, const int *ijk)
 {
   msocl__clear_error();
-  int rc = msocl__frame_check(path, npoints, xyz, ntriangles, ijk);
+  int rc = msocl__frame_check(path, npoints, xyz, normals, ntriangles, ijk);
   if (rc != MSOCL_OK)
     return rc;
   FILE *f = fopen(path, "w");

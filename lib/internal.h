@@ -159,10 +159,11 @@ int msocl__check_finite(const char *builder, const char *what,
                         const float *x, int n);
 int msocl__check_coef(const char *builder, const char *what, float x);
 
-/* Frame writers (export*.c): the argument checks they share, and closing
- * a written file with the system's reason for any write error. */
+/* Frame writers (export*.c): the argument checks they share (normals may
+ * be NULL), and closing a written file with the system's reason for any
+ * write error. */
 int msocl__frame_check(const char *path, int npoints, const float *xyz,
-                       int ntriangles, const int *ijk);
+                       const float *normals, int ntriangles, const int *ijk);
 #include <stdio.h>
 int msocl__frame_close(FILE *f, const char *path);
 

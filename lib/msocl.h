@@ -316,7 +316,8 @@ typedef struct {
   float cg_tolerance;    /* implicit Euler: relative residual to reach */
   int cg_max_iterations;
   /* Blow-up check every check_every steps (0: off, for benchmarks),
-   * counted across calls (a write starts the count again): a non-finite
+   * counted across calls and writes (a write's work is no blow-up, and a
+   * written state within the bound is the last good one): a non-finite
    * state, or total energy above its start by more than energy_factor
    * times the scene's energy scale, returns MSOCL_ERR_UNSTABLE from the
    * call that completes the steps, with the last good state restored. */

@@ -170,11 +170,20 @@ struct msocl_sim {
   long long steps;
   int e0_valid;           /* baseline energy of the blow-up check */
   double e0, escale;
-  /* The blow-up check counts steps across calls: steps since the state
-   * was last saved for it (0: none pending), and the step it was saved at. */
+  /* The blow-up check counts steps across calls and writes: steps since
+   * the state was last saved for it (0: none pending), and the step it was
+   * saved at. Writes between two steps: `moved` once the first took the
+   * energy of the state it replaced off e0 (the next step adds the written
+   * state's and saves it; `wrote` from then on); `blown` when that state
+   * was past the bound, at step blown_step with energy blown_total, for the
+   * check to report. */
   int since_check;
   long long check_first;
+  int moved, wrote, blown;
+  long long blown_step;
+  double blown_total;
   double total_mass, extent;
+  double efloor;          /* the least energy scale, from the springs */
 };
 
 /* Halo exchange. plan (exchange_plan.c): the slices, spans, staging and
@@ -261,6 +270,8 @@ int msocl__sim_energy(msocl_sim *s, msocl_energy *e);
 int msocl__batch_room(const msocl_sim *s);
 int msocl__batch_begin(msocl_sim *s, int batch);
 int msocl__batch_end(msocl_sim *s);
+/* Before a write replaces the state (sim_io.c): the check's part of it. */
+int msocl__check_write(msocl_sim *s);
 int msocl__sim_steps(msocl_sim *s, int n);
 int msocl__sim_finish(msocl_sim *s);
 /* Sets argument i of kernel k to a buffer, a float, an int. */

@@ -111,7 +111,7 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
   return MSOCL_OK;
 }
 
-/* Mass and size of the scene: the blow-up check's energy scale. */
+/* Mass, size and springs of the scene: the blow-up check's energy scale. */
 static void scene_scale(msocl_sim *s, const msocl_model *m)
 {
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY,
@@ -130,6 +130,10 @@ static void scene_scale(msocl_sim *s, const msocl_model *m)
   for (int c = 0; c < 3; c++)
     d2 += (hi[c] - lo[c]) * (hi[c] - lo[c]);
   s->extent = sqrt(d2);
+  /* the scale's floor: every spring stretched by 1e-3 of its rest length */
+  s->efloor = 0.0;
+  for (int t = 0; t < m->ns; t++)
+    s->efloor += 0.5 * m->k[t] * 1e-6 * (double)m->rest[t] * m->rest[t];
 }
 
 

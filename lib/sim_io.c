@@ -51,6 +51,9 @@ static int write_state(msocl_sim *s, int velocities, const float *xyz)
       return msocl__fail(MSOCL_ERR_NOT_FINITE,
                          "point %d: coordinate %d is %g", i / 3, i % 3,
                          xyz[i]);
+  int rc = msocl__check_write(s); /* the blow-up check's part */
+  if (rc != MSOCL_OK)
+    return rc;
   for (int i = 0; i < s->n; i++) {
     memcpy(s->stage + 4 * i, xyz + 3 * (s->perm ? s->perm[i] : i),
            3 * sizeof(float));
@@ -59,7 +62,7 @@ static int write_state(msocl_sim *s, int velocities, const float *xyz)
   for (int d = 0; d < s->nparts; d++) {
     msocl__engine *e = s->part[d];
     /* the half not written must be current where it is copied from */
-    int rc = msocl__planes_current(e);
+    rc = msocl__planes_current(e);
     if (rc != MSOCL_OK)
       return rc;
     MSOCL__CL(clEnqueueWriteBuffer(e->dev->queue,
@@ -69,8 +72,6 @@ static int write_state(msocl_sim *s, int velocities, const float *xyz)
     msocl__planes_written(e);
     e->acc_valid = 0; /* a new state: new Verlet acceleration */
   }
-  s->e0_valid = 0;    /* and a new baseline for the blow-up check, */
-  s->since_check = 0; /* whose saved state a restore would undo this with */
   return MSOCL_OK;
 }
 

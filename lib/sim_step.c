@@ -244,21 +244,46 @@ int msocl__sim_energy(msocl_sim *s, msocl_energy *e)
   return MSOCL_OK;
 }
 
-/* The blow-up check's baseline: energy at the start, and a scale for the
- * scene - its kinetic and spring energy plus the work gravity could do
- * across its extent - so a scene starting at rest has a finite bound. */
+/* The blow-up check's scale for a state of energy e: its kinetic and
+ * spring energy, the work gravity could do across the scene's extent, and
+ * a floor from its springs: their energy with each one stretched by 1e-3
+ * of its rest length. A scene at rest without gravity holds only
+ * round-off (which grows with the steps); the floor keeps its bound above
+ * that, and at energy_factor 100 allows every spring 1% strain, which a
+ * blow-up passes within a few steps. */
+static double scale(const msocl_sim *s, const msocl_energy *e)
+{
+  const cl_float4 *g = &s->part[0]->gravity;
+  double gn = sqrt((double)g->s[0] * g->s[0] + (double)g->s[1] * g->s[1] +
+                   (double)g->s[2] * g->s[2]);
+  return e->kinetic + e->spring + s->total_mass * gn * s->extent + s->efloor;
+}
+
+static double bound(const msocl_sim *s)
+{
+  return s->e0 + s->o.energy_factor * s->escale;
+}
+
+/* The baseline: energy at the start and its scale; after writes, the
+ * written state's energy added to e0 (which the first write took the
+ * replaced state's off), and the scale kept at the larger. */
 static int baseline(msocl_sim *s)
 {
   msocl_energy e;
   int rc = msocl__sim_energy(s, &e);
   if (rc != MSOCL_OK)
     return rc;
-  const cl_float4 *g = &s->part[0]->gravity;
-  double gn = sqrt((double)g->s[0] * g->s[0] + (double)g->s[1] * g->s[1] +
-                   (double)g->s[2] * g->s[2]);
-  s->e0 = e.total;
-  s->escale = e.kinetic + e.spring + s->total_mass * gn * s->extent;
+  const double sc = scale(s, &e);
+  if (s->e0_valid && s->moved) {
+    s->e0 += e.total;
+    s->escale = sc > s->escale ? sc : s->escale;
+    s->wrote = 1;
+  } else {
+    s->e0 = e.total;
+    s->escale = sc;
+  }
   s->e0_valid = 1;
+  s->moved = 0;
   return MSOCL_OK;
 }
 
@@ -287,10 +312,11 @@ static int backup(msocl_sim *s, int to_backup)
 
 /* A checked batch, in two halves so that many simulations can run theirs
  * at once: begin saves the state (where a stretch of check_every steps
- * starts) and queues the steps; end, once the stretch is whole, checks the
- * energy and, past the bound, restores the saved state. The count runs
- * across calls, so one step a call (a frame loop) pays for the check every
- * check_every steps, not every call. */
+ * starts, or where writes left a new one) and queues the steps; end, once
+ * the stretch is whole, checks the energy and, past the bound, restores
+ * the saved state. The count runs across calls and writes, so one step a
+ * call (a frame loop) pays for the check every check_every steps, not
+ * every call, and a loop that writes more often is checked all the same. */
 int msocl__batch_room(const msocl_sim *s)
 {
   return s->o.check_every - s->since_check;
@@ -299,11 +325,12 @@ int msocl__batch_room(const msocl_sim *s)
 int msocl__batch_begin(msocl_sim *s, int batch)
 {
   int rc = MSOCL_OK;
-  if (s->since_check == 0) {
-    rc = s->e0_valid ? MSOCL_OK : baseline(s);
+  const int save = (s->since_check == 0 || s->moved) && !s->blown;
+  if (!s->e0_valid || s->moved)
+    rc = baseline(s);
+  if (rc == MSOCL_OK && save) {
     s->check_first = s->steps;
-    if (rc == MSOCL_OK)
-      rc = backup(s, 1);
+    rc = backup(s, 1);
   }
   if (rc == MSOCL_OK)
     rc = steps(s, batch);
@@ -312,21 +339,50 @@ int msocl__batch_begin(msocl_sim *s, int batch)
   return rc;
 }
 
+/* A write replaces the state: the work it does moves the baseline (the
+ * replaced state's energy comes off e0 here, the written state's goes on
+ * at the next step, which saves it as the state to restore), so the check
+ * judges only what the steps did. A replaced state already past the bound
+ * blew up in the steps since the last save; the check reports that and
+ * restores the saved state, undoing the writes since. */
+int msocl__check_write(msocl_sim *s)
+{
+  if (s->o.check_every <= 0 || !s->e0_valid || s->moved || s->blown)
+    return MSOCL_OK;
+  msocl_energy e;
+  int rc = msocl__sim_energy(s, &e);
+  if (rc != MSOCL_OK)
+    return rc;
+  if (s->since_check > 0 && !(isfinite(e.total) && e.total <= bound(s))) {
+    s->blown = 1;
+    s->blown_step = s->steps;
+    s->blown_total = e.total;
+  } else {
+    s->e0 -= e.total;
+    s->moved = 1;
+  }
+  return MSOCL_OK;
+}
+
 int msocl__batch_end(msocl_sim *s)
 {
   if (s->since_check < s->o.check_every)
     return MSOCL_OK;
   s->since_check = 0;
   const long long first = s->check_first;
-  msocl_energy e;
-  int rc = msocl__sim_energy(s, &e);
-  if (rc != MSOCL_OK)
-    return rc;
-  double bound = s->e0 + s->o.energy_factor * s->escale;
-  if (isfinite(e.total) && e.total <= bound)
-    return MSOCL_OK;
-  long long last = s->steps;
-  rc = backup(s, 0);
+  msocl_energy e = {0};
+  if (!s->blown) {
+    int rc = msocl__sim_energy(s, &e);
+    if (rc != MSOCL_OK)
+      return rc;
+    if (isfinite(e.total) && e.total <= bound(s))
+      return MSOCL_OK;
+  }
+  const int at_write = s->blown;
+  const long long last = at_write ? s->blown_step : s->steps;
+  const double total = at_write ? s->blown_total : e.total;
+  s->blown = 0;
+  int rc = backup(s, 0);
   s->steps = first;
   if (rc == MSOCL_OK)
     rc = finish_all(s);
@@ -334,10 +390,12 @@ int msocl__batch_end(msocl_sim *s)
     return rc;
   return msocl__fail(
       MSOCL_ERR_UNSTABLE,
-      "blew up between steps %lld and %lld (dt = %g): total energy %g J "
-      "against %g J at the start (bound %g J); state restored to step %lld; "
-      "msocl_stable_dt() gives a safe step",
-      first, last, (double)s->o.dt, e.total, s->e0, bound, first);
+      "blew up between steps %lld and %lld (dt = %g): total energy %g J%s "
+      "against %g J at the start%s (bound %g J); state restored to step "
+      "%lld; msocl_stable_dt() gives a safe step",
+      first, last, (double)s->o.dt, total,
+      at_write ? " where it was written" : "", s->e0,
+      s->wrote ? " with the writes' work" : "", bound(s), first);
 }
 
 int msocl__sim_steps(msocl_sim *s, int n)
