@@ -107,7 +107,12 @@ MSOCL_EXTERN int msocl_device_select(const char *spec,
 typedef struct msocl_runtime msocl_runtime;
 
 /* Opens a context and an in-order queue on each chosen device. spec NULL:
- * the MSOCL_DEVICE environment variable. */
+ * the MSOCL_DEVICE environment variable.
+ * Threads: a runtime may be shared by threads - each may create, step,
+ * read and destroy simulations on it at once (their commands share the
+ * device's queue, so they take turns on the device); one simulation (or
+ * batch) must not be used by two threads at once, and the runtime must
+ * outlive its simulations. */
 MSOCL_EXTERN int msocl_runtime_create(msocl_runtime **rt, const char *spec);
 MSOCL_EXTERN void msocl_runtime_destroy(msocl_runtime *rt);
 MSOCL_EXTERN int msocl_runtime_device_count(const msocl_runtime *rt, int *n);
