@@ -111,7 +111,7 @@ static int fixed_args(msocl__engine *s)
     TRY(arg(k, a + 5, sizeof(float), &s->viscous));
     TRY(arg(k, a + 6, sizeof(float), &s->air));
     TRY(arg(k, a + 7, sizeof(float), &s->o.dt));
-    TRY(arg(k, a + 8, sizeof s->col, &s->col));
+    TRY(arg(k, a + 8, sizeof s->pl_col, &s->pl_col));
   }
   k = s->pl_k[PL_POSITION];
   TRY(arg(k, 3, sizeof s->pl_aux, &s->pl_aux));
@@ -154,7 +154,7 @@ static int fixed_args(msocl__engine *s)
   TRY(shape(s, k, c + 4, 0));
   TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
   TRY(arg(k, c + 8, sizeof(float), &s->o.dt));
-  TRY(arg(k, c + 9, sizeof s->col, &s->col));
+  TRY(arg(k, c + 9, sizeof s->pl_col, &s->pl_col));
   if (s->o.integrator == MSOCL_IMPLICIT_EULER)
     return msocl__pl_implicit_args(s);
   /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col), and the
@@ -166,7 +166,7 @@ static int fixed_args(msocl__engine *s)
   TRY(arg(k, 4, sizeof s->pl_aux, &s->pl_aux));
   TRY(shape(s, k, 5, 1));
   TRY(arg(k, 9, sizeof(float), &s->o.dt));
-  TRY(arg(k, 10, sizeof s->col, &s->col));
+  TRY(arg(k, 10, sizeof s->pl_col, &s->pl_col));
   for (int q = PL_IN; q <= PL_OUT; q++) {
     k = s->pl_k[q];
     TRY(arg(k, q == PL_IN ? 0 : 1, sizeof s->acc, &s->acc));
@@ -174,6 +174,30 @@ static int fixed_args(msocl__engine *s)
     TRY(shape(s, k, 2, 1));
     TRY(arg(k, 6, sizeof(int), &s->n));
   }
+  return MSOCL_OK;
+}
+
+/* The colliders for the planes kernels: s->col's values (8 a collider),
+ * each at the start of a float4 of its own. Side by side, two values read
+ * with the same arithmetic (a sphere's centre y and z) were paired by
+ * -O3's SLP vectorizer into a <2 x float>, and PoCL then left the whole
+ * kernel unvectorised (planes.cl's header says why). */
+static int collider_table(msocl__engine *s)
+{
+  enum { VALUES = 8 * MSOCL__MAX_COLLIDERS };
+  float packed[VALUES], spread[4 * VALUES] = {0};
+  const size_t used = 8 * (size_t)s->ncol * sizeof(float);
+  if (used > 0)
+    MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->col, CL_TRUE, 0, used,
+                                  packed, 0, NULL, NULL));
+  for (int i = 0; i < 8 * s->ncol; i++)
+    spread[4 * i] = packed[i];
+  cl_int e;
+  s->pl_col = clCreateBuffer(s->dev->ctx,
+                             CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                             sizeof spread, spread, &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateBuffer(colliders): %s", msocl_err_name(e));
   return MSOCL_OK;
 }
 
@@ -230,6 +254,7 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
     MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, *bufs[q], &zero, sizeof zero,
                                   0, bytes, 0, NULL, NULL));
   }
+  TRY(collider_table(s));
   return fixed_args(s);
 }
 
@@ -446,4 +471,6 @@ void msocl__planes_release(msocl__engine *s)
   for (int q = 0; q < 14; q++)
     if (m[q])
       clReleaseMemObject(m[q]);
+  if (s->pl_col)
+    clReleaseMemObject(s->pl_col);
 }
