@@ -103,8 +103,8 @@ static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
     r.status = "ok";
     bench_row_rates(&r);
     printf("%4d^2 %-12s %-7s %6d %8.3f %9.1f %10.4f %7.2fx\n", n,
-           engine_names[engine], scene_names[c], steps, r.seconds, r.steps_per_s,
-           r.vertex_steps_per_s / 1e9, best[c] / best[0]);
+           engine_names[engine], scene_names[c], steps, r.seconds,
+           r.steps_per_s, r.vertex_steps_per_s / 1e9, best[c] / best[0]);
     bench_csv_row(csv, &r);
   }
   fflush(stdout);
