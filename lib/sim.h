@@ -226,6 +226,14 @@ int msocl__planes_would(const struct msocl__device *dev,
                         const msocl_sim_options *o, const msocl_model *m,
                         int lo, int hi);
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m);
+/* MSOCL_ERR_BAD_VALUE, before anything is allocated, where planes are
+ * forced (o->planes 1) on a grid the kernels' int indices cannot address
+ * or on a split; else MSOCL_OK. */
+int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
+                          int lo, int hi);
+/* Device bytes the planes of model m's grid take under options o
+ * (msocl.h's formula). */
+size_t msocl__planes_bytes(const msocl_model *m, const msocl_sim_options *o);
 int msocl__planes_create(msocl__engine *s, cl_program prog);
 int msocl__planes_steps(msocl__engine *s, int n);
 /* The state stays in the planes between calls. current: brings the
