@@ -23,7 +23,8 @@
  *
  * Point (x, y) sits at (y + 2) * pitch + x + 2 of each plane; p holds the
  * x, y, z planes `plane` floats apart (v likewise); aux holds the inverse
- * masses, then pos.w (pinned). MSOCL_NCOL: the model's colliders, known
+ * masses, then pos.w (pinned); col the colliders, a float4 a value
+ * (MSOCL_PLANES_COL). MSOCL_NCOL: the model's colliders, known
  * when the program is built so that their loop unrolls (a loop of run-time
  * length inside would stop the vectorizer); MSOCL_GRID_KINDS: a bit for
  * each kind of spring the model has. */
@@ -51,40 +52,48 @@
 #define MSOCL_PLANES_PINNED(w) false
 #endif
 
-/* msocl_collider_gap in scalars: g, and the unit gradient in *nx.. */
+/* Value k of collider c (0: kind, 1: friction, 4-7: msocl_collider_gap's
+ * prm) in the planes' collider table (lib/planes.c), where each value
+ * has a float4 to itself: adjacent ones would be loaded as a pair into a
+ * <2 x float>, which stops PoCL vectorising the kernel. */
+#define MSOCL_PLANES_COL(cf, c, k) ((cf)[4 * (8 * (c) + (k))])
+
+/* msocl_collider_gap in scalars for collider c: g, and the unit gradient
+ * in *nx.. */
 static float msocl_planes_gap(float px, float py, float pz,
-                              __constant const float *cf, float *nx,
+                              __constant const float *col, int c, float *nx,
                               float *ny, float *nz)
 {
-  const int kind = (int)cf[0];
+#define cf(k) MSOCL_PLANES_COL(col, c, k)
+  const int kind = (int)cf(0);
   float g = INFINITY;
   *nx = 0.0f;
   *ny = 1.0f;
   *nz = 0.0f;
 #ifdef MSOCL_PLANE
   if (kind == MSOCL_PLANE_KIND) {
-    *nx = cf[4];
-    *ny = cf[5];
-    *nz = cf[6];
-    g = MSOCL_DOT3(cf[4], cf[5], cf[6], px, py, pz) - cf[7];
+    *nx = cf(4);
+    *ny = cf(5);
+    *nz = cf(6);
+    g = MSOCL_DOT3(cf(4), cf(5), cf(6), px, py, pz) - cf(7);
   }
 #endif
 #ifdef MSOCL_SPHERE
   if (kind == MSOCL_SPHERE_KIND) {
-    float dx = px - cf[4], dy = py - cf[5], dz = pz - cf[6];
+    float dx = px - cf(4), dy = py - cf(5), dz = pz - cf(6);
     float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
     bool out = len > 0.0f;
     *nx = out ? dx / len : 0.0f;
     *ny = out ? dy / len : 1.0f;
     *nz = out ? dz / len : 0.0f;
-    g = len - cf[7];
+    g = len - cf(7);
   }
 #endif
 #ifdef MSOCL_TABLE
   if (kind == MSOCL_TABLE_KIND) {
-    float dx = px - cf[4], dz = pz - cf[6];
+    float dx = px - cf(4), dz = pz - cf(6);
     float rr = MSOCL_SQRT(dx * dx + dz * dz);
-    float gside = rr - cf[7], gtop = py - cf[5];
+    float gside = rr - cf(7), gtop = py - cf(5);
     bool top = gtop >= gside || !(rr > 0.0f);
     *nx = top ? 0.0f : dx / rr;
     *ny = top ? 1.0f : 0.0f;
@@ -92,7 +101,9 @@ static float msocl_planes_gap(float px, float py, float pz,
     g = top ? gtop : gside;
   }
 #endif
+#undef cf
   (void)kind; /* no collider kind compiled in */
+  (void)col; (void)c;
   return g;
 }
 
@@ -181,9 +192,9 @@ static void msocl_planes_collide(float px, float py, float pz, float *vx_io,
 #pragma unroll
   for (int c = 0; c < MSOCL_NCOL; c++) {
     float nx, ny, nz;
-    const float g = msocl_planes_gap(px, py, pz, cf + 8 * c, &nx, &ny, &nz);
+    const float g = msocl_planes_gap(px, py, pz, cf, c, &nx, &ny, &nz);
     /* msocl_respond, its branch as selects */
-    const float fr = fscale * cf[8 * c + 1];
+    const float fr = fscale * MSOCL_PLANES_COL(cf, c, 1);
     const float vn = MSOCL_DOT3(vx, vy, vz, nx, ny, nz);
     const float lim = MSOCL_DIV(-g, dt);
     float hx = vx + (lim - vn) * nx, hy = vy + (lim - vn) * ny,
@@ -382,14 +393,14 @@ static void msocl_planes_project(float *px, float *py, float *pz, float *vx,
 #pragma unroll
   for (int c = 0; c < MSOCL_NCOL; c++) {
     float nx, ny, nz;
-    const float g = msocl_planes_gap(*px, *py, *pz, cf + 8 * c, &nx, &ny,
+    const float g = msocl_planes_gap(*px, *py, *pz, cf, c, &nx, &ny,
                                      &nz);
     const bool in = g < 0.0f;
     const float qx = *px - g * nx, qy = *py - g * ny, qz = *pz - g * nz;
     const float vn = MSOCL_DOT3(*vx, *vy, *vz, nx, ny, nz);
     const bool back = in && vn < 0.0f;
     float wx = *vx - vn * nx, wy = *vy - vn * ny, wz = *vz - vn * nz;
-    const float fr = cf[8 * c + 1];
+    const float fr = MSOCL_PLANES_COL(cf, c, 1);
     wx = wx - fr * wx;
     wy = wy - fr * wy;
     wz = wz - fr * wz;

@@ -129,12 +129,18 @@ int msocl__model_permuted(const msocl_model *m, const int *perm,
 
 struct msocl__program; /* cache entry, program.c */
 
+#include <pthread.h>
+
 struct msocl__device {
   cl_platform_id platform;
   cl_device_id id;
   msocl_device_info info;
   cl_context ctx;
   cl_command_queue queue;
+  /* Threads creating simulations on one runtime share the cache: the lock
+   * is held from lookup to insertion, so a program is built once. */
+  pthread_mutex_t programs_lock;
+  int lock_made;
   struct msocl__program *programs;
 };
 
@@ -152,6 +158,8 @@ int msocl__device_query(cl_platform_id p, cl_device_id d,
 int msocl__program_get(struct msocl__device *dev, const char *options,
                        cl_program *out);
 void msocl__program_cache_free(struct msocl__device *dev);
+/* Programs in the device's cache (the tests count them). */
+int msocl__program_cache_size(struct msocl__device *dev);
 
 /* Builders' argument checks (builder_check.c): every one of n floats
  * finite; a coefficient >= 0. Messages name the builder and the field. */

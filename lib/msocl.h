@@ -108,7 +108,12 @@ MSOCL_EXTERN int msocl_device_select(const char *spec,
 typedef struct msocl_runtime msocl_runtime;
 
 /* Opens a context and an in-order queue on each chosen device. spec NULL:
- * the MSOCL_DEVICE environment variable. */
+ * the MSOCL_DEVICE environment variable.
+ * Threads: a runtime may be shared by threads - each may create, step,
+ * read and destroy simulations on it at once (their commands share the
+ * device's queue, so they take turns on the device); one simulation (or
+ * batch) must not be used by two threads at once, and the runtime must
+ * outlive its simulations. */
 MSOCL_EXTERN int msocl_runtime_create(msocl_runtime **rt, const char *spec);
 MSOCL_EXTERN void msocl_runtime_destroy(msocl_runtime *rt);
 MSOCL_EXTERN int msocl_runtime_device_count(const msocl_runtime *rt, int *n);
@@ -356,15 +361,21 @@ typedef struct {
   int classes;
   /* GRID in planes: every integrator on a cloth grid or lattice with the state held as separate x, y, z planes of rows padded
    * at the edges, which a CPU device runs many points to an instruction
-   * (docs/PERFORMANCE.md). Bitwise the same result; 56 bytes a point more
-   * device memory for a cloth (two copies of x, y, z of position and
-   * velocity, inverse mass and pin; Verlet's acceleration 12 more, RK4's
-   * stages and sums 72 more, implicit Euler's CG vectors 48 more). The
-   * state stays in the planes between calls; a read copies it back, a
-   * write has it copied in again at the next step. 1: whenever it
-   * applies (GRID, any integrator, either strain limit or none, one
-   * device); 0: never; -1
-   * (default): where it applies on a CPU device. */
+   * (docs/PERFORMANCE.md). Bitwise the same result; more device memory:
+   * 4 P F bytes, P = (ceil(nx / w) w + 4) (ny + 4) (nz + 4) padded points
+   * for an nx x ny x nz lattice (a cloth: nz + 4 -> 1), w = 64, halved
+   * (down to 8) while nx <= w / 2; F = 14 floats (two copies of x, y, z
+   * of position and velocity, inverse mass and pin), Verlet 3 more, RK4
+   * and implicit Euler 18 more, a strain limit 3 more, Provot's 3 more.
+   * A 96 x 96 cloth: P = 1.43 points, 80 bytes a point; a 2 x 2 x n
+   * lattice: P = 18 points, 1008 bytes a point. The kernels index the
+   * planes with an int: 3 P must stay below 2^31. The state stays in the
+   * planes between calls; a read copies it back, a write has it copied
+   * in again at the next step. 1: whenever it applies (GRID, any
+   * integrator, either strain limit or none, one device, 3 P < 2^31;
+   * MSOCL_ERR_BAD_VALUE before anything is allocated otherwise); 0:
+   * never; -1 (default): where it applies on a CPU device, unless P is
+   * over 4 points a point and the planes over 64 MiB. */
   int planes;
 } msocl_sim_options;
 

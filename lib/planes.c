@@ -25,6 +25,57 @@ static const char *const names[PL_COUNT] = {
     "msocl_planes_cg_step", "msocl_planes_cg_direction",
     "msocl_planes_ie_finish", "msocl_sum_points", "msocl_planes_euler"};
 
+/* The planes' shape for model m's grid: rows padded to whole work-groups
+ * - of 64 points, or of 32, 16 or 8 for a narrow grid (a lattice's rows
+ * are short), so that few padding points are computed - plus two points
+ * each side; a lattice's layers padded by two rows each side, and two
+ * padding layers at each end. In size_t: a skinny grid's plane can pass
+ * INT_MAX floats. */
+struct geometry {
+  size_t group, wide, pitch, slab, plane;
+};
+
+static struct geometry geometry_in(int nx, int ny, int nz)
+{
+  struct geometry g;
+  g.group = 64;
+  while (g.group > 8 && (size_t)nx <= g.group / 2)
+    g.group /= 2;
+  g.wide = ((size_t)nx + g.group - 1) / g.group * g.group;
+  g.pitch = g.wide + 4;
+  g.slab = g.pitch * ((size_t)ny + 4);
+  g.plane = g.slab * (nz > 0 ? (size_t)nz + 4 : 1);
+  return g;
+}
+
+static struct geometry geometry_of(const msocl_model *m)
+{
+  return geometry_in(m->grid.nx, m->grid.ny, m->grid.nz);
+}
+
+/* Planes (floats a padded point) each integrator and strain limit keeps:
+ * p and v twice (12) and the inverse mass and pin (2); Verlet's
+ * acceleration; RK4's or implicit Euler's stage states and sums; a
+ * strain sweep's output, and Provot's second. */
+static size_t planes_per_point(const msocl_sim_options *o)
+{
+  size_t n = 14;
+  if (o->integrator == MSOCL_VERLET)
+    n += 3;
+  if (o->integrator == MSOCL_RK4 || o->integrator == MSOCL_IMPLICIT_EULER)
+    n += 18;
+  if (o->strain != MSOCL_STRAIN_NONE)
+    n += 3;
+  if (o->strain == MSOCL_STRAIN_PROVOT)
+    n += 3;
+  return n;
+}
+
+size_t msocl__planes_bytes(const msocl_model *m, const msocl_sim_options *o)
+{
+  return geometry_of(m).plane * planes_per_point(o) * sizeof(float);
+}
+
 /* Why a model's GRID cannot run in planes on points [lo, hi) of its n
  * (every integrator and strain limit can); NULL: it can. */
 static const char *unfit(const msocl_model *m, int lo, int hi)
@@ -32,29 +83,53 @@ static const char *unfit(const msocl_model *m, int lo, int hi)
   if (lo != 0 || hi != m->n)
     return "runs a whole model on one device (not a split)";
   /* the kernels index all three planes with an int */
-  const size_t wide = (size_t)m->grid.nx + 64 + 4;
-  const size_t layers = m->grid.nz > 0 ? (size_t)m->grid.nz + 4 : 1;
-  if (3 * wide * ((size_t)m->grid.ny + 4) * layers > (size_t)INT_MAX)
-    return "index at most 2^31 floats (the grid is too large)";
+  if (3 * geometry_of(m).plane > (size_t)INT_MAX)
+    return "index at most 2^31 floats (the grid and its padding are too "
+           "large)";
   return NULL;
+}
+
+/* AUTO's limit on the padding: where the planes hold more than this many
+ * padded points a point, and more than LAVISH_BYTES, the padding would
+ * multiply the memory (a skinny grid: 2 x 2 x n pads to 12 x 6 x n). */
+#define LAVISH_FACTOR 4
+#define LAVISH_BYTES ((size_t)64 << 20)
+
+static int lavish(const msocl_model *m, const msocl_sim_options *o)
+{
+  return geometry_of(m).plane > LAVISH_FACTOR * (size_t)m->n &&
+         msocl__planes_bytes(m, o) > LAVISH_BYTES;
 }
 
 /* Whether GRID would run in planes: where it fits, when forced, or by
  * default on CPU devices, where it is measured faster
- * (docs/PERFORMANCE.md); a GPU gathers float4 as well, and is not
- * measured. */
+ * (docs/PERFORMANCE.md), unless the padding would multiply the memory; a
+ * GPU gathers float4 as well, and is not measured. */
 static int chosen(const struct msocl__device *dev, const msocl_sim_options *o,
-                  const char *why)
+                  const msocl_model *m, const char *why)
 {
   return !why && (o->planes == 1 ||
-                  (o->planes == -1 && dev->info.type == MSOCL_DEVICE_CPU));
+                  (o->planes == -1 && dev->info.type == MSOCL_DEVICE_CPU &&
+                   !lavish(m, o)));
 }
 
 int msocl__planes_would(const struct msocl__device *dev,
                         const msocl_sim_options *o, const msocl_model *m,
                         int lo, int hi)
 {
-  return chosen(dev, o, unfit(m, lo, hi));
+  return chosen(dev, o, m, unfit(m, lo, hi));
+}
+
+int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
+                          int lo, int hi)
+{
+  const char *why = o->planes == 1 ? unfit(m, lo, hi) : NULL;
+  if (why)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "planes %s: a %d x %d x %d grid pads to %zu floats a "
+                       "plane", why, m->grid.nx, m->grid.ny, m->grid.nz,
+                       geometry_of(m).plane);
+  return MSOCL_OK;
 }
 
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
@@ -64,7 +139,7 @@ int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
                         : unfit(m, s->lo, s->hi);
   if (s->o.planes == 1 && why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "planes %s", why);
-  s->planes = chosen(s->dev, &s->o, why);
+  s->planes = chosen(s->dev, &s->o, m, why);
   return MSOCL_OK;
 }
 
@@ -111,7 +186,7 @@ static int fixed_args(msocl__engine *s)
     TRY(arg(k, a + 5, sizeof(float), &s->viscous));
     TRY(arg(k, a + 6, sizeof(float), &s->air));
     TRY(arg(k, a + 7, sizeof(float), &s->o.dt));
-    TRY(arg(k, a + 8, sizeof s->col, &s->col));
+    TRY(arg(k, a + 8, sizeof s->pl_col, &s->pl_col));
   }
   k = s->pl_k[PL_POSITION];
   TRY(arg(k, 3, sizeof s->pl_aux, &s->pl_aux));
@@ -154,7 +229,7 @@ static int fixed_args(msocl__engine *s)
   TRY(shape(s, k, c + 4, 0));
   TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
   TRY(arg(k, c + 8, sizeof(float), &s->o.dt));
-  TRY(arg(k, c + 9, sizeof s->col, &s->col));
+  TRY(arg(k, c + 9, sizeof s->pl_col, &s->pl_col));
   if (s->o.integrator == MSOCL_IMPLICIT_EULER)
     return msocl__pl_implicit_args(s);
   /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col), and the
@@ -166,7 +241,7 @@ static int fixed_args(msocl__engine *s)
   TRY(arg(k, 4, sizeof s->pl_aux, &s->pl_aux));
   TRY(shape(s, k, 5, 1));
   TRY(arg(k, 9, sizeof(float), &s->o.dt));
-  TRY(arg(k, 10, sizeof s->col, &s->col));
+  TRY(arg(k, 10, sizeof s->pl_col, &s->pl_col));
   for (int q = PL_IN; q <= PL_OUT; q++) {
     k = s->pl_k[q];
     TRY(arg(k, q == PL_IN ? 0 : 1, sizeof s->acc, &s->acc));
@@ -177,23 +252,42 @@ static int fixed_args(msocl__engine *s)
   return MSOCL_OK;
 }
 
+/* The colliders for the planes kernels: s->col's values (8 a collider),
+ * each at the start of a float4 of its own. Side by side, two values read
+ * with the same arithmetic (a sphere's centre y and z) were paired by
+ * -O3's SLP vectorizer into a <2 x float>, and PoCL then left the whole
+ * kernel unvectorised (planes.cl's header says why). */
+static int collider_table(msocl__engine *s)
+{
+  enum { VALUES = 8 * MSOCL__MAX_COLLIDERS };
+  float packed[VALUES], spread[4 * VALUES] = {0};
+  const size_t used = 8 * (size_t)s->ncol * sizeof(float);
+  if (used > 0)
+    MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->col, CL_TRUE, 0, used,
+                                  packed, 0, NULL, NULL));
+  for (int i = 0; i < 8 * s->ncol; i++)
+    spread[4 * i] = packed[i];
+  cl_int e;
+  s->pl_col = clCreateBuffer(s->dev->ctx,
+                             CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                             sizeof spread, spread, &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateBuffer(colliders): %s", msocl_err_name(e));
+  return MSOCL_OK;
+}
+
 int msocl__planes_create(msocl__engine *s, cl_program prog)
 {
   if (!s->planes)
     return MSOCL_OK;
-  /* rows padded to whole work-groups - of 64 points, or of 32, 16 or 8
-   * for a narrow grid (a lattice's rows are short), so that few padding
-   * points are computed - plus two points each side; a lattice's layers
-   * padded by two rows each side, and two padding layers at each end */
-  size_t group = 64;
-  while (group > 8 && (size_t)s->lay.grid_nx <= group / 2)
-    group /= 2;
-  const size_t wide = ((size_t)s->lay.grid_nx + group - 1) / group * group;
-  s->pl_group = group;
-  s->pl_pitch = (int)wide + 4;
-  s->pl_slab = s->pl_pitch * (s->lay.grid_ny + 4);
-  s->pl_plane = s->pl_slab * (s->lay.grid_nz > 0 ? s->lay.grid_nz + 4 : 1);
-  s->pl_global[0] = wide;
+  /* unfit() kept 3 planes within INT_MAX floats */
+  const struct geometry g =
+      geometry_in(s->lay.grid_nx, s->lay.grid_ny, s->lay.grid_nz);
+  s->pl_group = g.group;
+  s->pl_pitch = (int)g.pitch;
+  s->pl_slab = (int)g.slab;
+  s->pl_plane = (int)g.plane;
+  s->pl_global[0] = g.wide;
   s->pl_global[1] = (size_t)s->lay.grid_ny;
   s->pl_global[2] = s->lay.grid_nz > 0 ? (size_t)s->lay.grid_nz : 1;
   for (int q = 0; q < PL_COUNT; q++) {
@@ -230,6 +324,7 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
     MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, *bufs[q], &zero, sizeof zero,
                                   0, bytes, 0, NULL, NULL));
   }
+  TRY(collider_table(s));
   return fixed_args(s);
 }
 
@@ -446,4 +541,6 @@ void msocl__planes_release(msocl__engine *s)
   for (int q = 0; q < 14; q++)
     if (m[q])
       clReleaseMemObject(m[q]);
+  if (s->pl_col)
+    clReleaseMemObject(s->pl_col);
 }

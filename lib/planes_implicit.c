@@ -58,7 +58,7 @@ int msocl__pl_implicit_args(msocl__engine *s)
   TRY(msocl__pl_shape(s, k, 5, 1));
   TRY(msocl__pl_arg(k, 9, sizeof(float), &s->air));
   TRY(msocl__pl_arg(k, 10, sizeof(float), &dt));
-  TRY(msocl__pl_arg(k, 11, sizeof s->col, &s->col));
+  TRY(msocl__pl_arg(k, 11, sizeof s->pl_col, &s->pl_col));
   /* the sums: dots, partial, n */
   k = s->pl_k[PL_SUM];
   TRY(msocl__pl_arg(k, 0, sizeof dots, &dots));

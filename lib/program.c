@@ -104,8 +104,8 @@ static int build(struct msocl__device *dev, const char *options,
   return MSOCL_OK;
 }
 
-int msocl__program_get(struct msocl__device *dev, const char *options,
-                       cl_program *out)
+static int find_or_build(struct msocl__device *dev, const char *options,
+                         cl_program *out)
 {
   for (struct msocl__program *c = dev->programs; c; c = c->next)
     if (strcmp(c->options, options) == 0) {
@@ -129,6 +129,17 @@ int msocl__program_get(struct msocl__device *dev, const char *options,
   return MSOCL_OK;
 }
 
+/* One build at a time per device: a second thread wanting the same
+ * program waits for it rather than building (and leaking) its own. */
+int msocl__program_get(struct msocl__device *dev, const char *options,
+                       cl_program *out)
+{
+  pthread_mutex_lock(&dev->programs_lock);
+  int rc = find_or_build(dev, options, out);
+  pthread_mutex_unlock(&dev->programs_lock);
+  return rc;
+}
+
 void msocl__program_cache_free(struct msocl__device *dev)
 {
   struct msocl__program *c = dev->programs;
@@ -140,4 +151,14 @@ void msocl__program_cache_free(struct msocl__device *dev)
     c = next;
   }
   dev->programs = NULL;
+}
+
+int msocl__program_cache_size(struct msocl__device *dev)
+{
+  int n = 0;
+  pthread_mutex_lock(&dev->programs_lock);
+  for (struct msocl__program *c = dev->programs; c; c = c->next)
+    n++;
+  pthread_mutex_unlock(&dev->programs_lock);
+  return n;
 }

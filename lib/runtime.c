@@ -1,5 +1,6 @@
 /* A runtime: one OpenCL context and in-order, profiling command queue on
- * each device a spec (or MSOCL_DEVICE) chooses. */
+ * each device a spec (or MSOCL_DEVICE) chooses. Threads may share it: the
+ * queues are OpenCL's (thread-safe) and the program cache has a lock. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -38,6 +39,9 @@ static int open_device(struct msocl__device *dev, const cl_platform_id *plats,
   cl_int e;
   int rc;
 
+  if (pthread_mutex_init(&dev->programs_lock, NULL) != 0)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "program cache lock");
+  dev->lock_made = 1;
   if ((rc = find_ids(dev, plats, np)) != MSOCL_OK) return rc;
   props[0] = CL_CONTEXT_PLATFORM;
   props[1] = (cl_context_properties)dev->platform;
@@ -64,6 +68,8 @@ static void release_devices(msocl_runtime *rt) {
   for (i = 0; i < rt->ndev; i++) {
     if (rt->dev[i].queue) clReleaseCommandQueue(rt->dev[i].queue);
     if (rt->dev[i].ctx) clReleaseContext(rt->dev[i].ctx);
+    if (rt->dev[i].lock_made)
+      pthread_mutex_destroy(&rt->dev[i].programs_lock);
   }
 }
 

@@ -324,6 +324,9 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
   s->viscous = m->viscous;
   s->air = m->air;
   s->ncol = m->ncol;
+  rc = msocl__planes_refused(o, m, lo, hi);
+  if (rc != MSOCL_OK)
+    goto fail;
   for (int i = 0; m->damp && i < m->ns && !s->damped; i++)
     s->damped = m->damp[i] != 0.0f;
   s->stage = malloc(4 * (size_t)m->n * sizeof(float));

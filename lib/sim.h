@@ -68,6 +68,7 @@ struct msocl__engine {
   cl_mem pl_a;            /* Verlet: the acceleration */
   cl_mem pl_sp[2], pl_sv[2], pl_sum[2]; /* RK4: stage states, sums */
   cl_mem pl_s[2];         /* strain sweeps (velocity: pl_s[0]) */
+  cl_mem pl_col;          /* the colliders, a float4 a value (planes.c) */
   cl_kernel pl_k[22];     /* planes.c's kernels (planes.h) */
   cl_uint pl_conn;        /* the gathering kernels' connectivity args */
   int pl_pitch, pl_slab, pl_plane; /* floats a row, a layer, a plane */
@@ -238,6 +239,14 @@ int msocl__planes_would(const struct msocl__device *dev,
                         const msocl_sim_options *o, const msocl_model *m,
                         int lo, int hi);
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m);
+/* MSOCL_ERR_BAD_VALUE, before anything is allocated, where planes are
+ * forced (o->planes 1) on a grid the kernels' int indices cannot address
+ * or on a split; else MSOCL_OK. */
+int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
+                          int lo, int hi);
+/* Device bytes the planes of model m's grid take under options o
+ * (msocl.h's formula). */
+size_t msocl__planes_bytes(const msocl_model *m, const msocl_sim_options *o);
 int msocl__planes_create(msocl__engine *s, cl_program prog);
 int msocl__planes_steps(msocl__engine *s, int n);
 /* The state stays in the planes between calls. current: brings the

@@ -55,4 +55,14 @@ for k in provot velocity; do
       fail "no $k row with $w sweeps"
   done
 done
+# colliders: each engine with each collider, every run ok
+./examples/msocl-bench colliders --quick --csv "$tmp/c.csv" >/dev/null ||
+  fail "colliders exited $?"
+[ "$(head -n 1 "$tmp/c.csv")" = "$header" ] || fail "colliders CSV header"
+for e in grid-planes grid-float4 buffer; do
+  for c in none plane sphere table; do
+    grep -q ",$e+$c,symplectic,precise,8,.*,ok,,\$" "$tmp/c.csv" ||
+      fail "no $e+$c row"
+  done
+done
 echo "PASS"

@@ -4,8 +4,11 @@
  * every feature the planes kernel compiles in (colliders of each kind,
  * pins, dashpots, viscous damping, air), grids narrower and wider than a
  * work-group, and the state written between calls - and auto must take
- * planes exactly where they apply. */
+ * planes exactly where they apply, and not where their padding would
+ * multiply the memory (a skinny lattice); a grid too large for the
+ * kernels' int indices is refused before anything is allocated. */
 #include "scenes.h"
+#include "sim.h" /* msocl__planes_bytes, _refused, _would */
 
 #include <check.h>
 #include <math.h>
@@ -563,6 +566,61 @@ START_TEST(split_keeps_float4)
 }
 END_TEST
 
+/* A 2 x 2 x n lattice pads to 12 x 6 x (n + 4) points a plane: AUTO
+ * keeps it in float4 (memory in proportion to its points), forced planes
+ * still run; one whose planes pass 2^31 floats is refused when forced,
+ * before any allocation (a model with only its grid record: no arrays to
+ * allocate from), and AUTO leaves it in float4. */
+START_TEST(skinny_lattice)
+{
+  msocl_lattice_desc d;
+  msocl_lattice_desc_init(&d);
+  d.nx = d.ny = 2;
+  d.nz = 20000;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_lattice(&m, &d), MSOCL_OK);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = 1e-4f;
+  o.layout = MSOCL_LAYOUT_GRID;
+  const size_t plane = (size_t)12 * 6 * (20000 + 4);
+  ck_assert_uint_eq(msocl__planes_bytes(m, &o), plane * 14 * sizeof(float));
+  o.integrator = MSOCL_RK4;
+  o.strain = MSOCL_STRAIN_PROVOT;
+  ck_assert_uint_eq(msocl__planes_bytes(m, &o),
+                    plane * (14 + 18 + 6) * sizeof(float));
+  o.integrator = MSOCL_SYMPLECTIC_EULER;
+  o.strain = MSOCL_STRAIN_NONE;
+  msocl_sim *s = NULL;
+  int on = -1;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
+  ck_assert_msg(on == 0, "auto took planes of %zu bytes for %d points",
+                msocl__planes_bytes(m, &o), 4 * 20000);
+  ck_assert_int_eq(msocl_sim_step(s, 2), MSOCL_OK);
+  msocl_sim_destroy(s);
+  o.planes = 1;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
+  ck_assert_int_eq(on, 1);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+
+  static msocl_model big; /* the grid record is all the checks read */
+  big.grid.nx = big.grid.ny = 2;
+  big.grid.nz = 40000000;
+  big.n = 2 * 2 * big.grid.nz;
+  ck_assert_int_eq(msocl__planes_refused(&o, &big, 0, big.n),
+                   MSOCL_ERR_BAD_VALUE);
+  ck_assert_msg(strstr(msocl_last_error(), "2^31") &&
+                    strstr(msocl_last_error(), "2 x 2 x 40000000"),
+                "unclear error: %s", msocl_last_error());
+  o.planes = -1;
+  ck_assert_int_eq(msocl__planes_refused(&o, &big, 0, big.n), MSOCL_OK);
+  ck_assert_int_eq(msocl__planes_would(&rt->dev[0], &o, &big, 0, big.n), 0);
+}
+END_TEST
+
 int main(void)
 {
   scene_require_device("check_planes");
@@ -582,6 +640,7 @@ int main(void)
   tcase_add_test(tc, relaxed_close);
   tcase_add_test(tc, auto_and_errors);
   tcase_add_test(tc, split_keeps_float4);
+  tcase_add_test(tc, skinny_lattice);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }

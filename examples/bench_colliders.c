@@ -1,0 +1,130 @@
+/* msocl-bench colliders: what a collider costs. The tablecloth (a cloth
+ * grid 5 cm above y = 0) with no collider, a floor plane, a sphere or the
+ * round table - the sphere and table tops at y = 0, so the cloth lands on
+ * them - per engine: GRID in planes, GRID in float4 (both forced) and
+ * BUFFER. The four scenes of an engine are timed in turn, --repeat rounds,
+ * the fastest of each counting, so the ratios to "none" come from the same
+ * moments of a noisy machine. */
+#include "bench.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { ENGINES = 3, SCENES = 4 };
+static const char *const engine_names[ENGINES] = {"grid-planes",
+                                                  "grid-float4", "buffer"};
+static const char *const scene_names[SCENES] = {"none", "plane", "sphere",
+                                                "table"};
+
+static msocl_model *build(int n, int scene)
+{
+  msocl_cloth_desc d;
+  msocl_cloth_desc_init(&d);
+  d.nx = d.ny = n;
+  d.origin[0] = -0.5f;
+  d.origin[1] = TC_HEIGHT;
+  d.origin[2] = -0.5f;
+  d.u[0] = 0.0f; d.u[1] = 0.0f; d.u[2] = 1.0f;
+  d.v[0] = 1.0f; d.v[1] = 0.0f; d.v[2] = 0.0f;
+  d.point_mass = TC_MASS / (float)(n * n);
+  d.k_stretch = TC_K_STRETCH;
+  d.k_shear = TC_K_SHEAR;
+  d.k_bend = TC_K_BEND;
+  msocl_model *m = NULL;
+  if (msocl_model_cloth_grid(&m, &d) != MSOCL_OK)
+    return NULL;
+  const float up[3] = {0.0f, 1.0f, 0.0f}, top[3] = {0.0f, 0.0f, 0.0f};
+  const float centre[3] = {0.0f, -TC_RADIUS, 0.0f};
+  int rc = msocl_model_set_viscous_damping(m, TC_VISCOUS_PER_MASS *
+                                                  d.point_mass);
+  if (rc == MSOCL_OK && scene == 1)
+    rc = msocl_model_add_plane(m, up, 0.0f, TC_FRICTION);
+  if (rc == MSOCL_OK && scene == 2)
+    rc = msocl_model_add_sphere(m, centre, TC_RADIUS, TC_FRICTION);
+  if (rc == MSOCL_OK && scene == 3)
+    rc = msocl_model_add_table(m, top, TC_RADIUS, TC_FRICTION);
+  if (rc != MSOCL_OK) {
+    msocl_model_destroy(m);
+    return NULL;
+  }
+  return m;
+}
+
+/* One engine on one grid: the four scenes timed in turn. */
+static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
+                       FILE *csv, int n, int engine)
+{
+  const int steps = n > 128 ? o->big_steps : o->steps;
+  msocl_sim *s[SCENES] = {0};
+  double best[SCENES];
+  int rc = MSOCL_OK;
+  for (int c = 0; c < SCENES && rc == MSOCL_OK; c++) {
+    msocl_model *m = build(n, c);
+    msocl_sim_options so;
+    msocl_sim_options_init(&so);
+    so.dt = 1e-4f;
+    so.layout = engine < 2 ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
+    so.planes = engine == 0 ? 1 : 0;
+    so.check_every = 0;
+    rc = m ? msocl_sim_create(&s[c], rt, m, &so) : MSOCL_ERR_NO_MEMORY;
+    msocl_model_destroy(m);
+    if (rc == MSOCL_OK)
+      rc = msocl_sim_step(s[c], 1); /* warm-up */
+    best[c] = INFINITY;
+  }
+  for (int rep = 0; rc == MSOCL_OK && rep < o->repeat; rep++)
+    for (int c = 0; c < SCENES && rc == MSOCL_OK; c++) {
+      double t0 = bench_now();
+      rc = msocl_sim_step(s[c], steps);
+      double t = bench_now() - t0;
+      best[c] = t < best[c] ? t : best[c];
+    }
+  for (int c = 0; c < SCENES; c++)
+    msocl_sim_destroy(s[c]);
+  if (rc != MSOCL_OK) {
+    printf("%4d^2 %-12s failed\n", n, engine_names[engine]);
+    return bench_fail(engine_names[engine], rc);
+  }
+  for (int c = 0; c < SCENES; c++) {
+    struct bench_row r;
+    bench_row_init(&r);
+    bench_row_device(&r, rt);
+    char label[32]; /* the CSV's layout column: engine+collider */
+    snprintf(label, sizeof label, "%s+%s", engine_names[engine],
+             scene_names[c]);
+    r.layout = label;
+    r.integrator = bench_integrator_names[0];
+    r.math = "precise";
+    r.grid = n;
+    r.dt = 1e-4;
+    r.steps = steps;
+    r.seconds = best[c];
+    r.status = "ok";
+    bench_row_rates(&r);
+    printf("%4d^2 %-12s %-7s %6d %8.3f %9.1f %10.4f %7.2fx\n", n,
+           engine_names[engine], scene_names[c], steps, r.seconds,
+           r.steps_per_s, r.vertex_steps_per_s / 1e9, best[c] / best[0]);
+    bench_csv_row(csv, &r);
+  }
+  fflush(stdout);
+  return 0;
+}
+
+int bench_colliders(const struct bench_opts *o, FILE *csv)
+{
+  msocl_runtime *rt = NULL;
+  msocl_device_info info;
+  if (bench_open(o, &rt, &info))
+    return 1;
+  printf("msocl-bench colliders on %s [%s]: symplectic Euler, best of %d\n",
+         info.name, info.platform_name, o->repeat);
+  printf("%6s %-12s %-7s %6s %8s %9s %10s %8s\n", "size", "engine",
+         "collider", "steps", "seconds", "steps/s", "Gpt-st/s", "time/none");
+  int failed = 0;
+  for (int g = 0; g < o->ngrids; g++)
+    for (int e = 0; e < ENGINES; e++)
+      failed |= engine_rows(o, rt, csv, o->grids[g], e);
+  msocl_runtime_destroy(rt);
+  return failed;
+}
