@@ -13,7 +13,7 @@
  * w. Every block is at most k I in any state (its eigenvalues are k and
  * k (1 - r/l) < k), so K is at most the springs' weighted graph Laplacian
  * times I, and that Laplacian's Gershgorin bound holds for every state the
- * model can reach (msocl_safe_dt, which takes 0.8 of it for the
+ * model can reach (msocl_safe_dt, which takes 0.7 of it for the
  * symplectic methods).
  *
  * Limits for a mode of frequency w damped at rate g (the stability regions
@@ -212,10 +212,11 @@ int msocl_stable_dt_at(const msocl_model *m, const float *xyz,
   return stable(m, xyz, 0, integrator, dt);
 }
 
-/* Symplectic Euler and Verlet slowly gain energy in undamped nonlinear
- * motion near their limit, the faster the nearer; the margin is chosen
- * from long runs of the pinned default cloth (docs/STABILITY.md). */
-#define SYMPLECTIC_MARGIN 0.8
+/* Symplectic Euler and Verlet keep a nonlinear undamped model's energy
+ * bounded only for a time that grows exponentially as h w falls below the
+ * limit, and close to it that time is short; the margin is chosen from
+ * long runs of the pinned default cloth (docs/STABILITY.md). */
+#define SYMPLECTIC_MARGIN 0.7
 
 int msocl_safe_dt(const msocl_model *m, msocl_integrator integrator,
                   float *dt)
