@@ -467,10 +467,24 @@ MSOCL_EXTERN int msocl_sim_point_order(const msocl_sim *s, int *order);
 
 /* The largest stable time step of the model under an integrator, from a
  * Gershgorin bound on the highest eigenfrequency (see lib/stable_dt.c):
- * symplectic Euler and Verlet h w < 2, RK4 h w <= 2 sqrt 2, explicit Euler
- * needs damping (MSOCL_ERR_UNSTABLE without), implicit Euler: +infinity. */
+ * symplectic Euler and Verlet h w < 2, RK4 h w <= 2 sqrt 2 (both less with
+ * damping), explicit Euler needs damping (MSOCL_ERR_UNSTABLE without),
+ * implicit Euler: +infinity. msocl_stable_dt bounds the model's own
+ * positions, msocl_stable_dt_at those given (3n floats: a simulation's
+ * state); either holds near that state only, since a stretched spring
+ * stiffens sideways: a hanging cloth soon needs a shorter step.
+ * msocl_safe_dt bounds every state the springs can reach (each at its
+ * stiffest), less a margin for symplectic Euler and Verlet, whose long
+ * undamped runs gain energy near their limit: the step to run at
+ * (docs/STABILITY.md). MSOCL_ERR_BAD_COUNT when nothing bounds the step
+ * (no stiffness, no damping); MSOCL_ERR_BAD_VALUE from the first two when
+ * a spring of positive rest length joins coincident points. */
 MSOCL_EXTERN int msocl_stable_dt(const msocl_model *m,
                                  msocl_integrator integrator, float *dt);
+MSOCL_EXTERN int msocl_stable_dt_at(const msocl_model *m, const float *xyz,
+                                    msocl_integrator integrator, float *dt);
+MSOCL_EXTERN int msocl_safe_dt(const msocl_model *m,
+                               msocl_integrator integrator, float *dt);
 
 /* --------------------------------------------------------------- batches */
 

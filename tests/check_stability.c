@@ -320,6 +320,131 @@ START_TEST(stable_dt_values)
 }
 END_TEST
 
+/* The default cloth hanging from two corners (points 0 and 31), no
+ * damping: it falls, swings and stretches its corner springs to twice
+ * their rest length, where they stiffen sideways; msocl_stable_dt (the
+ * rest state's limit) blows up within 200 steps at 0.9 x. */
+static msocl_model *pinned_cloth(void)
+{
+  msocl_cloth_desc d;
+  msocl_cloth_desc_init(&d);
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_cloth_grid(&m, &d), MSOCL_OK);
+  msocl_model_pin(m, 0, 1);
+  msocl_model_pin(m, 31, 1);
+  return m;
+}
+
+/* 0.9 x msocl_safe_dt holds the pinned cloth for 50 000 steps (the blow-up
+ * check every 100), in the GRID layout (AUTO) and in BUFFER; the state it
+ * reaches has a smaller stable_dt_at than the model at rest. */
+START_TEST(pinned_cloth_safe_step)
+{
+  static const msocl_layout layouts[2] = {MSOCL_LAYOUT_AUTO,
+                                          MSOCL_LAYOUT_BUFFER};
+  msocl_model *m = pinned_cloth();
+  float rest, safe, here;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &rest),
+                   MSOCL_OK);
+  ck_assert_int_eq(msocl_safe_dt(m, MSOCL_SYMPLECTIC_EULER, &safe),
+                   MSOCL_OK);
+  ck_assert_float_lt(safe, rest);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = 0.9f * safe;
+  o.layout = layouts[_i];
+  o.check_every = 100;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  int rc = msocl_sim_step(s, 50000);
+  ck_assert_msg(rc == MSOCL_OK, "0.9 x safe step %g s: %s", (double)safe,
+                msocl_last_error());
+  float *p = malloc(3 * 1024 * sizeof *p);
+  ck_assert_int_eq(msocl_sim_read_positions(s, p), MSOCL_OK);
+  ck_assert_int_eq(msocl_stable_dt_at(m, p, MSOCL_SYMPLECTIC_EULER, &here),
+                   MSOCL_OK);
+  printf("pinned cloth, layout %d: stable_dt %.4g s, safe_dt %.4g s, "
+         "stable_dt_at after 50 000 steps %.4g s\n", (int)layouts[_i],
+         rest, safe, here);
+  ck_assert_float_lt(here, rest);
+  free(p);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Symplectic Euler on a mode damped at rate g is stable for
+ * h^2 w^2 + 2 h g < 4, not for h w < 2 and h g < 2 apart: the oscillator
+ * (w = 10 rad/s) with viscous damping g = 10/s has the limit
+ * 4 / (g + sqrt(g^2 + 4 w^2)) = 0.1236 s, where each limit alone allows
+ * 0.2 s. 0.9 x loses energy; 1.2 x is caught. */
+START_TEST(stable_dt_damped)
+{
+  msocl_model *m = oscillator();
+  msocl_model_set_viscous_damping(m, 1.0f); /* on the free 0.1 kg: 10/s */
+  const double g = 10.0, w = 10.0, h = 4.0 / (g + sqrt(g * g + 4 * w * w));
+  float dt;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  ck_assert_float_eq_tol(dt, (float)h, 1e-5f);
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_VERLET, &dt), MSOCL_OK);
+  ck_assert_float_eq_tol(dt, (float)h, 1e-5f);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = (float)(0.9 * h);
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  msocl_energy e0, e1;
+  msocl_sim_energy(s, &e0);
+  ck_assert_int_eq(msocl_sim_step(s, 2000), MSOCL_OK);
+  msocl_sim_energy(s, &e1);
+  ck_assert_double_lt(e1.total, e0.total);
+  msocl_sim_destroy(s);
+  o.dt = (float)(1.2 * h);
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, 2000), MSOCL_ERR_UNSTABLE);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Nothing bounds the step of a model without springs (or damping): a clear
+ * error, not +infinity. Two coincident points joined by a spring of
+ * positive rest length have no linearisation: msocl_stable_dt refuses,
+ * msocl_safe_dt (any state) still answers. */
+START_TEST(stable_dt_refuses)
+{
+  msocl_model *m = NULL;
+  msocl_model_create(&m);
+  const float xyz[6] = {0, 0, 0, 0, 0, 0}, mass[2] = {0.1f, 0.1f};
+  msocl_model_add_points(m, 2, xyz, mass, NULL);
+  float dt = 1.0f;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt),
+                   MSOCL_ERR_BAD_COUNT);
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "no spring"));
+  ck_assert_float_eq(dt, 0.0f);
+  ck_assert_int_eq(msocl_safe_dt(m, MSOCL_RK4, &dt), MSOCL_ERR_BAD_COUNT);
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_IMPLICIT_EULER, &dt), MSOCL_OK);
+  ck_assert(isinf(dt));
+  msocl_model_set_viscous_damping(m, 0.1f); /* rate 1/s: h <= 2 s */
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  ck_assert_float_eq_tol(dt, 2.0f, 1e-6f);
+  msocl_model_set_viscous_damping(m, 0.0f);
+  const int ij[2] = {0, 1};
+  const float k = 10.0f, rest = 0.1f;
+  msocl_model_add_springs(m, 1, ij, &k, &rest, NULL);
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt),
+                   MSOCL_ERR_BAD_VALUE);
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "coincide"));
+  ck_assert_int_eq(msocl_stable_dt_at(m, xyz, MSOCL_VERLET, &dt),
+                   MSOCL_ERR_BAD_VALUE);
+  ck_assert_int_eq(msocl_stable_dt_at(m, NULL, MSOCL_VERLET, &dt),
+                   MSOCL_ERR_NULL_HANDLE);
+  ck_assert_int_eq(msocl_safe_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  ck_assert(isfinite(dt) && dt > 0.0f);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 /* The grid at 3x its stable symplectic Euler step, perturbed: it blows
  * up before its first check (step 50). *m and *n: its model and points. */
 static msocl_sim *unstable(msocl_model **m, int *n)
@@ -715,6 +840,14 @@ int main(void)
   tcase_add_test(tc, unstable_rolls_back);
   tcase_add_test(tc, check_counts_across_calls);
   suite_add_tcase(su, tc);
+  /* the step limits of states a scene reaches, damping, and no limit */
+  TCase *lim = tcase_create("limits");
+  tcase_add_checked_fixture(lim, setup, teardown);
+  tcase_set_timeout(lim, 600);
+  tcase_add_loop_test(lim, pinned_cloth_safe_step, 0, 2);
+  tcase_add_test(lim, stable_dt_damped);
+  tcase_add_test(lim, stable_dt_refuses);
+  suite_add_tcase(su, lim);
   TCase *rest = tcase_create("at rest");
   tcase_add_checked_fixture(rest, setup_pair, teardown);
   tcase_set_timeout(rest, 300);
