@@ -392,7 +392,8 @@ int msocl__batch_end(msocl_sim *s)
       MSOCL_ERR_UNSTABLE,
       "blew up between steps %lld and %lld (dt = %g): total energy %g J%s "
       "against %g J at the start%s (bound %g J); state restored to step "
-      "%lld; msocl_stable_dt() gives a safe step",
+      "%lld; msocl_safe_dt() gives a step that holds in every state "
+      "(docs/STABILITY.md)",
       first, last, (double)s->o.dt, total,
       at_write ? " where it was written" : "", s->e0,
       s->wrote ? " with the writes' work" : "", bound(s), first);
