@@ -7,7 +7,7 @@
 
 #include <stdio.h>
 
-/* The paper's scene (examples/tablecloth): a 1 m square cloth of 0.5 kg,
+/* The paper's scene (examples/tablecloth.c): a 1 m square cloth of 0.5 kg,
  * 5 cm above a round table of radius 0.35 m, stretch / shear / bend springs
  * of 50 / 10 / 10 N/m, viscous damping 0.5 x the point mass. */
 #define TC_MASS 0.5f

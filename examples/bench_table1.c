@@ -107,7 +107,7 @@ static msocl_model *build(int n, float *dt)
     msocl_model_destroy(m);
     return NULL;
   }
-  *dt *= 0.5f; /* half the stable step, as examples/tablecloth */
+  *dt *= 0.5f; /* half the stable step, as examples/tablecloth.c */
   return m;
 }
 
