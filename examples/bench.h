@@ -43,6 +43,7 @@ struct bench_opts {
                                      and with values forced (table1) */
   int planes;                     /* --planes: also GRID in planes and in
                                      float4 forced (table1) */
+  int expert;                     /* --expert: also expert C (table1) */
   int sweeps[BENCH_MAX_LIST], nsweeps; /* --sweeps (strain) */
   const char *csv;                /* --csv */
 };
@@ -112,5 +113,21 @@ void bench_serial_step(bench_serial *s, int steps);
 /* 3 floats a point, the msocl model's point order. */
 const float *bench_serial_positions(const bench_serial *s);
 void bench_serial_destroy(bench_serial *s);
+
+/* Rest lengths of the n x n tablecloth's stretch, shear and bend springs,
+ * as lib/model_cloth.c rounds them (bench_serial.c). */
+void bench_tc_rests(int n, float rest[3]);
+
+/* The tablecloth as expert C: struct of arrays, padded rows, both passes
+ * in one sweep, OpenMP over rows (bench_expert.c); bitwise GRID in planes
+ * in PRECISE math. xyz: the model's initial positions, 3 floats a point. */
+typedef struct bench_expert bench_expert;
+int bench_expert_create(bench_expert **e, int n, float dt, const float *xyz);
+void bench_expert_step(bench_expert *e, int steps);
+/* 3 floats a point, the msocl model's point order. */
+const float *bench_expert_positions(const bench_expert *e);
+void bench_expert_destroy(bench_expert *e);
+/* The threads a step runs on (1 without OpenMP). */
+int bench_expert_threads(void);
 
 #endif /* BENCH_H */

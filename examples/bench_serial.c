@@ -25,13 +25,21 @@ struct bench_serial {
 
 /* Every spring of a kind rests at the grid's spacing for that kind (as
  * lib/model_cloth.c does): h for stretch, h sqrt 2 for shear, 2h for bend. */
-static void push(bench_serial *s, int i, int j, float k, double rest)
+static void push(bench_serial *s, int i, int j, float k, float rest)
 {
   struct spring *e = &s->sp[s->ns++];
   e->i = i;
   e->j = j;
-  e->rest = (float)rest;
+  e->rest = rest;
   e->k = k;
+}
+
+void bench_tc_rests(int n, float rest[3])
+{
+  const double h = 1.0 / (n - 1);
+  rest[0] = (float)h;
+  rest[1] = (float)sqrt(2.0 * h * h);
+  rest[2] = (float)(2 * h);
 }
 
 /* The grid of lib/model_cloth.c: point (i, j) at origin + i/(n-1) z +
@@ -46,21 +54,22 @@ static void build(bench_serial *s, int n)
       p[1] = TC_HEIGHT;
       p[2] = (float)(-0.5 + a);
     }
-  const double h = 1.0 / (n - 1), diag = sqrt(2.0 * h * h);
+  float rest[3];
+  bench_tc_rests(n, rest);
   for (int j = 0; j < n; j++)
     for (int i = 0; i < n; i++) {
-      if (i + 1 < n) push(s, j * n + i, j * n + i + 1, TC_K_STRETCH, h);
-      if (j + 1 < n) push(s, j * n + i, (j + 1) * n + i, TC_K_STRETCH, h);
+      if (i + 1 < n) push(s, j * n + i, j * n + i + 1, TC_K_STRETCH, rest[0]);
+      if (j + 1 < n) push(s, j * n + i, (j + 1) * n + i, TC_K_STRETCH, rest[0]);
     }
   for (int j = 0; j + 1 < n; j++)
     for (int i = 0; i + 1 < n; i++) {
-      push(s, j * n + i, (j + 1) * n + i + 1, TC_K_SHEAR, diag);
-      push(s, j * n + i + 1, (j + 1) * n + i, TC_K_SHEAR, diag);
+      push(s, j * n + i, (j + 1) * n + i + 1, TC_K_SHEAR, rest[1]);
+      push(s, j * n + i + 1, (j + 1) * n + i, TC_K_SHEAR, rest[1]);
     }
   for (int j = 0; j < n; j++)
     for (int i = 0; i < n; i++) {
-      if (i + 2 < n) push(s, j * n + i, j * n + i + 2, TC_K_BEND, 2 * h);
-      if (j + 2 < n) push(s, j * n + i, (j + 2) * n + i, TC_K_BEND, 2 * h);
+      if (i + 2 < n) push(s, j * n + i, j * n + i + 2, TC_K_BEND, rest[2]);
+      if (j + 2 < n) push(s, j * n + i, (j + 2) * n + i, TC_K_BEND, rest[2]);
     }
 }
 

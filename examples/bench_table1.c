@@ -149,6 +149,8 @@ struct ctx {
   struct result *res;
   int nres, done, total;
   float *xyz;
+  const float *expert_pos; /* --expert: its final positions, this grid */
+  double expert_ips;
 };
 
 static void print_row(const struct bench_row *r, const char *engine,
@@ -190,47 +192,122 @@ static void keep(struct ctx *c, const struct bench_row *r, const char *engine)
   x->seconds = r->seconds;
 }
 
-/* The serial baseline on grid n; *ips gets its iterations per second. */
-static int run_serial(struct ctx *c, int n, float dt, int steps,
-                      const float **pos, bench_serial **keep_s, double *ips)
+/* A host engine (serial C, expert C): its CSV labels, state, step and
+ * final positions. */
+struct host {
+  const char *device, *layout, *engine;
+  void *state;
+  void (*step)(void *state, int steps);
+  const float *(*positions)(const void *state);
+};
+
+static void serial_step(void *s, int steps) { bench_serial_step(s, steps); }
+static void expert_step(void *e, int steps) { bench_expert_step(e, steps); }
+static const float *host_serial_pos(const void *s)
+{
+  return bench_serial_positions(s);
+}
+static const float *host_expert_pos(const void *e)
+{
+  return bench_expert_positions(e);
+}
+
+/* Times h->state (NULL: it failed to build, error rc) as run_device times
+ * the library: one warm-up step, then the best of --repeat runs. *ips: its
+ * iterations per second, 0 if it failed; ref: serial C's final positions
+ * for the error column, or NULL. */
+static void run_host(struct ctx *c, const struct host *h, int rc, int n,
+                     float dt, int steps, const float *ref,
+                     double serial_ips, double *ips)
 {
   struct bench_row r;
   bench_row_init(&r);
-  snprintf(r.device, sizeof r.device, "host serial C");
-  r.layout = "springs";
+  snprintf(r.device, sizeof r.device, "%s", h->device);
+  r.layout = h->layout;
   r.integrator = "symplectic";
   r.math = "precise";
   r.grid = n;
   r.dt = dt;
   r.steps = steps;
-  bench_progress(++c->done, c->total, "%dx%d serial C, %d steps", n, n,
+  bench_progress(++c->done, c->total, "%dx%d %s, %d steps", n, n, h->engine,
                  steps);
-  bench_serial *s = NULL;
-  int rc = bench_serial_create(&s, n, dt);
   if (rc != MSOCL_OK) {
     r.status = "failed";
-    fprintf(stderr, "msocl-bench: serial %dx%d: %s\n", n, n,
+    fprintf(stderr, "msocl-bench: %s %dx%d: %s\n", h->engine, n, n,
             msocl_strerror(rc));
   } else {
-    bench_serial_step(s, 1); /* warm-up */
+    h->step(h->state, 1); /* warm-up */
     r.seconds = INFINITY;
     for (int rep = 0; rep < c->o->repeat; rep++) {
       double t0 = bench_now();
-      bench_serial_step(s, steps);
+      h->step(h->state, steps);
       double t = bench_now() - t0;
       r.seconds = t < r.seconds ? t : r.seconds;
     }
     r.status = "ok";
+    if (ref)
+      r.error = rms_diff(h->positions(h->state), ref, n * n);
     bench_row_rates(&r);
   }
   bench_progress(0, 0, " ");
-  print_row(&r, "serial C (Algorithm 1)", 0.0);
+  print_row(&r, h->engine, serial_ips);
   bench_csv_row(c->csv, &r);
-  keep(c, &r, "serial C");
+  keep(c, &r, h->engine);
   *ips = r.steps_per_s > 0 ? r.steps_per_s : 0.0;
+}
+
+/* The serial baseline on grid n; *ips gets its iterations per second. */
+static int run_serial(struct ctx *c, int n, float dt, int steps,
+                      const float **pos, bench_serial **keep_s, double *ips)
+{
+  bench_serial *s = NULL;
+  int rc = bench_serial_create(&s, n, dt);
+  struct host h = {"host serial C", "springs", "serial C (Algorithm 1)", s,
+                   serial_step, host_serial_pos};
+  run_host(c, &h, rc, n, dt, steps, NULL, 0.0, ips);
   *pos = s ? bench_serial_positions(s) : NULL;
   *keep_s = s;
   return rc;
+}
+
+/* The expert C yardstick on grid n from the model's initial positions;
+ * c->expert_pos and c->expert_ips get its result. */
+static void run_expert(struct ctx *c, const msocl_model *m, int n, float dt,
+                       int steps, const float *serial_pos, double serial_ips,
+                       bench_expert **keep_e)
+{
+  bench_expert *e = NULL;
+  int rc = c->xyz ? msocl_model_get_positions(m, c->xyz) : MSOCL_ERR_NO_MEMORY;
+  if (rc == MSOCL_OK)
+    rc = bench_expert_create(&e, n, dt, c->xyz);
+  char engine[64];
+  snprintf(engine, sizeof engine, "expert C (%d thread%s)",
+           bench_expert_threads(), bench_expert_threads() > 1 ? "s" : "");
+  struct host h = {"host expert C", "expert-planes", engine, e, expert_step,
+                   host_expert_pos};
+  run_host(c, &h, rc, n, dt, steps, serial_pos, serial_ips, &c->expert_ips);
+  c->expert_pos = e ? bench_expert_positions(e) : NULL;
+  *keep_e = e;
+}
+
+/* Expert C against the library's GRID in planes: their speeds and whether
+ * the final positions agree bit for bit. */
+static void print_expert(const struct ctx *c, const float *xyz, int n,
+                         double ips)
+{
+  double most = 0.0;
+  int same = 1;
+  for (int i = 0; i < 3 * n * n; i++) {
+    double d = fabs((double)xyz[i] - c->expert_pos[i]);
+    most = d > most || isnan(d) ? d : most;
+    same &= !memcmp(&xyz[i], &c->expert_pos[i], sizeof xyz[i]);
+  }
+  char ratio[32] = "-";
+  if (ips > 0 && c->expert_ips > 0)
+    snprintf(ratio, sizeof ratio, "%.2fx", c->expert_ips / ips);
+  printf("%9s   expert C vs this: bitwise: %s, max |diff| %.3g; expert C's "
+         "speed over this: %s\n",
+         "", same ? "yes" : "no", most, ratio);
 }
 
 static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
@@ -268,7 +345,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
                                                : 12.0 * slots;
   double need = 1.5 * (double)n * n * (64 + 32 + 4 + 16 + 16 + conn);
   msocl_sim *s = NULL;
-  int rc = MSOCL_OK;
+  int rc = MSOCL_OK, vs_expert = 0;
   if (info->global_mem > 0 && need > (double)info->global_mem) {
     r.status = "skipped (device memory)";
   } else {
@@ -300,8 +377,10 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
       double t = bench_now() - t0;
       r.seconds = t < r.seconds ? t : r.seconds;
     }
-    if (rc == MSOCL_OK && serial_pos && c->xyz &&
-        (rc = msocl_sim_read_positions(s, c->xyz)) == MSOCL_OK)
+    vs_expert = c->expert_pos && planes &&
+                          math == MSOCL_MATH_PRECISE && variant != FUSED;
+    if (rc == MSOCL_OK && (serial_pos || vs_expert) && c->xyz &&
+        (rc = msocl_sim_read_positions(s, c->xyz)) == MSOCL_OK && serial_pos)
       r.error = rms_diff(c->xyz, serial_pos, n * n);
     r.status = rc == MSOCL_OK ? "ok" : "failed";
     if (rc != MSOCL_OK) {
@@ -314,6 +393,8 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   msocl_sim_destroy(s);
   bench_progress(0, 0, " ");
   print_row(&r, engine, serial_ips);
+  if (vs_expert && r.status && !strcmp(r.status, "ok"))
+    print_expert(c, c->xyz, n, r.steps_per_s);
   bench_csv_row(c->csv, &r);
   keep(c, &r, engine);
 }
@@ -384,7 +465,7 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
   for (int l = 0; l < o->nlayouts; l++)
     for (int v = 0; v < VARIANTS; v++)
       engines += wanted(o, o->layouts[l], v);
-  int per_grid = 1 + c.ndev * engines * o->nmaths, ngrids = 0, big = 0;
+  int per_grid = 1 + !!o->expert + c.ndev * engines * o->nmaths, ngrids = 0, big = 0;
   for (int g = 0; g < o->ngrids; g++)
     if (!o->max_grid || o->grids[g] <= o->max_grid)
       ngrids++;
@@ -454,6 +535,10 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
     bench_serial *s = NULL;
     double sips = 0.0;
     run_serial(&c, n, dt, steps, &spos, &s, &sips);
+    bench_expert *e = NULL;
+    c.expert_pos = NULL;
+    if (o->expert)
+      run_expert(&c, m, n, dt, steps, spos, sips, &e);
     for (int d = 0; d < c.ndev; d++)
       for (int l = 0; l < o->nlayouts; l++)
         for (int v = 0; v < VARIANTS; v++)
@@ -461,6 +546,7 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
             run_device(&c, m, n, dt, steps, d, o->layouts[l], v,
                        o->maths[k], spos, sips);
     bench_serial_destroy(s);
+    bench_expert_destroy(e);
     msocl_model_destroy(m);
   }
   if (big)

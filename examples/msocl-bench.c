@@ -71,6 +71,10 @@ static int usage(FILE *f, int code)
 "                 (buffer-values), whatever the library would choose\n"
 "  --planes       table1: also GRID with the state in x, y, z planes\n"
 "                 (grid-planes) and in float4 (grid-float4), forced\n"
+"  --expert       table1: also the tablecloth as expert C (planes, padded\n"
+"                 rows, one fused sweep, OpenMP; the yardstick of issue 15),\n"
+"                 its speed against GRID in planes and whether their final\n"
+"                 positions agree bit for bit\n"
 "  --quick        tiny sizes and few steps: a smoke test\n"
 "  --csv FILE     also write one CSV row per run to FILE\n"
 "  -h, --help     this text\n");
@@ -154,6 +158,8 @@ int main(int argc, char **argv)
       o.values = 1, takes = 0;
     } else if (!strcmp(w, "--planes")) {
       o.planes = 1, takes = 0;
+    } else if (!strcmp(w, "--expert")) {
+      o.expert = 1, takes = 0;
     } else if (!strcmp(w, "--quick")) {
       o.quick = 1, takes = 0;
     } else if (!v) {

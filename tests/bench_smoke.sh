@@ -25,6 +25,15 @@ for l in buffer+fused grid+fused; do
     fail "no $l row with error 0"
 done
 
+# --expert adds the expert C yardstick, whose final positions must be
+# GRID in planes' bit for bit
+./examples/msocl-bench table1 --quick -g 8,13 -s 100 -l grid --expert \
+  --csv "$tmp/e.csv" >"$tmp/e.txt" || fail "table1 --expert exited $?"
+grep -q ",expert-planes,symplectic,precise,13,.*,0,ok,,\$" "$tmp/e.csv" ||
+  fail "no expert C row with error 0"
+[ "$(grep -c 'bitwise: yes, max |diff| 0;' "$tmp/e.txt")" -eq 2 ] ||
+  fail "expert C not bitwise GRID in planes: $(grep bitwise "$tmp/e.txt")"
+
 ./examples/msocl-bench precision --quick -g 5 -i symplectic,implicit \
   -m precise --levels 2 --csv "$tmp/p.csv" || fail "precision exited $?"
 [ "$(head -n 1 "$tmp/p.csv")" = "$header" ] || fail "precision CSV header"
