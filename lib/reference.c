@@ -2,7 +2,7 @@
  * that tests and benchmarks measure the kernels' accuracy against. It
  * follows the kernels formula for formula, integrator for integrator. */
 #include "config.h"
-#include "reference.h"
+#include "reference_state.h"
 
 #include <math.h>
 #include <stdlib.h>

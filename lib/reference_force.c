@@ -2,7 +2,7 @@
  * implicit steps: spring and dashpot forces, collision response and
  * projection, formula for formula as kernels/common.cl. */
 #include "config.h"
-#include "reference.h"
+#include "reference_state.h"
 
 #include <math.h>
 

@@ -1,6 +1,6 @@
 /* The host reference's state, shared by its files (reference*.c). */
-#ifndef MSOCL_REFERENCE_H
-#define MSOCL_REFERENCE_H
+#ifndef MSOCL_REFERENCE_STATE_H
+#define MSOCL_REFERENCE_STATE_H
 
 #include "internal.h"
 
