@@ -194,10 +194,10 @@ START_TEST(hand_cloth_gets_grid)
   } c[] = {
       {20, 14, 1000, 100, 10, 1e-3f, 0.3f}, /* a parallelogram: unequal
                                                diagonals */
-      {16, 16, 1000, 100, 10, 0},     {33, 29, 1000, 100, 10, 1e-3f},
-      {2, 2, 1000, 100, 10, 0},       {2, 7, 1000, 100, 10, 0},
-      {3, 40, 1000, 100, 10, 2e-3f},  {12, 9, 1000, 0, 0, 0},
-      {12, 9, 1000, 0, 10, 1e-3f},    {10, 11, 0, 300, 10, 0},
+      {16, 16, 1000, 100, 10, 0, 0},     {33, 29, 1000, 100, 10, 1e-3f, 0},
+      {2, 2, 1000, 100, 10, 0, 0},       {2, 7, 1000, 100, 10, 0, 0},
+      {3, 40, 1000, 100, 10, 2e-3f, 0},  {12, 9, 1000, 0, 0, 0, 0},
+      {12, 9, 1000, 0, 10, 1e-3f, 0},    {10, 11, 0, 300, 10, 0, 0},
   };
   for (size_t q = 0; q < sizeof c / sizeof c[0]; q++) {
     msocl_cloth_desc d;
@@ -254,6 +254,46 @@ START_TEST(hand_cloth_forced_grid)
   ck_assert_ptr_nonnull(strstr(msocl_last_error(), "by hand"));
   free_arrays(&a);
   msocl_model_destroy(short1);
+  msocl_model_destroy(h);
+  msocl_model_destroy(b);
+}
+END_TEST
+
+/* Split over two devices, a hand-built cloth still runs GRID, bitwise one
+ * device's run. */
+START_TEST(hand_cloth_split)
+{
+  msocl_runtime *two = NULL;
+  if (msocl_runtime_create(&two, "0:0,0:1") != MSOCL_OK)
+    return; /* one device: nothing to split over */
+  msocl_cloth_desc d;
+  cloth_desc(&d, 14, 12);
+  d.damping = 1e-3f;
+  msocl_model *b = NULL;
+  ck_assert_int_eq(msocl_model_cloth_grid(&b, &d), MSOCL_OK);
+  msocl_model *h = hand_cloth(b, &d);
+  const size_t bytes = 3 * 14 * 12 * sizeof(float);
+  float *p[2];
+  for (int q = 0; q < 2; q++) {
+    msocl_sim_options o;
+    msocl_sim_options_init(&o);
+    o.dt = 2e-4f;
+    o.ndevices = q ? 2 : 1;
+    msocl_sim *s = NULL;
+    ck_assert_int_eq(msocl_sim_create(&s, q ? two : rt, h, &o), MSOCL_OK);
+    msocl_layout l;
+    ck_assert_int_eq(msocl_sim_layout(s, &l), MSOCL_OK);
+    ck_assert_int_eq(l, MSOCL_LAYOUT_GRID);
+    ck_assert_int_eq(msocl_sim_step(s, 300), MSOCL_OK);
+    p[q] = malloc(bytes);
+    ck_assert_int_eq(msocl_sim_read_positions(s, p[q]), MSOCL_OK);
+    msocl_sim_destroy(s);
+  }
+  ck_assert_msg(memcmp(p[0], p[1], bytes) == 0, "split differs by %g",
+                scene_max_diff(p[0], p[1], 3 * 14 * 12));
+  free(p[0]);
+  free(p[1]);
+  msocl_runtime_destroy(two);
   msocl_model_destroy(h);
   msocl_model_destroy(b);
 }
@@ -478,6 +518,7 @@ int main(void)
   tcase_set_timeout(tc, 600);
   tcase_add_test(tc, hand_cloth_gets_grid);
   tcase_add_test(tc, hand_cloth_forced_grid);
+  tcase_add_test(tc, hand_cloth_split);
   tcase_add_test(tc, hand_lattice_gets_grid);
   tcase_add_test(tc, near_misses_keep_buffer);
   tcase_add_test(tc, point_off_the_lattice);
