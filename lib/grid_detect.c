@@ -74,9 +74,10 @@ static int slot_of(const struct scan *w, int dx, int dy, int dz) {
 }
 
 static void coords(int p, int nx, int ny, int c[3]) {
-  c[0] = p % nx;
-  c[1] = (p / nx) % ny;
-  c[2] = p / nx / ny;
+  int row = p / nx;
+  c[0] = p - row * nx;
+  c[2] = row / ny;
+  c[1] = row - c[2] * ny;
 }
 
 /* Spring s's slot at its end `at` (the other end `to`), or -1. */
@@ -94,17 +95,34 @@ static int meet(uint32_t *seen, int s) {
   return 1;
 }
 
+/* Point 0's neighbours q (in spring order) in the stencil, in slot order:
+ * a wrong shape fails here in O(1), before the pass over the model. */
+static int corner_fits(const struct scan *w, int nx, int ny, const int *q,
+                       int nq) {
+  uint32_t seen = 0;
+  for (int a = 0; a < nq; a++) {
+    int s = end_slot(w, nx, ny, 0, q[a]);
+    if (s < 0 || !meet(&seen, s)) return 0;
+  }
+  return 1;
+}
+
 /* Whether m is the stencil's grid of nx x ny (x nz) points; fills g. */
-static int check(struct scan *w, int nx, int ny, int nz, struct msocl__grid *g) {
+static int check(struct scan *w, int nx, int ny, int nz, const int *q, int nq,
+                 struct msocl__grid *g) {
   const msocl_model *m = w->m;
   const struct stencil *st = w->st;
   uint32_t k[4] = {0}, rest[6] = {0};
   int have_k[4] = {0}, have_rest[6] = {0};
 
+  if (!corner_fits(w, nx, ny, q, nq)) return 0;
   memset(w->seen, 0, (size_t)m->n * sizeof *w->seen);
   for (int s = 0; s < m->ns; s++) {
-    int a = m->ij[2 * s], b = m->ij[2 * s + 1];
-    int sa = end_slot(w, nx, ny, a, b), sb = end_slot(w, nx, ny, b, a);
+    int a = m->ij[2 * s], b = m->ij[2 * s + 1], ca[3], cb[3];
+    coords(a, nx, ny, ca);
+    coords(b, nx, ny, cb);
+    int dx = cb[0] - ca[0], dy = cb[1] - ca[1], dz = cb[2] - ca[2];
+    int sa = slot_of(w, dx, dy, dz), sb = slot_of(w, -dx, -dy, -dz);
     if (sa < 0 || sb < 0) return 0;
     int q = st->kind[sa], r = st->rest[sa];
     uint32_t kq = bits(m->k[s]), rr = bits(m->rest[s]);
@@ -159,8 +177,9 @@ static int neighbours_of_0(const msocl_model *m, int *q, int cap) {
 /* Point 0 is a corner: each neighbour q sits at an offset of zeros, ones
  * and twos, q = dx + nx dy + nx ny dz. A cloth's nx is then q, q - 1 or
  * q / 2 of some neighbour; a lattice's nx ny is q, q - 1, q - nx,
- * q - nx - 1 or q / 2 of one with dz > 0. Candidates are few, and a wrong
- * one fails at the first spring it cannot place. */
+ * q - nx - 1 or q / 2 of one with dz > 0. Candidates are few (at most 15
+ * and 1500), each tried on point 0 first: a pass over the model only for
+ * those that place its springs. */
 static int from_one(int q, int i) {
   return i == 0 ? q : i == 1 ? q - 1 : q % 2 == 0 ? q / 2 : -1;
 }
@@ -171,7 +190,8 @@ static int try_cloth(struct scan *w, const int *q, int nq,
   for (int a = 0; a < nq; a++)
     for (int i = 0; i < 3; i++) {
       int nx = from_one(q[a], i);
-      if (nx >= 2 && n % nx == 0 && n / nx >= 2 && check(w, nx, n / nx, 0, g))
+      if (nx >= 2 && n % nx == 0 && n / nx >= 2 &&
+          check(w, nx, n / nx, 0, q, nq, g))
         return 1;
     }
   return 0;
@@ -191,7 +211,7 @@ static int try_lattice(struct scan *w, const int *q, int nq,
           if (layer < 2 * nx || layer % nx != 0 || n % layer != 0 ||
               n / layer < 2)
             continue;
-          if (check(w, nx, layer / nx, n / layer, g)) return 1;
+          if (check(w, nx, layer / nx, n / layer, q, nq, g)) return 1;
         }
     }
   return 0;
