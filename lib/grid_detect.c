@@ -124,16 +124,16 @@ static int check(struct scan *w, int nx, int ny, int nz, const int *q, int nq,
     int dx = cb[0] - ca[0], dy = cb[1] - ca[1], dz = cb[2] - ca[2];
     int sa = slot_of(w, dx, dy, dz), sb = slot_of(w, -dx, -dy, -dz);
     if (sa < 0 || sb < 0) return 0;
-    int q = st->kind[sa], r = st->rest[sa];
-    uint32_t kq = bits(m->k[s]), rr = bits(m->rest[s]);
+    int kind = st->kind[sa], r = st->rest[sa];
+    uint32_t kk = bits(m->k[s]), rr = bits(m->rest[s]);
     /* k 0 is a kind GRID leaves out: it would drop the spring's dashpot */
-    if (m->k[s] == 0.0f || (have_k[q] && kq != k[q]) ||
+    if (m->k[s] == 0.0f || (have_k[kind] && kk != k[kind]) ||
         (have_rest[r] && rr != rest[r]))
       return 0;
     if (w->damped && bits(m->damp[s]) != w->damp) return 0;
-    k[q] = kq;
+    k[kind] = kk;
     rest[r] = rr;
-    have_k[q] = have_rest[r] = 1;
+    have_k[kind] = have_rest[r] = 1;
     if (!meet(&w->seen[a], sa) || !meet(&w->seen[b], sb)) return 0;
   }
   /* every neighbour of a kind present is there: none missing */
@@ -154,8 +154,8 @@ static int check(struct scan *w, int nx, int ny, int nz, const int *q, int nq,
   g->ny = ny;
   g->nz = nz;
   g->ns = m->ns;
-  for (int q = 0; q < st->kinds; q++)
-    if (have_k[q]) memcpy(&g->k[q], &k[q], sizeof k[q]);
+  for (int kind = 0; kind < st->kinds; kind++)
+    if (have_k[kind]) memcpy(&g->k[kind], &k[kind], sizeof k[kind]);
   for (int r = 0; r < st->rests; r++)
     if (have_rest[r]) memcpy(&g->rest[r], &rest[r], sizeof rest[r]);
   if (w->damped) memcpy(&g->damp, &w->damp, sizeof w->damp);
