@@ -362,7 +362,8 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          "the GRID layout needs a cloth from "
                          "msocl_model_cloth_grid or a lattice from "
                          "msocl_model_lattice, with no springs or points "
-                         "added since (use BUFFER)");
+                         "added since, or one built by hand with exactly "
+                         "their springs in their order (use BUFFER)");
     const int lattice = m->grid.nz > 0;
     out->slots = lattice ? 32 : 12;
     out->grid_nx = m->grid.nx;

@@ -259,12 +259,20 @@ static double mean_reach(const msocl_model *m, const int *num)
  * Cuthill-McKee where that brings spring neighbours closer (s->perm
  * records how). A cloth grid or lattice keeps its numbering: row by row
  * (layer by layer) it is banded already, and the GRID layout derives
- * neighbours from it. */
+ * neighbours from it; one built by hand runs as a copy carrying the
+ * builder's record. */
 static int number_points(msocl_sim *s, const msocl_model *m,
                          msocl_model **renumbered)
 {
   *renumbered = NULL;
-  if (!s->o.renumber || m->n < 3 || msocl__grid_intact(m))
+  if (msocl__grid_intact(m))
+    return MSOCL_OK;
+  /* a grid built by hand, for AUTO or GRID: run as the builder's */
+  struct msocl__grid g;
+  if ((s->o.layout == MSOCL_LAYOUT_AUTO || s->o.layout == MSOCL_LAYOUT_GRID) &&
+      msocl__grid_detect(m, &g))
+    return msocl__model_with_grid(m, &g, renumbered);
+  if (!s->o.renumber || m->n < 3)
     return MSOCL_OK;
   int *perm = malloc((size_t)m->n * sizeof *perm),
       *num = malloc((size_t)m->n * sizeof *num);
