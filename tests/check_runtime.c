@@ -26,7 +26,7 @@ static void list_teardown(void) {
   ndevs = 0;
 }
 
-static int find_type(int type) {
+static int find_type(msocl_device_type type) {
   int i;
   for (i = 0; i < ndevs; i++)
     if (devs[i].type == type) return i;
@@ -283,7 +283,8 @@ START_TEST(test_two_devices) {
 }
 END_TEST
 
-/* Every option is checked at sim creation, fused and overlap too: 0 or 1. */
+/* Every option is checked at sim creation, fused and overlap too: AUTO, ON
+ * or OFF. */
 START_TEST(test_bad_switches) {
   static const float xyz[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0},
                      mass[4] = {1, 1, 1, 1};
@@ -292,10 +293,10 @@ START_TEST(test_bad_switches) {
   static const struct {
     int fused, overlap;
     const char *says;
-  } bad[] = {{7, 1, "fused is 7: 0 or 1"},
-             {-1, 1, "fused is -1: 0 or 1"},
-             {0, 12345, "overlap is 12345: 0 or 1"},
-             {0, -1, "overlap is -1: 0 or 1"}};
+  } bad[] = {{7, MSOCL_ON, "fused is 7: MSOCL_AUTO, MSOCL_ON or"},
+             {-1, MSOCL_ON, "fused is -1: MSOCL_AUTO, MSOCL_ON or"},
+             {MSOCL_AUTO, 12345, "overlap is 12345: MSOCL_AUTO, MSOCL_ON"},
+             {MSOCL_AUTO, -1, "overlap is -1: MSOCL_AUTO, MSOCL_ON or"}};
   msocl_runtime *rt = NULL;
   msocl_model *m = NULL;
   msocl_sim_options o;
@@ -309,8 +310,8 @@ START_TEST(test_bad_switches) {
   ck_assert_int_eq(msocl_model_add_springs(m, 4, ij, k, NULL, NULL), MSOCL_OK);
   for (q = 0; q < sizeof bad / sizeof bad[0]; q++) {
     msocl_sim_options_init(&o);
-    o.fused = bad[q].fused;
-    o.overlap = bad[q].overlap;
+    o.tuning.fused = (msocl_choice)bad[q].fused;
+    o.tuning.overlap = (msocl_choice)bad[q].overlap;
     s = (msocl_sim *)&s;
     rc = msocl_sim_create(&s, rt, m, &o);
     ck_assert_msg(rc == MSOCL_ERR_BAD_VALUE, "%s: got %s (%s)", bad[q].says,
@@ -319,10 +320,10 @@ START_TEST(test_bad_switches) {
     ck_assert_msg(strstr(msocl_last_error(), bad[q].says), "message: %s",
                   msocl_last_error());
   }
-  /* both values of each are still taken */
+  /* both forced values of each are still taken */
   msocl_sim_options_init(&o);
-  o.fused = 1;
-  o.overlap = 0;
+  o.tuning.fused = MSOCL_ON;
+  o.tuning.overlap = MSOCL_OFF;
   rc = msocl_sim_create(&s, rt, m, &o);
   ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
   msocl_sim_destroy(s);
