@@ -332,6 +332,59 @@ START_TEST(test_bad_switches) {
 }
 END_TEST
 
+/* msocl_sim_options_init leaves the tuning all zero, which is every
+ * field's "choose for me"; each switch takes AUTO, ON and OFF, and
+ * nothing else; the public device limit is the library's own. */
+START_TEST(test_tuning_zero_is_auto) {
+  static const float xyz[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0},
+                     mass[4] = {1, 1, 1, 1};
+  static const int ij[8] = {0, 1, 1, 2, 2, 3, 3, 0};
+  static const float k[4] = {10, 10, 10, 10};
+  static const char *names[5] = {"fused", "renumber", "overlap", "classes",
+                                 "planes"};
+  const msocl_tuning zero = {0};
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  ck_assert(memcmp(&o.tuning, &zero, sizeof zero) == 0);
+  ck_assert_int_eq(o.tuning.layout, MSOCL_LAYOUT_AUTO);
+  ck_assert_int_eq(MSOCL_MAX_DEVICES, MSOCL__MAX_DEVICES);
+
+  msocl_runtime *rt = NULL;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_runtime_create(&rt, "cpu"), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_create(&m), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_points(m, 4, xyz, mass, NULL), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_springs(m, 4, ij, k, NULL, NULL), MSOCL_OK);
+  for (int f = 0; f < 5; f++) {
+    static const int values[5] = {MSOCL_AUTO, MSOCL_ON, MSOCL_OFF, 3, -1};
+    for (int q = 0; q < 5; q++) {
+      msocl_sim_options_init(&o);
+      msocl_choice *c[5] = {&o.tuning.fused, &o.tuning.renumber,
+                            &o.tuning.overlap, &o.tuning.classes,
+                            &o.tuning.planes};
+      *c[f] = (msocl_choice)values[q];
+      msocl_sim *s = NULL;
+      int rc = msocl_sim_create(&s, rt, m, &o);
+      /* planes ON needs GRID, which a ring of four points is not */
+      const int want = q > 2                ? MSOCL_ERR_BAD_VALUE
+                       : f == 4 && q == 1 ? MSOCL_ERR_BAD_VALUE
+                                          : MSOCL_OK;
+      ck_assert_msg(rc == want, "%s = %d: got %s (%s)", names[f], values[q],
+                    msocl_err_name(rc), msocl_last_error());
+      if (q > 2) {
+        char says[64];
+        snprintf(says, sizeof says, "tuning.%s is %d", names[f], values[q]);
+        ck_assert_msg(strstr(msocl_last_error(), says), "message: %s",
+                      msocl_last_error());
+      }
+      msocl_sim_destroy(s);
+    }
+  }
+  msocl_model_destroy(m);
+  msocl_runtime_destroy(rt);
+}
+END_TEST
+
 static Suite *runtime_suite(void) {
   Suite *s = suite_create("runtime");
   TCase *tc = tcase_create("runtime");
@@ -349,6 +402,7 @@ static Suite *runtime_suite(void) {
   tcase_add_test(tc, test_bad_index);
   tcase_add_test(tc, test_two_devices);
   tcase_add_test(tc, test_bad_switches);
+  tcase_add_test(tc, test_tuning_zero_is_auto);
   suite_add_tcase(s, tc);
   return s;
 }
