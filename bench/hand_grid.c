@@ -135,7 +135,7 @@ static double timed(msocl_runtime *rt, const msocl_model *m, msocl_layout lay,
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = dt;
-  o.layout = lay;
+  o.tuning.layout = lay;
   double best = 0.0;
   for (int r = 0; r < reps; r++) {
     msocl_sim *s = NULL;

@@ -296,7 +296,7 @@ static int rk4_stage(msocl__engine *s, int q)
 int msocl__phase_count(const msocl__engine *s)
 {
   switch (s->o.integrator) {
-  case MSOCL_SYMPLECTIC_EULER: return s->o.fused ? 1 : 2;
+  case MSOCL_SYMPLECTIC_EULER: return s->o.tuning.fused == MSOCL_ON ? 1 : 2;
   case MSOCL_EXPLICIT_EULER: return 1;
   case MSOCL_VERLET: return 2;
   case MSOCL_RK4: return 4;
@@ -312,7 +312,7 @@ int msocl__phase_count(const msocl__engine *s)
 unsigned msocl__phase_mask(const msocl__engine *s, int phase)
 {
   const unsigned vel_w = s->damped ? MSOCL__X_VEL_W : 0;
-  if (s->o.fused)
+  if (s->o.tuning.fused == MSOCL_ON)
     return MSOCL__X_POS_W | vel_w;
   switch (s->o.integrator) {
   case MSOCL_SYMPLECTIC_EULER:
@@ -342,7 +342,7 @@ int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
 {
   const int last = phase == msocl__phase_count(s) - 1;
   *exchange = msocl__phase_mask(s, phase);
-  if (s->o.fused) { /* both passes in one kernel */
+  if (s->o.tuning.fused == MSOCL_ON) { /* both passes in one kernel */
     const int r = s->r, w = 1 - r;
     cl_mem a[4] = {s->pos[r], s->vel[r], s->pos[w], s->vel[w]};
     TRY(mems(s->k[MSOCL__K_FUSED], s->nconn, 4, a));

@@ -11,7 +11,7 @@
 
 #include "msocl.h"
 
-#define MSOCL__MAX_DEVICES 16
+#define MSOCL__MAX_DEVICES MSOCL_MAX_DEVICES
 #define MSOCL__MAX_COLLIDERS 16
 /* The paper's connectivity texture holds 16 springs per point. */
 #define MSOCL__IMAGE_SLOTS 16

@@ -1,4 +1,4 @@
-/* GRID in planes (options.planes, kernels/planes.cl): a cloth grid's or
+/* GRID in planes (tuning.planes, kernels/planes.cl): a cloth grid's or
  * a lattice's steps, every integrator's (implicit Euler's CG:
  * planes_implicit.c), over x, y, z planes of padded rows, which PoCL's
  * CPU device runs eight points to an instruction. The state is copied
@@ -108,8 +108,9 @@ static int lavish(const msocl_model *m, const msocl_sim_options *o)
 static int chosen(const struct msocl__device *dev, const msocl_sim_options *o,
                   const msocl_model *m, const char *why)
 {
-  return !why && (o->planes == 1 ||
-                  (o->planes == -1 && dev->info.type == MSOCL_DEVICE_CPU &&
+  const msocl_choice c = o->tuning.planes;
+  return !why && (c == MSOCL_ON ||
+                  (c == MSOCL_AUTO && dev->info.type == MSOCL_DEVICE_CPU &&
                    !lavish(m, o)));
 }
 
@@ -123,7 +124,7 @@ int msocl__planes_would(const struct msocl__device *dev,
 int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
                           int lo, int hi)
 {
-  const char *why = o->planes == 1 ? unfit(m, lo, hi) : NULL;
+  const char *why = o->tuning.planes == MSOCL_ON ? unfit(m, lo, hi) : NULL;
   if (why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "planes %s: a %d x %d x %d grid pads to %zu floats a "
@@ -137,7 +138,7 @@ int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
   const char *why = s->lay.kind != MSOCL_LAYOUT_GRID
                         ? "needs the GRID layout"
                         : unfit(m, s->lo, s->hi);
-  if (s->o.planes == 1 && why)
+  if (s->o.tuning.planes == MSOCL_ON && why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "planes %s", why);
   s->planes = chosen(s->dev, &s->o, m, why);
   return MSOCL_OK;
@@ -455,8 +456,9 @@ static int integrator_step(msocl__engine *s, int r, int w)
     TRY(gather_args(s, PL_KICK, 4, kick));
     return launch(s, PL_KICK);
   }
-  if (s->o.fused || s->o.integrator == MSOCL_EXPLICIT_EULER) {
-    const int k = s->o.fused ? PL_FUSED : PL_EULER; /* both in one pass */
+  const int fused = s->o.tuning.fused == MSOCL_ON;
+  if (fused || s->o.integrator == MSOCL_EXPLICIT_EULER) {
+    const int k = fused ? PL_FUSED : PL_EULER; /* both in one pass */
     const cl_mem both[4] = {p[r], v[r], v[w], p[w]};
     TRY(gather_args(s, k, 4, both));
     return launch(s, k);

@@ -136,7 +136,7 @@ struct msocl__exchange {
   cl_event wev[MSOCL__MAX_PARTS][MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
   int nwev[MSOCL__MAX_PARTS];    /* writes queued, not yet settled */
   struct msocl__xstat stat[MSOCL__MAX_PARTS];
-  /* Boundary first (options.overlap): an engine's range as spans, those
+  /* Boundary first (tuning.overlap): an engine's range as spans, those
    * other engines read (nbound) first, then the interior; the slices
    * leave through `send` and arrive through `recv` (buffers of `packed`
    * points, at the slices' area offsets), copied on a second queue `xq`
@@ -231,7 +231,7 @@ int msocl__phase(msocl__engine *s, int phase, unsigned *exchange);
 unsigned msocl__phase_mask(const msocl__engine *s, int phase);
 /* GRID in planes (planes.c). would: whether model m's GRID on dev, over
  * points [lo, hi), would run in planes (what AUTO weighs for a lattice);
- * choose: whether this engine runs in planes (options.planes;
+ * choose: whether this engine runs in planes (tuning.planes;
  * MSOCL_ERR_BAD_VALUE when forced where it cannot); create: its buffers
  * and kernels, from the program built with -DMSOCL_PLANES; steps: n steps
  * (symplectic Euler, Verlet or RK4) in the planes; release: frees them. */
@@ -240,7 +240,7 @@ int msocl__planes_would(const struct msocl__device *dev,
                         int lo, int hi);
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m);
 /* MSOCL_ERR_BAD_VALUE, before anything is allocated, where planes are
- * forced (o->planes 1) on a grid the kernels' int indices cannot address
+ * forced (tuning.planes ON) on a grid the kernels' int indices cannot address
  * or on a split; else MSOCL_OK. */
 int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
                           int lo, int hi);

@@ -134,7 +134,7 @@ static void run(const msocl_model *m, msocl_layout layout, int steps,
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = 2e-4f;
-  o.layout = layout;
+  o.tuning.layout = layout;
   msocl_sim *s = NULL;
   ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK,
                 "sim_create: %s", msocl_last_error());
@@ -248,7 +248,7 @@ START_TEST(hand_cloth_forced_grid)
   msocl_model *short1 = from_arrays(&a, d.nx);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.layout = MSOCL_LAYOUT_GRID;
+  o.tuning.layout = MSOCL_LAYOUT_GRID;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, short1, &o), MSOCL_ERR_BAD_VALUE);
   ck_assert_ptr_nonnull(strstr(msocl_last_error(), "by hand"));
@@ -278,7 +278,7 @@ START_TEST(hand_cloth_split)
     msocl_sim_options o;
     msocl_sim_options_init(&o);
     o.dt = 2e-4f;
-    o.ndevices = q ? 2 : 1;
+    o.tuning.ndevices = q ? 2 : 1;
     msocl_sim *s = NULL;
     ck_assert_int_eq(msocl_sim_create(&s, q ? two : rt, h, &o), MSOCL_OK);
     msocl_layout l;
