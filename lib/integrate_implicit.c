@@ -19,19 +19,6 @@ static int launch64(msocl__engine *s, int k)
   return MSOCL_OK;
 }
 
-/* Adds the engine's partials, group by group, to *sum: split over devices
- * whose ranges start at multiples of 64, the additions come in the same
- * order as on one device, and so do the bits of the sum. */
-int msocl__implicit_collect(msocl__engine *s, double *sum)
-{
-  MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->partial, CL_TRUE, 0,
-                                s->groups * sizeof(cl_float4),
-                                s->partial_host, 0, NULL, NULL));
-  for (size_t g = 0; g < s->groups; g++)
-    *sum += s->partial_host[g].s[0];
-  return MSOCL_OK;
-}
-
 #define TRY MSOCL__TRY
 
 int msocl__implicit_setup(msocl__engine *s)

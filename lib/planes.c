@@ -329,7 +329,7 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
 }
 
 /* A pass over the padded grid; CPU devices in work-groups of a row's
- * pl_group points (integrate.c's reason). */
+ * pl_group points (launch.c's reason). */
 int msocl__pl_launch(msocl__engine *s, int k)
 {
   const size_t local[3] = {s->pl_group, 1, 1};

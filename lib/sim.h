@@ -283,7 +283,7 @@ int msocl__batch_end(msocl_sim *s);
 int msocl__check_write(msocl_sim *s);
 int msocl__sim_steps(msocl_sim *s, int n);
 int msocl__sim_finish(msocl_sim *s);
-/* Sets argument i of kernel k to a buffer, a float, an int. */
+/* Sets argument i of kernel k to a buffer, a float, an int (launch.c). */
 int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m);
 int msocl__arg_float(cl_kernel k, cl_uint i, float f);
 int msocl__arg_int(cl_kernel k, cl_uint i, int v);
@@ -303,7 +303,7 @@ void msocl__cg_note(msocl__engine *s, int converged);
  * clears the record either way. */
 int msocl__cg_report(msocl_sim *s, int rc, int n);
 /* Adds the engine's reduction partials (s->partial), in group order, to
- * *sum. */
+ * *sum (launch.c). */
 int msocl__implicit_collect(msocl__engine *s, double *sum);
 /* Strain limiting (strain.c): fixed arguments; the velocity correction on
  * vel[1 - r]; Provot's position correction on pos[1 - r], taken up by the
@@ -311,9 +311,11 @@ int msocl__implicit_collect(msocl__engine *s, double *sum);
 int msocl__strain_setup(msocl__engine *s);
 int msocl__strain_velocity(msocl__engine *s);
 int msocl__strain_position(msocl__engine *s, cl_mem vel);
-/* Enqueues kernel k over the engine's current span (run_offset,
- * run_global); _all: over every point. */
+/* Enqueues kernel k (launch.c) over the engine's current span
+ * (run_offset, run_global); _range: over its whole range (offset, global);
+ * _all: over every point. */
 int msocl__launch(msocl__engine *s, int k);
+int msocl__launch_range(msocl__engine *s, int k);
 int msocl__launch_all(msocl__engine *s, int k);
 
 #endif
