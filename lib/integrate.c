@@ -1,7 +1,8 @@
-/* The schedule of kernels each explicit integrator runs per step, over the
- * state buffers of a simulation (implicit Euler: integrate_implicit.c). */
+/* The float4 engine's passes (schedule.h), over the state buffers of a
+ * simulation, and its kernels' fixed arguments (implicit Euler's CG:
+ * integrate_implicit.c). */
 #include "config.h"
-#include "sim.h"
+#include "schedule.h"
 
 static int arg_vec(cl_kernel k, cl_uint i, const cl_float4 *v)
 {
@@ -148,8 +149,7 @@ static int edges_velocity(msocl__engine *s)
   return msocl__launch(s, MSOCL__K_EDGES_VEL);
 }
 
-/* The velocity pass of the paper's two (EDGES: scatter, then integrate),
- * with the velocity strain correction after it when asked for. */
+/* The velocity pass of the paper's two (EDGES: scatter, then integrate). */
 static int symplectic_velocity(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
@@ -157,18 +157,16 @@ static int symplectic_velocity(msocl__engine *s)
     return edges_velocity(s);
   cl_mem v[3] = {s->pos[r], s->vel[r], s->vel[w]};
   TRY(mems(s->k[MSOCL__K_VELOCITY], s->nconn, 3, v));
-  TRY(msocl__launch(s, MSOCL__K_VELOCITY));
-  if (s->o.strain == MSOCL_STRAIN_VELOCITY)
-    TRY(msocl__strain_velocity(s));
-  return MSOCL_OK;
+  return msocl__launch(s, MSOCL__K_VELOCITY);
 }
 
-static int implicit_velocity(msocl__engine *s)
+/* Both symplectic passes in one kernel. */
+static int fused_pass(msocl__engine *s)
 {
-  TRY(msocl__implicit_velocity(s));
-  if (s->o.strain == MSOCL_STRAIN_VELOCITY)
-    TRY(msocl__strain_velocity(s));
-  return MSOCL_OK;
+  const int r = s->r, w = 1 - r;
+  cl_mem a[4] = {s->pos[r], s->vel[r], s->pos[w], s->vel[w]};
+  TRY(mems(s->k[MSOCL__K_FUSED], s->nconn, 4, a));
+  return msocl__launch(s, MSOCL__K_FUSED);
 }
 
 static int explicit_euler(msocl__engine *s)
@@ -237,95 +235,29 @@ static int rk4_stage(msocl__engine *s, int q)
   return msocl__launch(s, MSOCL__K_RK4);
 }
 
-int msocl__phase_count(const msocl__engine *s)
+/* Within a phase only the first pass reads other points (a gather); the
+ * rest read their own point's results, so a phase may run span by span
+ * (the one exception, Verlet's first acceleration, covers the whole range
+ * itself). */
+int msocl__float4_pass(msocl__engine *s, enum msocl__pass p)
 {
-  switch (s->o.integrator) {
-  case MSOCL_SYMPLECTIC_EULER: return s->o.fused ? 1 : 2;
-  case MSOCL_EXPLICIT_EULER: return 1;
-  case MSOCL_VERLET: return 2;
-  case MSOCL_RK4: return 4;
-  case MSOCL_IMPLICIT_EULER: return 2;
+  switch (p) {
+  case MSOCL__P_VELOCITY: return symplectic_velocity(s);
+  case MSOCL__P_STRAIN_VEL: return msocl__strain_velocity(s);
+  case MSOCL__P_POSITION: return position_pass(s);
+  case MSOCL__P_FUSED: return fused_pass(s);
+  case MSOCL__P_EULER: return explicit_euler(s);
+  case MSOCL__P_DRIFT: return verlet_drift(s);
+  case MSOCL__P_KICK: return verlet_kick(s);
+  case MSOCL__P_RK4_0:
+  case MSOCL__P_RK4_1:
+  case MSOCL__P_RK4_2:
+  case MSOCL__P_RK4_3: return rk4_stage(s, (int)(p - MSOCL__P_RK4_0));
+  case MSOCL__P_PROVOT: return msocl__strain_position(s, s->vel[1 - s->r]);
+  case MSOCL__P_PROVOT_HALF: return msocl__strain_position(s, s->vel[s->r]);
+  case MSOCL__P_CG: break;
   }
-  return 0;
-}
-
-/* What the other engines must receive after each phase: the positions
- * every gather reads, and the velocities too when dashpots read them
- * (implicit Euler's right-hand side reads neighbours' velocities, K v,
- * even without). */
-unsigned msocl__phase_mask(const msocl__engine *s, int phase)
-{
-  const unsigned vel_w = s->damped ? MSOCL__X_VEL_W : 0;
-  if (s->o.fused)
-    return MSOCL__X_POS_W | vel_w;
-  switch (s->o.integrator) {
-  case MSOCL_SYMPLECTIC_EULER:
-    return phase == 0 ? 0 : MSOCL__X_POS_W | vel_w;
-  case MSOCL_IMPLICIT_EULER:
-    return phase == 0 ? 0 : MSOCL__X_POS_W | MSOCL__X_VEL_W;
-  case MSOCL_EXPLICIT_EULER:
-    return MSOCL__X_POS_W | vel_w;
-  case MSOCL_VERLET:
-    return phase == 0 ? MSOCL__X_POS_W | (s->damped ? MSOCL__X_VEL_R : 0)
-                      : vel_w;
-  case MSOCL_RK4:
-    if (phase == 3)
-      return MSOCL__X_POS_W | vel_w;
-    if (phase & 1)
-      return MSOCL__X_STAGE1 | (s->damped ? MSOCL__X_STAGEV1 : 0);
-    return MSOCL__X_STAGE0 | (s->damped ? MSOCL__X_STAGEV0 : 0);
-  }
-  return 0;
-}
-
-/* Within a phase, only the first kernel reads other points (a gather);
- * the rest read their own point's results, so a phase may run span by
- * span (the one exception, Verlet's first acceleration, covers the whole
- * range itself). */
-int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
-{
-  const int last = phase == msocl__phase_count(s) - 1;
-  *exchange = msocl__phase_mask(s, phase);
-  if (s->o.fused) { /* both passes in one kernel */
-    const int r = s->r, w = 1 - r;
-    cl_mem a[4] = {s->pos[r], s->vel[r], s->pos[w], s->vel[w]};
-    TRY(mems(s->k[MSOCL__K_FUSED], s->nconn, 4, a));
-    TRY(msocl__launch(s, MSOCL__K_FUSED));
-    if (s->o.strain == MSOCL_STRAIN_PROVOT)
-      TRY(msocl__strain_position(s, s->vel[1 - s->r]));
-    return MSOCL_OK;
-  }
-  switch (s->o.integrator) {
-  case MSOCL_SYMPLECTIC_EULER:
-  case MSOCL_IMPLICIT_EULER:
-    if (phase == 0)
-      TRY(s->o.integrator == MSOCL_IMPLICIT_EULER ? implicit_velocity(s)
-                                                  : symplectic_velocity(s));
-    else
-      TRY(position_pass(s));
-    break;
-  case MSOCL_EXPLICIT_EULER:
-    TRY(explicit_euler(s));
-    break;
-  case MSOCL_VERLET:
-    if (phase == 1)
-      return verlet_kick(s);
-    TRY(verlet_drift(s));
-    /* Provot's correction between drift and kick, on v+: the kick then
-     * keeps the corrected positions' acceleration for the next step. After
-     * the kick, the next drift used the acceleration of positions the
-     * correction had moved, and a hanging cloth blew up at half the
-     * stable step. */
-    if (s->o.strain == MSOCL_STRAIN_PROVOT)
-      TRY(msocl__strain_position(s, s->vel[s->r]));
-    return MSOCL_OK;
-  case MSOCL_RK4:
-    TRY(rk4_stage(s, phase));
-    break;
-  }
-  if (last && s->o.strain == MSOCL_STRAIN_PROVOT)
-    TRY(msocl__strain_position(s, s->vel[1 - s->r]));
-  return MSOCL_OK;
+  return msocl__fail(MSOCL_ERR_INVALID_ARG, "no float4 pass %d", (int)p);
 }
 
 cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit)
@@ -341,26 +273,4 @@ cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit)
   case MSOCL__X_CG_P: return s->stage_v[0];
   }
   return NULL;
-}
-
-void msocl__step_done(msocl__engine *s)
-{
-  s->r = 1 - s->r;
-}
-
-int msocl__integrate(msocl__engine *s, int n)
-{
-  if (s->planes)
-    return msocl__planes_steps(s, n);
-  const int phases = msocl__phase_count(s);
-  for (int q = 0; q < n; q++) {
-    for (int ph = 0; ph < phases; ph++) {
-      unsigned x;
-      TRY(msocl__phase(s, ph, &x));
-    }
-    msocl__step_done(s);
-    if ((q + 1) % 64 == 0)
-      MSOCL__CL(clFlush(s->dev->queue));
-  }
-  return MSOCL_OK;
 }

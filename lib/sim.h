@@ -233,8 +233,8 @@ unsigned msocl__phase_mask(const msocl__engine *s, int phase);
  * points [lo, hi), would run in planes (what AUTO weighs for a lattice);
  * choose: whether this engine runs in planes (options.planes;
  * MSOCL_ERR_BAD_VALUE when forced where it cannot); create: its buffers
- * and kernels, from the program built with -DMSOCL_PLANES; steps: n steps
- * (symplectic Euler, Verlet or RK4) in the planes; release: frees them. */
+ * and kernels, from the program built with -DMSOCL_PLANES; release: frees
+ * them. Its passes: schedule.h. */
 int msocl__planes_would(const struct msocl__device *dev,
                         const msocl_sim_options *o, const msocl_model *m,
                         int lo, int hi);
@@ -248,7 +248,10 @@ int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
  * (msocl.h's formula). */
 size_t msocl__planes_bytes(const msocl_model *m, const msocl_sim_options *o);
 int msocl__planes_create(msocl__engine *s, cl_program prog);
-int msocl__planes_steps(msocl__engine *s, int n);
+/* enter: before a run of steps, the state into the planes unless they
+ * hold it; step_done: ends a step, from one plane set into the other. */
+int msocl__planes_enter(msocl__engine *s);
+void msocl__planes_step_done(msocl__engine *s);
 /* The state stays in the planes between calls. current: brings the
  * engine's float4 buffers up to date before anything reads them (a copy
  * back only when the planes are ahead); written: after anything writes
