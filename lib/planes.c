@@ -434,7 +434,6 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
     TRY(gather_args(s, PL_VELOCITY, 3, vel));
     return launch(s, PL_VELOCITY);
   }
-  case MSOCL__P_CG: return msocl__pl_implicit_velocity(s, r, w);
   case MSOCL__P_STRAIN_VEL: return strain_velocity(s, p[r], v[w]);
   case MSOCL__P_POSITION: {
     cl_kernel kp = s->pl_k[PL_POSITION];
@@ -469,6 +468,7 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
     return rk4_stage(s, (int)(pass - MSOCL__P_RK4_0), r, w);
   case MSOCL__P_PROVOT: return provot(s, p[w], v[w]);
   case MSOCL__P_PROVOT_HALF: return provot(s, p[w], v[r]);
+  case MSOCL__P_CG: break;
   }
   return msocl__fail(MSOCL_ERR_INVALID_ARG, "no planes pass %d", (int)pass);
 }

@@ -105,7 +105,7 @@ unsigned msocl__phase_mask(const msocl__engine *s, int phase)
 
 static int run_pass(msocl__engine *s, enum msocl__pass p)
 {
-  if (p == MSOCL__P_CG && !s->planes)
+  if (p == MSOCL__P_CG)
     return msocl__implicit_cg(&s, 1, NULL, NULL);
   return s->planes ? msocl__planes_pass(s, p) : msocl__float4_pass(s, p);
 }

@@ -290,17 +290,13 @@ int msocl__sim_finish(msocl_sim *s);
 int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m);
 int msocl__arg_float(cl_kernel k, cl_uint i, float f);
 int msocl__arg_int(cl_kernel k, cl_uint i, int v);
-/* Implicit Euler (integrate_implicit.c): fixed arguments; the new
- * velocity into vel[1 - r]. */
+/* Implicit Euler: the float4 kernels' fixed arguments
+ * (integrate_implicit.c); the new velocities of one step's CG (cg.c) over
+ * `parts` engines, into vel[1 - r] (planes: the other plane set), where
+ * exchange(ctx) spreads the CG direction's halo between products. */
 int msocl__implicit_setup(msocl__engine *s);
-int msocl__implicit_velocity(msocl__engine *s);
-/* The same over several engines; exchange(ctx) spreads the CG direction's
- * halo between products. */
 int msocl__implicit_cg(msocl__engine *const *e, int parts,
                        int (*exchange)(void *ctx), void *ctx);
-/* Records the last CG's outcome (cg_iterations, cg_residual) when it
- * stopped above the tolerance (planes_implicit.c uses it too). */
-void msocl__cg_note(msocl__engine *s, int converged);
 /* Ends a stepping call of n steps that returns rc: MSOCL_ERR_NO_CONVERGENCE
  * with its message if rc is MSOCL_OK and a step's CG missed the tolerance;
  * clears the record either way. */
