@@ -231,8 +231,6 @@ static int fixed_args(msocl__engine *s)
   TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
   TRY(arg(k, c + 8, sizeof(float), &s->o.dt));
   TRY(arg(k, c + 9, sizeof s->pl_col, &s->pl_col));
-  if (s->o.integrator == MSOCL_IMPLICIT_EULER)
-    return msocl__pl_implicit_args(s);
   /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col), and the
    * acceleration in and out (src, dst, shape, n) */
   if (s->o.integrator != MSOCL_VERLET)
