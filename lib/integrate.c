@@ -37,70 +37,82 @@ static int point_pass_args(msocl__engine *s, cl_kernel k, cl_uint a)
   return msocl__arg_int(k, a + 7, s->n);
 }
 
-/* Fixed arguments: everything but the state buffers that ping-pong. The
- * argument orders are those of the kernels in kernels/. */
+#define SET(k, name, v) TRY(msocl__set(s, k, name, sizeof(v), &(v)))
+
+/* The tail the gathering point passes share, by name. */
+static int point_args(msocl__engine *s, int k)
+{
+  SET(k, "inv_mass", s->inv_mass);
+  SET(k, "gravity", s->gravity);
+  SET(k, "viscous", s->viscous);
+  SET(k, "air", s->air);
+  SET(k, "dt", s->o.dt);
+  SET(k, "col", s->col);
+  SET(k, "ncol", s->ncol);
+  SET(k, "n", s->n);
+  return MSOCL_OK;
+}
+
+/* Fixed arguments: everything but the state buffers that ping-pong, by
+ * their names in kernels/ (kernel_args.c). */
 int msocl__integrate_setup(msocl__engine *s)
 {
-  const cl_uint c = s->nconn;
-  const float dt = s->o.dt;
   cl_kernel k;
-  if ((k = s->k[MSOCL__K_VELOCITY]))
-    TRY(point_pass_args(s, k, c + 3));
-  if ((k = s->k[MSOCL__K_FUSED]))
-    TRY(point_pass_args(s, k, c + 4));
-  if ((k = s->k[MSOCL__K_POSITION])) {
-    TRY(msocl__arg_float(k, 3, dt));
-    TRY(msocl__arg_int(k, 4, s->n));
+  const int points[3] = {MSOCL__K_VELOCITY, MSOCL__K_FUSED, MSOCL__K_EULER};
+  for (int q = 0; q < 3; q++)
+    if (s->k[points[q]])
+      TRY(point_args(s, points[q]));
+  if (s->k[MSOCL__K_POSITION]) {
+    SET(MSOCL__K_POSITION, "dt", s->o.dt);
+    SET(MSOCL__K_POSITION, "n", s->n);
   }
-  if ((k = s->k[MSOCL__K_NORMALS])) {
-    TRY(msocl__arg_mem(k, 1, s->tri_off));
-    TRY(msocl__arg_mem(k, 2, s->tri_ab));
-    TRY(msocl__arg_mem(k, 3, s->normal));
-    TRY(msocl__arg_int(k, 4, s->n));
+  if (s->k[MSOCL__K_NORMALS]) {
+    SET(MSOCL__K_NORMALS, "tri_off", s->tri_off);
+    SET(MSOCL__K_NORMALS, "tri_ab", s->tri_ab);
+    SET(MSOCL__K_NORMALS, "normal", s->normal);
+    SET(MSOCL__K_NORMALS, "n", s->n);
   }
-  if ((k = s->k[MSOCL__K_EULER]))
-    TRY(point_pass_args(s, k, c + 4));
-  if ((k = s->k[MSOCL__K_ACCEL])) {
-    TRY(msocl__arg_mem(k, c + 2, s->acc));
-    TRY(msocl__arg_mem(k, c + 3, s->inv_mass));
-    TRY(arg_vec(k, c + 4, &s->gravity));
-    TRY(msocl__arg_float(k, c + 5, s->viscous));
-    TRY(msocl__arg_int(k, c + 6, s->n));
+  if (s->k[MSOCL__K_ACCEL]) {
+    SET(MSOCL__K_ACCEL, "acc_out", s->acc);
+    SET(MSOCL__K_ACCEL, "inv_mass", s->inv_mass);
+    SET(MSOCL__K_ACCEL, "gravity", s->gravity);
+    SET(MSOCL__K_ACCEL, "viscous", s->viscous);
+    SET(MSOCL__K_ACCEL, "n", s->n);
   }
-  if ((k = s->k[MSOCL__K_DRIFT])) {
-    TRY(msocl__arg_mem(k, 2, s->acc));
-    TRY(msocl__arg_float(k, 4, dt));
-    TRY(msocl__arg_mem(k, 5, s->col));
-    TRY(msocl__arg_int(k, 6, s->ncol));
-    TRY(msocl__arg_int(k, 7, s->n));
+  if (s->k[MSOCL__K_DRIFT]) {
+    SET(MSOCL__K_DRIFT, "acc", s->acc);
+    SET(MSOCL__K_DRIFT, "dt", s->o.dt);
+    SET(MSOCL__K_DRIFT, "col", s->col);
+    SET(MSOCL__K_DRIFT, "ncol", s->ncol);
+    SET(MSOCL__K_DRIFT, "n", s->n);
   }
-  if ((k = s->k[MSOCL__K_KICK])) {
-    TRY(msocl__arg_mem(k, c + 3, s->acc));
-    TRY(msocl__arg_mem(k, c + 4, s->inv_mass));
-    TRY(arg_vec(k, c + 5, &s->gravity));
-    TRY(msocl__arg_float(k, c + 6, s->viscous));
-    TRY(msocl__arg_float(k, c + 7, s->air));
-    TRY(msocl__arg_float(k, c + 8, dt));
-    TRY(msocl__arg_int(k, c + 9, s->n));
+  if (s->k[MSOCL__K_KICK]) {
+    SET(MSOCL__K_KICK, "acc_out", s->acc);
+    SET(MSOCL__K_KICK, "inv_mass", s->inv_mass);
+    SET(MSOCL__K_KICK, "gravity", s->gravity);
+    SET(MSOCL__K_KICK, "viscous", s->viscous);
+    SET(MSOCL__K_KICK, "air", s->air);
+    SET(MSOCL__K_KICK, "dt", s->o.dt);
+    SET(MSOCL__K_KICK, "n", s->n);
   }
-  if ((k = s->k[MSOCL__K_RK4])) {
-    TRY(msocl__arg_mem(k, c + 4, s->sum_p));
-    TRY(msocl__arg_mem(k, c + 5, s->sum_v));
-    TRY(msocl__arg_mem(k, c + 8, s->inv_mass));
-    TRY(arg_vec(k, c + 9, &s->gravity));
-    TRY(msocl__arg_float(k, c + 10, s->viscous));
-    TRY(msocl__arg_float(k, c + 11, s->air));
-    TRY(msocl__arg_float(k, c + 13, dt));
-    TRY(msocl__arg_mem(k, c + 15, s->col));
-    TRY(msocl__arg_int(k, c + 16, s->ncol));
-    TRY(msocl__arg_int(k, c + 17, s->n));
+  if (s->k[MSOCL__K_RK4]) {
+    SET(MSOCL__K_RK4, "sum_p", s->sum_p);
+    SET(MSOCL__K_RK4, "sum_v", s->sum_v);
+    SET(MSOCL__K_RK4, "inv_mass", s->inv_mass);
+    SET(MSOCL__K_RK4, "gravity", s->gravity);
+    SET(MSOCL__K_RK4, "viscous", s->viscous);
+    SET(MSOCL__K_RK4, "air", s->air);
+    SET(MSOCL__K_RK4, "dt", s->o.dt);
+    SET(MSOCL__K_RK4, "col", s->col);
+    SET(MSOCL__K_RK4, "ncol", s->ncol);
+    SET(MSOCL__K_RK4, "n", s->n);
   }
-  if ((k = s->k[MSOCL__K_ENERGY])) {
-    TRY(msocl__arg_mem(k, c + 2, s->inv_mass));
-    TRY(arg_vec(k, c + 3, &s->gravity));
-    TRY(msocl__arg_mem(k, c + 4, s->partial));
-    TRY(msocl__arg_int(k, c + 5, s->n));
-    TRY(msocl__arg_int(k, c + 6, s->hi));
+  if (s->k[MSOCL__K_ENERGY]) {
+    SET(MSOCL__K_ENERGY, "inv_mass", s->inv_mass);
+    SET(MSOCL__K_ENERGY, "gravity", s->gravity);
+    SET(MSOCL__K_ENERGY, "partial", s->partial);
+    SET(MSOCL__K_ENERGY, "n", s->n);
+    SET(MSOCL__K_ENERGY, "end", s->hi);
   }
   if ((k = s->k[MSOCL__K_EDGES_FORCE])) {
     TRY(msocl__arg_mem(k, 0, s->lay.con));
@@ -129,8 +141,9 @@ int msocl__integrate_setup(msocl__engine *s)
 static int position_pass(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
-  cl_mem p[3] = {s->pos[r], s->vel[w], s->pos[w]};
-  TRY(mems(s->k[MSOCL__K_POSITION], 0, 3, p));
+  TRY(msocl__set_mem(s, MSOCL__K_POSITION, "pos", s->pos[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_POSITION, "vel", s->vel[w]));
+  TRY(msocl__set_mem(s, MSOCL__K_POSITION, "pos_out", s->pos[w]));
   return msocl__launch(s, MSOCL__K_POSITION);
 }
 
@@ -155,26 +168,22 @@ static int symplectic_velocity(msocl__engine *s)
   const int r = s->r, w = 1 - r;
   if (s->lay.kind == MSOCL_LAYOUT_EDGES)
     return edges_velocity(s);
-  cl_mem v[3] = {s->pos[r], s->vel[r], s->vel[w]};
-  TRY(mems(s->k[MSOCL__K_VELOCITY], s->nconn, 3, v));
+  TRY(msocl__set_mem(s, MSOCL__K_VELOCITY, "pos", s->pos[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_VELOCITY, "vel", s->vel[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_VELOCITY, "vel_out", s->vel[w]));
   return msocl__launch(s, MSOCL__K_VELOCITY);
 }
 
-/* Both symplectic passes in one kernel. */
-static int fused_pass(msocl__engine *s)
+/* A one-pass step, kernel k (fused symplectic or explicit Euler), from
+ * state r into w. */
+static int one_pass(msocl__engine *s, int k)
 {
   const int r = s->r, w = 1 - r;
-  cl_mem a[4] = {s->pos[r], s->vel[r], s->pos[w], s->vel[w]};
-  TRY(mems(s->k[MSOCL__K_FUSED], s->nconn, 4, a));
-  return msocl__launch(s, MSOCL__K_FUSED);
-}
-
-static int explicit_euler(msocl__engine *s)
-{
-  const int r = s->r, w = 1 - r;
-  cl_mem a[4] = {s->pos[r], s->vel[r], s->pos[w], s->vel[w]};
-  TRY(mems(s->k[MSOCL__K_EULER], s->nconn, 4, a));
-  return msocl__launch(s, MSOCL__K_EULER);
+  TRY(msocl__set_mem(s, k, "pos", s->pos[r]));
+  TRY(msocl__set_mem(s, k, "vel", s->vel[r]));
+  TRY(msocl__set_mem(s, k, "pos_out", s->pos[w]));
+  TRY(msocl__set_mem(s, k, "vel_out", s->vel[w]));
+  return msocl__launch(s, k);
 }
 
 /* Verlet, kick-drift-kick. Drift: turns vel[r] into the half-step velocity
@@ -188,8 +197,8 @@ int msocl__verlet_accel(msocl__engine *s)
 {
   if (s->acc_valid)
     return MSOCL_OK;
-  cl_mem a[2] = {s->pos[s->r], s->vel[s->r]};
-  TRY(mems(s->k[MSOCL__K_ACCEL], s->nconn, 2, a));
+  TRY(msocl__set_mem(s, MSOCL__K_ACCEL, "pos", s->pos[s->r]));
+  TRY(msocl__set_mem(s, MSOCL__K_ACCEL, "vel", s->vel[s->r]));
   TRY(msocl__launch_range(s, MSOCL__K_ACCEL));
   s->acc_valid = 1;
   return MSOCL_OK;
@@ -199,17 +208,18 @@ static int verlet_drift(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
   TRY(msocl__verlet_accel(s));
-  cl_mem d[2] = {s->pos[r], s->vel[r]};
-  TRY(mems(s->k[MSOCL__K_DRIFT], 0, 2, d));
-  TRY(msocl__arg_mem(s->k[MSOCL__K_DRIFT], 3, s->pos[w]));
+  TRY(msocl__set_mem(s, MSOCL__K_DRIFT, "pos", s->pos[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_DRIFT, "vel", s->vel[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_DRIFT, "pos_out", s->pos[w]));
   return msocl__launch(s, MSOCL__K_DRIFT);
 }
 
 static int verlet_kick(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
-  cl_mem k[3] = {s->pos[w], s->vel[r], s->vel[w]};
-  TRY(mems(s->k[MSOCL__K_KICK], s->nconn, 3, k));
+  TRY(msocl__set_mem(s, MSOCL__K_KICK, "pos", s->pos[w]));
+  TRY(msocl__set_mem(s, MSOCL__K_KICK, "vel", s->vel[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_KICK, "vel_out", s->vel[w]));
   return msocl__launch(s, MSOCL__K_KICK);
 }
 
@@ -217,22 +227,19 @@ static int verlet_kick(msocl__engine *s)
  * kernel writes what its neighbours read; the last writes pos[w], vel[w]. */
 static int rk4_stage(msocl__engine *s, int q)
 {
-  const cl_uint c = s->nconn;
-  const int r = s->r, w = 1 - r;
-  cl_kernel k = s->k[MSOCL__K_RK4];
+  const int r = s->r, w = 1 - r, k = MSOCL__K_RK4;
   const float cs[4] = {0.5f, 0.5f, 1.0f, 0.0f};
   const int modes[4] = {0, 1, 1, 2};
-  cl_mem sp = q == 0 ? s->pos[r] : s->stage_p[(q - 1) & 1];
-  cl_mem sv = q == 0 ? s->vel[r] : s->stage_v[(q - 1) & 1];
-  cl_mem np = q == 3 ? s->pos[w] : s->stage_p[q & 1];
-  cl_mem nv = q == 3 ? s->vel[w] : s->stage_v[q & 1];
-  cl_mem y0[2] = {s->pos[r], s->vel[r]}, a[2] = {sp, sv}, b[2] = {np, nv};
-  TRY(mems(k, c, 2, y0));
-  TRY(mems(k, c + 2, 2, a));
-  TRY(mems(k, c + 6, 2, b));
-  TRY(msocl__arg_float(k, c + 12, cs[q]));
-  TRY(msocl__arg_int(k, c + 14, modes[q]));
-  return msocl__launch(s, MSOCL__K_RK4);
+  const int in = (q - 1) & 1, out = q & 1;
+  TRY(msocl__set_mem(s, k, "p0", s->pos[r]));
+  TRY(msocl__set_mem(s, k, "v0", s->vel[r]));
+  TRY(msocl__set_mem(s, k, "sp", q == 0 ? s->pos[r] : s->stage_p[in]));
+  TRY(msocl__set_mem(s, k, "sv", q == 0 ? s->vel[r] : s->stage_v[in]));
+  TRY(msocl__set_mem(s, k, "np", q == 3 ? s->pos[w] : s->stage_p[out]));
+  TRY(msocl__set_mem(s, k, "nv", q == 3 ? s->vel[w] : s->stage_v[out]));
+  TRY(msocl__set_float(s, k, "c", cs[q]));
+  TRY(msocl__set_int(s, k, "mode", modes[q]));
+  return msocl__launch(s, k);
 }
 
 /* Within a phase only the first pass reads other points (a gather); the
@@ -245,8 +252,8 @@ int msocl__float4_pass(msocl__engine *s, enum msocl__pass p)
   case MSOCL__P_VELOCITY: return symplectic_velocity(s);
   case MSOCL__P_STRAIN_VEL: return msocl__strain_velocity(s);
   case MSOCL__P_POSITION: return position_pass(s);
-  case MSOCL__P_FUSED: return fused_pass(s);
-  case MSOCL__P_EULER: return explicit_euler(s);
+  case MSOCL__P_FUSED: return one_pass(s, MSOCL__K_FUSED);
+  case MSOCL__P_EULER: return one_pass(s, MSOCL__K_EULER);
   case MSOCL__P_DRIFT: return verlet_drift(s);
   case MSOCL__P_KICK: return verlet_kick(s);
   case MSOCL__P_RK4_0:

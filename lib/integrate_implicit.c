@@ -20,59 +20,60 @@ static int launch64(msocl__engine *s, int k)
 
 #define TRY MSOCL__TRY
 
+#define SET(k, name, v) TRY(msocl__set(s, k, name, sizeof(v), &(v)))
+
+/* The search state: x, r in the stage positions, p, Ap in the stage
+ * velocities. */
 int msocl__implicit_setup(msocl__engine *s)
 {
-  const cl_uint c = s->nconn;
-  const float dt = s->o.dt;
   cl_mem x = s->stage_p[0], r = s->stage_p[1], p = s->stage_v[0],
          ap = s->stage_v[1];
-  cl_kernel k = s->k[MSOCL__K_IE_RHS];
-  TRY(msocl__arg_mem(k, c + 2, x));
-  TRY(msocl__arg_mem(k, c + 3, r));
-  TRY(msocl__arg_mem(k, c + 4, p));
-  TRY(msocl__arg_mem(k, c + 5, s->inv_mass));
-  MSOCL__CL(clSetKernelArg(k, c + 6, sizeof s->gravity, &s->gravity));
-  TRY(msocl__arg_float(k, c + 7, s->viscous));
-  TRY(msocl__arg_float(k, c + 8, dt));
-  TRY(msocl__arg_mem(k, c + 9, s->partial));
-  TRY(msocl__arg_int(k, c + 10, s->n));
-  k = s->k[MSOCL__K_IE_APPLY];
-  TRY(msocl__arg_mem(k, c + 1, p));
-  TRY(msocl__arg_mem(k, c + 2, ap));
-  TRY(msocl__arg_mem(k, c + 3, s->inv_mass));
-  TRY(msocl__arg_float(k, c + 4, s->viscous));
-  TRY(msocl__arg_float(k, c + 5, dt));
-  TRY(msocl__arg_mem(k, c + 6, s->partial));
-  TRY(msocl__arg_int(k, c + 7, s->n));
-  k = s->k[MSOCL__K_CG_STEP];
-  TRY(msocl__arg_mem(k, 0, x));
-  TRY(msocl__arg_mem(k, 1, r));
-  TRY(msocl__arg_mem(k, 2, p));
-  TRY(msocl__arg_mem(k, 3, ap));
-  TRY(msocl__arg_mem(k, 5, s->partial));
-  TRY(msocl__arg_int(k, 6, s->n));
-  k = s->k[MSOCL__K_CG_DIR];
-  TRY(msocl__arg_mem(k, 0, p));
-  TRY(msocl__arg_mem(k, 1, r));
-  TRY(msocl__arg_int(k, 3, s->n));
-  k = s->k[MSOCL__K_IE_FINISH];
-  TRY(msocl__arg_mem(k, 2, x));
-  TRY(msocl__arg_float(k, 4, s->air));
-  TRY(msocl__arg_float(k, 5, dt));
-  TRY(msocl__arg_mem(k, 6, s->col));
-  TRY(msocl__arg_int(k, 7, s->ncol));
-  TRY(msocl__arg_int(k, 8, s->n));
+  int k = MSOCL__K_IE_RHS;
+  SET(k, "x", x);
+  SET(k, "r", r);
+  SET(k, "p", p);
+  SET(k, "inv_mass", s->inv_mass);
+  SET(k, "gravity", s->gravity);
+  SET(k, "viscous", s->viscous);
+  SET(k, "dt", s->o.dt);
+  SET(k, "partial", s->partial);
+  SET(k, "n", s->n);
+  k = MSOCL__K_IE_APPLY;
+  SET(k, "p", p);
+  SET(k, "ap", ap);
+  SET(k, "inv_mass", s->inv_mass);
+  SET(k, "viscous", s->viscous);
+  SET(k, "dt", s->o.dt);
+  SET(k, "partial", s->partial);
+  SET(k, "n", s->n);
+  k = MSOCL__K_CG_STEP;
+  SET(k, "x", x);
+  SET(k, "r", r);
+  SET(k, "p", p);
+  SET(k, "ap", ap);
+  SET(k, "partial", s->partial);
+  SET(k, "n", s->n);
+  k = MSOCL__K_CG_DIR;
+  SET(k, "p", p);
+  SET(k, "r", r);
+  SET(k, "n", s->n);
+  k = MSOCL__K_IE_FINISH;
+  SET(k, "dv", x);
+  SET(k, "air", s->air);
+  SET(k, "dt", s->o.dt);
+  SET(k, "col", s->col);
+  SET(k, "ncol", s->ncol);
+  SET(k, "n", s->n);
   return MSOCL_OK;
 }
 
 /* The float4 engine's CG operations (schedule.h), over its range. */
 static int rhs(msocl__engine *s)
 {
-  const cl_uint c = s->nconn;
   const int r = s->r;
-  TRY(msocl__arg_mem(s->k[MSOCL__K_IE_RHS], c, s->pos[r]));
-  TRY(msocl__arg_mem(s->k[MSOCL__K_IE_RHS], c + 1, s->vel[r]));
-  TRY(msocl__arg_mem(s->k[MSOCL__K_IE_APPLY], c, s->pos[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_IE_RHS, "pos", s->pos[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_IE_RHS, "vel", s->vel[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_IE_APPLY, "pos", s->pos[r]));
   return launch64(s, MSOCL__K_IE_RHS);
 }
 
@@ -83,23 +84,22 @@ static int apply(msocl__engine *s)
 
 static int step(msocl__engine *s, float alpha)
 {
-  TRY(msocl__arg_float(s->k[MSOCL__K_CG_STEP], 4, alpha));
+  TRY(msocl__set_float(s, MSOCL__K_CG_STEP, "alpha", alpha));
   return launch64(s, MSOCL__K_CG_STEP);
 }
 
 static int direction(msocl__engine *s, float beta)
 {
-  TRY(msocl__arg_float(s->k[MSOCL__K_CG_DIR], 2, beta));
+  TRY(msocl__set_float(s, MSOCL__K_CG_DIR, "beta", beta));
   return msocl__launch(s, MSOCL__K_CG_DIR);
 }
 
 static int finish(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
-  cl_kernel k = s->k[MSOCL__K_IE_FINISH];
-  TRY(msocl__arg_mem(k, 0, s->pos[r]));
-  TRY(msocl__arg_mem(k, 1, s->vel[r]));
-  TRY(msocl__arg_mem(k, 3, s->vel[w]));
+  TRY(msocl__set_mem(s, MSOCL__K_IE_FINISH, "pos", s->pos[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_IE_FINISH, "vel", s->vel[r]));
+  TRY(msocl__set_mem(s, MSOCL__K_IE_FINISH, "vel_out", s->vel[w]));
   return msocl__launch(s, MSOCL__K_IE_FINISH);
 }
 

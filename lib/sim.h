@@ -290,6 +290,14 @@ int msocl__sim_finish(msocl_sim *s);
 int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m);
 int msocl__arg_float(cl_kernel k, cl_uint i, float f);
 int msocl__arg_int(cl_kernel k, cl_uint i, int v);
+/* Sets the argument of the engine's float4 kernel k (MSOCL__K_*) that
+ * kernels/ names `name` (kernel_args.c): to size bytes at v, a buffer, a
+ * float, an int. */
+int msocl__set(msocl__engine *s, int k, const char *name, size_t size,
+               const void *v);
+int msocl__set_mem(msocl__engine *s, int k, const char *name, cl_mem m);
+int msocl__set_float(msocl__engine *s, int k, const char *name, float f);
+int msocl__set_int(msocl__engine *s, int k, const char *name, int v);
 /* Implicit Euler: the float4 kernels' fixed arguments
  * (integrate_implicit.c); the new velocities of one step's CG (cg.c) over
  * `parts` engines, into vel[1 - r] (planes: the other plane set), where
