@@ -1,9 +1,9 @@
 /* A simulation is one or more engines - a whole copy of the model on one
  * device, advancing the points of its own range - and, with several, the
  * plan for exchanging what their neighbours read. Shared by the files that
- * set engines up (sim.c), step them (integrate*.c, strain.c), measure them
- * (energy.c), and join them into the public simulation (sim_step.c,
- * sim_io.c). */
+ * set engines up (sim.c), step them (schedule.c, integrate*.c, strain.c,
+ * planes*.c, cg.c), measure them (energy.c), and join them into the public
+ * simulation (sim_step.c, sim_io.c). */
 #ifndef MSOCL_SIM_H
 #define MSOCL_SIM_H
 
@@ -223,8 +223,9 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
 void msocl__engine_destroy(msocl__engine *e);
 /* Sets the kernels' fixed arguments, once. */
 int msocl__integrate_setup(msocl__engine *s);
-/* A step is a few phases; after each, the buffers in the returned mask
- * must reach the other engines before the next phase reads them. */
+/* A step is a few phases (schedule.c's table); after each, the buffers in
+ * the returned mask must reach the other engines before the next phase
+ * reads them. */
 int msocl__phase_count(const msocl__engine *s);
 int msocl__phase(msocl__engine *s, int phase, unsigned *exchange);
 /* That mask, without queuing anything. */
@@ -263,11 +264,12 @@ void msocl__planes_release(msocl__engine *s);
 /* Verlet: the acceleration at the current state into acc, over the whole
  * range, unless acc already holds it. */
 int msocl__verlet_accel(msocl__engine *s);
-/* Ends a step: swaps the ping-pong buffers. */
+/* Ends a step: swaps the ping-pong buffers (or plane sets). */
 void msocl__step_done(msocl__engine *s);
 /* The buffer an exchange bit names, at this point of the step. */
 cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit);
-/* Enqueues `n` whole steps on one engine (no wait, no exchange). */
+/* Enqueues `n` whole steps on one engine (no wait, no exchange), float4
+ * or planes. */
 int msocl__integrate(msocl__engine *s, int n);
 /* Energy of the engine's points (waits for the device); of the whole
  * simulation. */
