@@ -37,83 +37,12 @@ static int point_pass_args(msocl__engine *s, cl_kernel k, cl_uint a)
   return msocl__arg_int(k, a + 7, s->n);
 }
 
-#define SET(k, name, v) TRY(msocl__set(s, k, name, sizeof(v), &(v)))
-
-/* The tail the gathering point passes share, by name. */
-static int point_args(msocl__engine *s, int k)
-{
-  SET(k, "inv_mass", s->inv_mass);
-  SET(k, "gravity", s->gravity);
-  SET(k, "viscous", s->viscous);
-  SET(k, "air", s->air);
-  SET(k, "dt", s->o.dt);
-  SET(k, "col", s->col);
-  SET(k, "ncol", s->ncol);
-  SET(k, "n", s->n);
-  return MSOCL_OK;
-}
-
-/* Fixed arguments: everything but the state buffers that ping-pong, by
- * their names in kernels/ (kernel_args.c). */
+/* Fixed arguments: everything but the state buffers that ping-pong; the
+ * float4 kernels' by name (kernel_args.c), the EDGES kernels' here. */
 int msocl__integrate_setup(msocl__engine *s)
 {
   cl_kernel k;
-  const int points[3] = {MSOCL__K_VELOCITY, MSOCL__K_FUSED, MSOCL__K_EULER};
-  for (int q = 0; q < 3; q++)
-    if (s->k[points[q]])
-      TRY(point_args(s, points[q]));
-  if (s->k[MSOCL__K_POSITION]) {
-    SET(MSOCL__K_POSITION, "dt", s->o.dt);
-    SET(MSOCL__K_POSITION, "n", s->n);
-  }
-  if (s->k[MSOCL__K_NORMALS]) {
-    SET(MSOCL__K_NORMALS, "tri_off", s->tri_off);
-    SET(MSOCL__K_NORMALS, "tri_ab", s->tri_ab);
-    SET(MSOCL__K_NORMALS, "normal", s->normal);
-    SET(MSOCL__K_NORMALS, "n", s->n);
-  }
-  if (s->k[MSOCL__K_ACCEL]) {
-    SET(MSOCL__K_ACCEL, "acc_out", s->acc);
-    SET(MSOCL__K_ACCEL, "inv_mass", s->inv_mass);
-    SET(MSOCL__K_ACCEL, "gravity", s->gravity);
-    SET(MSOCL__K_ACCEL, "viscous", s->viscous);
-    SET(MSOCL__K_ACCEL, "n", s->n);
-  }
-  if (s->k[MSOCL__K_DRIFT]) {
-    SET(MSOCL__K_DRIFT, "acc", s->acc);
-    SET(MSOCL__K_DRIFT, "dt", s->o.dt);
-    SET(MSOCL__K_DRIFT, "col", s->col);
-    SET(MSOCL__K_DRIFT, "ncol", s->ncol);
-    SET(MSOCL__K_DRIFT, "n", s->n);
-  }
-  if (s->k[MSOCL__K_KICK]) {
-    SET(MSOCL__K_KICK, "acc_out", s->acc);
-    SET(MSOCL__K_KICK, "inv_mass", s->inv_mass);
-    SET(MSOCL__K_KICK, "gravity", s->gravity);
-    SET(MSOCL__K_KICK, "viscous", s->viscous);
-    SET(MSOCL__K_KICK, "air", s->air);
-    SET(MSOCL__K_KICK, "dt", s->o.dt);
-    SET(MSOCL__K_KICK, "n", s->n);
-  }
-  if (s->k[MSOCL__K_RK4]) {
-    SET(MSOCL__K_RK4, "sum_p", s->sum_p);
-    SET(MSOCL__K_RK4, "sum_v", s->sum_v);
-    SET(MSOCL__K_RK4, "inv_mass", s->inv_mass);
-    SET(MSOCL__K_RK4, "gravity", s->gravity);
-    SET(MSOCL__K_RK4, "viscous", s->viscous);
-    SET(MSOCL__K_RK4, "air", s->air);
-    SET(MSOCL__K_RK4, "dt", s->o.dt);
-    SET(MSOCL__K_RK4, "col", s->col);
-    SET(MSOCL__K_RK4, "ncol", s->ncol);
-    SET(MSOCL__K_RK4, "n", s->n);
-  }
-  if (s->k[MSOCL__K_ENERGY]) {
-    SET(MSOCL__K_ENERGY, "inv_mass", s->inv_mass);
-    SET(MSOCL__K_ENERGY, "gravity", s->gravity);
-    SET(MSOCL__K_ENERGY, "partial", s->partial);
-    SET(MSOCL__K_ENERGY, "n", s->n);
-    SET(MSOCL__K_ENERGY, "end", s->hi);
-  }
+  TRY(msocl__set_fixed(s));
   if ((k = s->k[MSOCL__K_EDGES_FORCE])) {
     TRY(msocl__arg_mem(k, 0, s->lay.con));
     TRY(msocl__arg_mem(k, 1, s->lay.rk));
@@ -131,9 +60,7 @@ int msocl__integrate_setup(msocl__engine *s)
     TRY(msocl__arg_mem(k, 3, s->partial));
     TRY(msocl__arg_int(k, 4, s->lay.nsprings));
   }
-  if (s->o.integrator == MSOCL_IMPLICIT_EULER)
-    TRY(msocl__implicit_setup(s));
-  return msocl__strain_setup(s);
+  return MSOCL_OK;
 }
 
 /* The position pass of the symplectic and implicit steps: pos[w] from

@@ -1,6 +1,5 @@
 /* Implicit (backward) Euler, Baraff-Witkin form, on the float4 engine:
- * the kernels' fixed arguments and the operations the host's CG (cg.c)
- * runs - the right-hand side, matrix-free products and work-group
+ * the operations the host's CG (cg.c) runs - the right-hand side, matrix-free products and work-group
  * reductions, then the new velocities. The kernels and the system are
  * described in kernels/implicit.cl. */
 #include "config.h"
@@ -19,53 +18,6 @@ static int launch64(msocl__engine *s, int k)
 }
 
 #define TRY MSOCL__TRY
-
-#define SET(k, name, v) TRY(msocl__set(s, k, name, sizeof(v), &(v)))
-
-/* The search state: x, r in the stage positions, p, Ap in the stage
- * velocities. */
-int msocl__implicit_setup(msocl__engine *s)
-{
-  cl_mem x = s->stage_p[0], r = s->stage_p[1], p = s->stage_v[0],
-         ap = s->stage_v[1];
-  int k = MSOCL__K_IE_RHS;
-  SET(k, "x", x);
-  SET(k, "r", r);
-  SET(k, "p", p);
-  SET(k, "inv_mass", s->inv_mass);
-  SET(k, "gravity", s->gravity);
-  SET(k, "viscous", s->viscous);
-  SET(k, "dt", s->o.dt);
-  SET(k, "partial", s->partial);
-  SET(k, "n", s->n);
-  k = MSOCL__K_IE_APPLY;
-  SET(k, "p", p);
-  SET(k, "ap", ap);
-  SET(k, "inv_mass", s->inv_mass);
-  SET(k, "viscous", s->viscous);
-  SET(k, "dt", s->o.dt);
-  SET(k, "partial", s->partial);
-  SET(k, "n", s->n);
-  k = MSOCL__K_CG_STEP;
-  SET(k, "x", x);
-  SET(k, "r", r);
-  SET(k, "p", p);
-  SET(k, "ap", ap);
-  SET(k, "partial", s->partial);
-  SET(k, "n", s->n);
-  k = MSOCL__K_CG_DIR;
-  SET(k, "p", p);
-  SET(k, "r", r);
-  SET(k, "n", s->n);
-  k = MSOCL__K_IE_FINISH;
-  SET(k, "dv", x);
-  SET(k, "air", s->air);
-  SET(k, "dt", s->o.dt);
-  SET(k, "col", s->col);
-  SET(k, "ncol", s->ncol);
-  SET(k, "n", s->n);
-  return MSOCL_OK;
-}
 
 /* The float4 engine's CG operations (schedule.h), over its range. */
 static int rhs(msocl__engine *s)

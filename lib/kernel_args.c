@@ -109,3 +109,53 @@ int msocl__set_int(msocl__engine *s, int k, const char *name, int v)
 {
   return msocl__set(s, k, name, sizeof v, &v);
 }
+
+/* The values an argument of a given name holds in every float4 kernel
+ * that has it, for the engine's whole life: everything but the state
+ * buffers that ping-pong (pos, vel, ...) and the per-launch values (c,
+ * mode, alpha, beta). The CG's search state: x (also the velocity change
+ * dv) and r in the stage positions, p and Ap in the stage velocities. */
+int msocl__set_fixed(msocl__engine *s)
+{
+  const struct {
+    const char *name;
+    size_t size;
+    const void *v;
+  } fixed[] = {
+      {"inv_mass", sizeof s->inv_mass, &s->inv_mass},
+      {"gravity", sizeof s->gravity, &s->gravity},
+      {"viscous", sizeof s->viscous, &s->viscous},
+      {"air", sizeof s->air, &s->air},
+      {"dt", sizeof s->o.dt, &s->o.dt},
+      {"col", sizeof s->col, &s->col},
+      {"ncol", sizeof s->ncol, &s->ncol},
+      {"n", sizeof s->n, &s->n},
+      {"end", sizeof s->hi, &s->hi},
+      {"acc", sizeof s->acc, &s->acc},
+      {"acc_out", sizeof s->acc, &s->acc},
+      {"sum_p", sizeof s->sum_p, &s->sum_p},
+      {"sum_v", sizeof s->sum_v, &s->sum_v},
+      {"partial", sizeof s->partial, &s->partial},
+      {"tri_off", sizeof s->tri_off, &s->tri_off},
+      {"tri_ab", sizeof s->tri_ab, &s->tri_ab},
+      {"normal", sizeof s->normal, &s->normal},
+      {"limit", sizeof s->o.strain_limit, &s->o.strain_limit},
+      {"x", sizeof(cl_mem), &s->stage_p[0]},
+      {"dv", sizeof(cl_mem), &s->stage_p[0]},
+      {"r", sizeof(cl_mem), &s->stage_p[1]},
+      {"p", sizeof(cl_mem), &s->stage_v[0]},
+      {"ap", sizeof(cl_mem), &s->stage_v[1]},
+  };
+  for (int k = 0; k < MSOCL__K_COUNT; k++) {
+    if (!s->k[k] || !signature[k])
+      continue;
+    for (const char *const *a = signature[k]; *a; a++)
+      for (size_t f = 0; f < sizeof fixed / sizeof fixed[0]; f++)
+        if (strcmp(*a, fixed[f].name) == 0) {
+          int rc = msocl__set(s, k, *a, fixed[f].size, fixed[f].v);
+          if (rc != MSOCL_OK)
+            return rc;
+        }
+  }
+  return MSOCL_OK;
+}

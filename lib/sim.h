@@ -300,11 +300,12 @@ int msocl__set(msocl__engine *s, int k, const char *name, size_t size,
 int msocl__set_mem(msocl__engine *s, int k, const char *name, cl_mem m);
 int msocl__set_float(msocl__engine *s, int k, const char *name, float f);
 int msocl__set_int(msocl__engine *s, int k, const char *name, int v);
-/* Implicit Euler: the float4 kernels' fixed arguments
- * (integrate_implicit.c); the new velocities of one step's CG (cg.c) over
+/* Sets every argument of the float4 kernels that holds a value fixed for
+ * the engine's life (inv_mass, dt, n, ...), by name. */
+int msocl__set_fixed(msocl__engine *s);
+/* Implicit Euler: the new velocities of one step's CG (cg.c) over
  * `parts` engines, into vel[1 - r] (planes: the other plane set), where
  * exchange(ctx) spreads the CG direction's halo between products. */
-int msocl__implicit_setup(msocl__engine *s);
 int msocl__implicit_cg(msocl__engine *const *e, int parts,
                        int (*exchange)(void *ctx), void *ctx);
 /* Ends a stepping call of n steps that returns rc: MSOCL_ERR_NO_CONVERGENCE
@@ -314,10 +315,9 @@ int msocl__cg_report(msocl_sim *s, int rc, int n);
 /* Adds the engine's reduction partials (s->partial), in group order, to
  * *sum (launch.c). */
 int msocl__implicit_collect(msocl__engine *s, double *sum);
-/* Strain limiting (strain.c): fixed arguments; the velocity correction on
- * vel[1 - r]; Provot's position correction on pos[1 - r], taken up by the
- * velocities vel. */
-int msocl__strain_setup(msocl__engine *s);
+/* Strain limiting (strain.c): the velocity correction on vel[1 - r];
+ * Provot's position correction on pos[1 - r], taken up by the velocities
+ * vel. */
 int msocl__strain_velocity(msocl__engine *s);
 int msocl__strain_position(msocl__engine *s, cl_mem vel);
 /* Enqueues kernel k (launch.c) over the engine's current span

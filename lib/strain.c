@@ -7,28 +7,6 @@
 
 #define TRY MSOCL__TRY
 
-#define SET(k, name, v) TRY(msocl__set(s, k, name, sizeof(v), &(v)))
-
-int msocl__strain_setup(msocl__engine *s)
-{
-  if (s->k[MSOCL__K_STRAIN_VEL]) {
-    SET(MSOCL__K_STRAIN_VEL, "limit", s->o.strain_limit);
-    SET(MSOCL__K_STRAIN_VEL, "dt", s->o.dt);
-    SET(MSOCL__K_STRAIN_VEL, "col", s->col);
-    SET(MSOCL__K_STRAIN_VEL, "ncol", s->ncol);
-    SET(MSOCL__K_STRAIN_VEL, "n", s->n);
-  }
-  if (s->k[MSOCL__K_STRAIN_POS]) {
-    SET(MSOCL__K_STRAIN_POS, "limit", s->o.strain_limit);
-    SET(MSOCL__K_STRAIN_POS, "n", s->n);
-  }
-  if (s->k[MSOCL__K_STRAIN_COMMIT]) {
-    SET(MSOCL__K_STRAIN_COMMIT, "dt", s->o.dt);
-    SET(MSOCL__K_STRAIN_COMMIT, "n", s->n);
-  }
-  return MSOCL_OK;
-}
-
 /* Sweeps kernel `kind` from `from` (read from argument `in`, written to
  * `out`), ping-ponging with `to`; returns the buffer holding the result. */
 static int sweeps(msocl__engine *s, int kind, const char *in,
