@@ -1,6 +1,6 @@
 /* The float4 engine's passes (schedule.h), over the state buffers of a
- * simulation, and its kernels' fixed arguments (implicit Euler's CG:
- * integrate_implicit.c). */
+ * simulation (implicit Euler's CG: integrate_implicit.c), and its kernels'
+ * fixed arguments (the gathering kernels': kernel_args.c). */
 #include "config.h"
 #include "schedule.h"
 
