@@ -1,7 +1,7 @@
 /* A model on one device: state buffers, the two passes per step with
  * ping-pong buffers, and reading and writing of the state. */
 #include "config.h"
-#include "sim.h"
+#include "planes.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -354,6 +354,8 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     rc = make_kernels(s, prog);
   if (rc == MSOCL_OK)
     rc = msocl__planes_create(s, prog);
+  if (rc == MSOCL_OK && s->planes && s->o.integrator == MSOCL_IMPLICIT_EULER)
+    rc = msocl__pl_implicit_args(s); /* planes_implicit.c's kernels */
   if (rc == MSOCL_OK)
     rc = msocl__integrate_setup(s);
   if (rc == MSOCL_OK) {
