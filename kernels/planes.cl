@@ -28,18 +28,29 @@
  * when the program is built so that their loop unrolls (a loop of run-time
  * length inside would stop the vectorizer); MSOCL_GRID_KINDS: a bit for
  * each kind of spring the model has. */
-#if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID)
+#if defined(MSOCL_PLANES)
 
-/* The work-item's point (x, y, z) and where it sits in a plane: a
+/* The work-item's point (x, y, z) and where it sits in a plane (GRID): a
  * lattice's layers are `slab` floats apart, each padded by two rows, and
- * two padding layers lie at each end; a cloth has one layer (z 0). */
+ * two padding layers lie at each end; a cloth has one layer (z 0).
+ * BUFFER and IMAGE2D: point x of one unpadded row (y and z 0), `pitch`
+ * its n points; the row is padded to whole work-groups. MSOCL_PLANES_NX:
+ * the row's points in a gathering kernel, past which a work-item is
+ * padding and stores nothing. */
 #define MSOCL_PLANES_XYZ                                                      \
   const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2); \
-  (void)z /* a cloth's address leaves it out */
-#ifdef MSOCL_GRID_3D
+  (void)y; (void)z /* a cloth's address leaves z out, BUFFER's both */
+#if defined(MSOCL_LAYOUT_GRID) && defined(MSOCL_GRID_3D)
 #define MSOCL_PLANES_AT(x, y, z) (((z) + 2) * slab + ((y) + 2) * pitch + (x) + 2)
-#else
+#elif defined(MSOCL_LAYOUT_GRID)
 #define MSOCL_PLANES_AT(x, y, z) (((y) + 2) * pitch + (x) + 2)
+#else
+#define MSOCL_PLANES_AT(x, y, z) (x)
+#endif
+#ifdef MSOCL_LAYOUT_GRID
+#define MSOCL_PLANES_NX grid_nx
+#else
+#define MSOCL_PLANES_NX pitch
 #endif
 
 /* dot(a, b) of float3 as the other kernels compute it: (x + y) + z. */
@@ -108,27 +119,85 @@ static float msocl_planes_gap(float px, float py, float pz,
 }
 
 /* Slot s of the point (x, y, z) at a: where its neighbour sits in the
- * planes (*b), and whether that spring exists. A missing neighbour (past
- * the grid's edge, or a kind with k 0) reads the padding or another row,
- * not the point itself as in float4, so every user masks it. */
-static bool msocl_planes_slot(MSOCL_CONN, int s, int x, int y, int z, int a,
-                              int pitch, int slab, int *b)
+ * planes (*b), the spring's rest length, stiffness and dashpot, and
+ * whether the spring exists; a missing one's terms are masked by every
+ * user (they replace the exact zeros its float4 twin adds). GRID: the
+ * neighbour a fixed offset away, past the grid's edge (or of a kind with
+ * k 0) reading the padding or another row; BUFFER and IMAGE2D: the other
+ * end that msocl_slot finds, a free slot the point itself (a padding
+ * work-item reads no slot: the table holds n points a slot). */
+static bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, int y, int z,
+                                  int a, int pitch, int slab, int *b,
+                                  float *rest, float *k, float *c)
 {
+#if defined(MSOCL_LAYOUT_GRID)
   const int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s];
+  *rest = MSOCL_GRID_R(s);
+  *k = MSOCL_GRID_K(s);
+  *c = MSOCL_GRID_C;
 #ifdef MSOCL_GRID_3D
   const int qz = z + msocl_grid_dz[s];
   *b = a + msocl_grid_dz[s] * slab + msocl_grid_dy[s] * pitch +
        msocl_grid_dx[s];
   return qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny && qz >= 0 &&
-         qz < grid_nz && MSOCL_GRID_K(s) != 0.0f;
+         qz < grid_nz && *k != 0.0f;
 #else
   (void)z;
   (void)slab;
   *b = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];
-  return qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
-         MSOCL_GRID_K(s) != 0.0f;
+  return qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny && *k != 0.0f;
+#endif
+#else
+  /* point i = x of n = pitch, at a = i in the planes */
+  int j = x;
+  float r = 0.0f, kk = 0.0f, cc = 0.0f;
+  (void)y; (void)z; (void)a; (void)slab;
+  if (x < pitch) {
+#if defined(MSOCL_LAYOUT_IMAGE2D)
+    /* msocl_slot's reads: the entry, and the dashpot in its group's texel */
+    const sampler_t smp =
+        CLK_NORMALIZED_COORDS_FALSE | CLK_ADDRESS_NONE | CLK_FILTER_NEAREST;
+    const int tx = x % tex_w, ty = x / tex_w;
+    const float4 e = read_imagef(con, smp, (int2)(tx + (s & 3) * tex_w,
+                                                  ty + (s >> 2) * tex_h));
+    const bool on = e.x >= 0.0f;
+    j = on ? (int)e.y * tex_w + (int)e.x : x;
+    r = on ? e.z : 0.0f;
+    kk = on ? e.w : 0.0f;
+#ifdef MSOCL_DAMPING
+    const float4 c4 = read_imagef(dmp, smp, (int2)(tx + (s >> 2) * tex_w, ty));
+    const int q = s & 3;
+    cc = q == 0 ? c4.x : q == 1 ? c4.y : q == 2 ? c4.z : c4.w;
+#endif
+#else
+    const int at = s * pitch + x;
+    j = nbr[at];
+    msocl_values(rk, dmp, at, &r, &kk, &cc);
+#endif
+  }
+  *b = j;
+  *rest = r;
+  *k = kk;
+  *c = cc;
+  return j != x;
 #endif
 }
+
+/* Whether slot s is of a kind the model leaves out (GRID, where BUFFER
+ * would have no slot for it either): skipped when the program is built. */
+#ifdef MSOCL_LAYOUT_GRID
+#define MSOCL_PLANES_SKIP(s) (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+#else
+#define MSOCL_PLANES_SKIP(s) false
+#endif
+
+/* Slot s of the point (x, y, z) at a, declared as the gathering loops
+ * use it: b, rest, kk, cc and there. */
+#define MSOCL_PLANES_NEIGHBOR(s)                                              \
+  int b;                                                                     \
+  float rest, kk, cc;                                                        \
+  const bool there = msocl_planes_neighbor(MSOCL_CONN_ARGS, s, x, y, z, a,   \
+                                           pitch, slab, &b, &rest, &kk, &cc)
 
 /* msocl_force at the point at a = (x, y, z), viscous damping included. */
 static void msocl_planes_force(MSOCL_CONN, __global const float *p,
@@ -143,16 +212,10 @@ static void msocl_planes_force(MSOCL_CONN, __global const float *p,
   const float vx = v[a], vy = vy_[a], vz = vz_[a];
   float fx = 0.0f, fy = 0.0f, fz = 0.0f;
 #pragma unroll
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    /* a kind the model leaves out: BUFFER has no slot for it either */
-    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
       continue;
-    const float kk = MSOCL_GRID_K(s), rest = MSOCL_GRID_R(s);
-    /* a missing neighbour's terms are replaced by the exact zeros
-     * msocl_force adds for it */
-    int b;
-    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
-                                         pitch, slab, &b);
+    MSOCL_PLANES_NEIGHBOR(s);
     const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
     const float len2 = dx * dx + dy * dy + dz * dz;
     const float len = MSOCL_SQRT(len2);
@@ -163,12 +226,13 @@ static void msocl_planes_force(MSOCL_CONN, __global const float *p,
     fz += on ? t * dz : 0.0f;
 #ifdef MSOCL_DAMPING
     const float wx = v[b] - vx, wy = vy_[b] - vy, wz = vz_[b] - vz;
-    const float u = MSOCL_GRID_C * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
+    const float u = cc * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
     const bool onh = there && len2 > 0.0f;
     fx += onh ? u * dx : 0.0f;
     fy += onh ? u * dy : 0.0f;
     fz += onh ? u * dz : 0.0f;
 #endif
+    (void)cc; /* read by dashpots */
   }
 #ifdef MSOCL_VISCOUS
   fx = fx - viscous * vx;
@@ -278,7 +342,7 @@ __kernel void msocl_planes_velocity(MSOCL_CONN, __global const float *p,
                                     MSOCL_PLANES_ARGS)
 {
   MSOCL_PLANES_KICK;
-  if (x < grid_nx) {
+  if (x < MSOCL_PLANES_NX) {
     MSOCL_PLANES_STORE_V;
   }
 }
@@ -291,7 +355,7 @@ __kernel void msocl_planes_fused(MSOCL_CONN, __global const float *p,
                                  MSOCL_PLANES_ARGS)
 {
   MSOCL_PLANES_KICK;
-  if (x < grid_nx) {
+  if (x < MSOCL_PLANES_NX) {
     __global const float *py_ = p + plane, *pz_ = py_ + plane;
     __global float *qy = p_out + plane, *qz = qy + plane;
     const float cx = p[a], cy = py_[a], cz = pz_[a];
@@ -373,7 +437,7 @@ __kernel void msocl_planes_vkick(MSOCL_CONN, __global const float *p,
   msocl_planes_air(air, &vx, &vy, &vz);
   (void)col;
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
-  if (x < grid_nx) {
+  if (x < MSOCL_PLANES_NX) {
     v_out[a] = pinned ? 0.0f : vx;
     v_out[plane + a] = pinned ? 0.0f : vy;
     v_out[2 * plane + a] = pinned ? 0.0f : vz;
@@ -437,7 +501,7 @@ __kernel void msocl_planes_euler(MSOCL_CONN, __global const float *p,
   msocl_planes_air(air, &vx, &vy, &vz);
   msocl_planes_project(&px, &py, &pz, &vx, &vy, &vz, col);
   const bool pinned = MSOCL_PLANES_PINNED(aux[ay]);
-  if (x < grid_nx) {
+  if (x < MSOCL_PLANES_NX) {
     p_out[a] = pinned ? p[a] : px;
     p_out[ay] = pinned ? p[ay] : py;
     p_out[az] = pinned ? p[az] : pz;
@@ -487,7 +551,7 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
       const float kp = sv[q * plane + a];
       const float sp_ = mode == 0 ? kp : sum_p[q * plane + a] + 2.0f * kp;
       const float sv_ = mode == 0 ? kv[q] : sum_v[q * plane + a] + 2.0f * kv[q];
-      if (x < grid_nx) {
+      if (x < MSOCL_PLANES_NX) {
         sum_p[q * plane + a] = sp_;
         sum_v[q * plane + a] = sv_;
       }
@@ -497,7 +561,7 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
   }
   (void)air;
   (void)col;
-  if (x < grid_nx) {
+  if (x < MSOCL_PLANES_NX) {
 #pragma unroll
     for (int q = 0; q < 3; q++) {
       np[q * plane + a] = pinned ? p0[q * plane + a] : p[q];
@@ -548,13 +612,11 @@ __kernel void msocl_planes_strain(MSOCL_CONN, __global const float *p,
   const float px = p[a], py = py_[a], pz = pz_[a];
   float dpx = 0.0f, dpy = 0.0f, dpz = 0.0f, weight = 0.0f;
 #pragma unroll
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
       continue;
-    const float rest = MSOCL_GRID_R(s);
-    int b;
-    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
-                                         pitch, slab, &b);
+    MSOCL_PLANES_NEIGHBOR(s);
+    (void)kk; (void)cc;
     const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
     const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
     const float over = len - (1.0f + limit) * rest;
@@ -573,7 +635,7 @@ __kernel void msocl_planes_strain(MSOCL_CONN, __global const float *p,
     dpz = MSOCL_DIV(dpz, weight);
   }
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
-  if (x < grid_nx) {
+  if (x < MSOCL_PLANES_NX) {
     p_out[a] = pinned ? px : px + dpx;
     p_out[plane + a] = pinned ? py : py + dpy;
     p_out[2 * plane + a] = pinned ? pz : pz + dpz;
@@ -623,13 +685,11 @@ __kernel void msocl_planes_strain_v(MSOCL_CONN, __global const float *p,
   const float vx = v[a], vy = vy_[a], vz = vz_[a];
   float dvx = 0.0f, dvy = 0.0f, dvz = 0.0f, weight = 0.0f;
 #pragma unroll
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
       continue;
-    const float rest = MSOCL_GRID_R(s);
-    int b;
-    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
-                                         pitch, slab, &b);
+    MSOCL_PLANES_NEIGHBOR(s);
+    (void)kk; (void)cc;
     const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
     const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
     const float allowed = MSOCL_DIV((1.0f + limit) * rest - len, dt);
@@ -654,7 +714,7 @@ __kernel void msocl_planes_strain_v(MSOCL_CONN, __global const float *p,
   float wx = vx + dvx, wy = vy + dvy, wz = vz + dvz;
   msocl_planes_collide(px, py, pz, &wx, &wy, &wz, dt, col, 0.0f);
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
-  if (x < grid_nx) {
+  if (x < MSOCL_PLANES_NX) {
     v_out[a] = pinned ? 0.0f : wx;
     v_out[plane + a] = pinned ? 0.0f : wy;
     v_out[2 * plane + a] = pinned ? 0.0f : wz;

@@ -18,7 +18,7 @@ void msocl_sum_points(__global const float *dots, __global float4 *partial,
   msocl_group_sum(i < n ? dots[i] : 0.0f, part, partial);
 }
 
-#if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID)
+#if defined(MSOCL_PLANES)
 
 /* The point's float4 index, (z ny + y) nx + x. */
 #define MSOCL_PLANES_INDEX(nx) ((z * (int)get_global_size(1) + y) * (nx) + x)
@@ -60,28 +60,27 @@ __kernel void msocl_planes_ie_rhs(MSOCL_CONN, __global const float *p,
                      y, z, a, &fx, &fy, &fz);
   float kx = 0.0f, ky = 0.0f, kz = 0.0f;
 #pragma unroll
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
       continue;
-    int b;
-    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
-                                         pitch, slab, &b);
+    MSOCL_PLANES_NEIGHBOR(s);
     msocl_planes_jacobian(p[b] - p[a], py_[b] - py_[a], pz_[b] - pz_[a],
-                          MSOCL_GRID_R(s), MSOCL_GRID_K(s), v[b] - v[a],
+                          rest, kk, v[b] - v[a],
                           vy_[b] - vy_[a], vz_[b] - vz_[a], there, &kx, &ky,
                           &kz);
+    (void)cc;
   }
   const float m = 1.0f / aux[a];
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
   const float bx = pinned ? 0.0f : dt * (fx + m * gravity.x + dt * kx);
   const float by = pinned ? 0.0f : dt * (fy + m * gravity.y + dt * ky);
   const float bz = pinned ? 0.0f : dt * (fz + m * gravity.z + dt * kz);
-  if (x < grid_nx) {
+  if (x < MSOCL_PLANES_NX) {
     x_out[a] = x_out[plane + a] = x_out[2 * plane + a] = 0.0f;
     r_out[a] = d_out[a] = bx;
     r_out[plane + a] = d_out[plane + a] = by;
     r_out[2 * plane + a] = d_out[2 * plane + a] = bz;
-    dots[MSOCL_PLANES_INDEX(grid_nx)] = MSOCL_DOT3(bx, by, bz, bx, by, bz);
+    dots[MSOCL_PLANES_INDEX(MSOCL_PLANES_NX)] = MSOCL_DOT3(bx, by, bz, bx, by, bz);
   }
 }
 
@@ -102,21 +101,20 @@ __kernel void msocl_planes_ie_apply(MSOCL_CONN, __global const float *p,
   const float ix = d[a], iy = dy_[a], iz = dz_[a];
   float kx = 0.0f, ky = 0.0f, kz = 0.0f, cx = 0.0f, cy = 0.0f, cz = 0.0f;
 #pragma unroll
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
       continue;
-    int b;
-    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
-                                         pitch, slab, &b);
+    MSOCL_PLANES_NEIGHBOR(s);
     const float qx = p[b] - px, qy = py_[b] - py, qz = pz_[b] - pz;
     const float ex = d[b] - ix, ey = dy_[b] - iy, ez = dz_[b] - iz;
-    msocl_planes_jacobian(qx, qy, qz, MSOCL_GRID_R(s), MSOCL_GRID_K(s), ex,
-                          ey, ez, there, &kx, &ky, &kz);
+    msocl_planes_jacobian(qx, qy, qz, rest, kk, ex, ey, ez, there, &kx, &ky,
+                          &kz);
+    (void)cc; /* read by dashpots */
 #ifdef MSOCL_DAMPING
     /* msocl_damp_jacobian */
     const float len2 = MSOCL_DOT3(qx, qy, qz, qx, qy, qz);
     const float u =
-        MSOCL_GRID_C * MSOCL_DIV(MSOCL_DOT3(qx, qy, qz, ex, ey, ez), len2);
+        cc * MSOCL_DIV(MSOCL_DOT3(qx, qy, qz, ex, ey, ez), len2);
     const bool live = there && len2 > 0.0f;
     cx += live ? u * qx : 0.0f;
     cy += live ? u * qy : 0.0f;
@@ -135,11 +133,11 @@ __kernel void msocl_planes_ie_apply(MSOCL_CONN, __global const float *p,
   const float yx = pinned ? ix : mv * ix - dt * cx - (dt * dt) * kx;
   const float yy = pinned ? iy : mv * iy - dt * cy - (dt * dt) * ky;
   const float yz = pinned ? iz : mv * iz - dt * cz - (dt * dt) * kz;
-  if (x < grid_nx) {
+  if (x < MSOCL_PLANES_NX) {
     ap[a] = yx;
     ap[plane + a] = yy;
     ap[2 * plane + a] = yz;
-    dots[MSOCL_PLANES_INDEX(grid_nx)] = MSOCL_DOT3(ix, iy, iz, yx, yy, yz);
+    dots[MSOCL_PLANES_INDEX(MSOCL_PLANES_NX)] = MSOCL_DOT3(ix, iy, iz, yx, yy, yz);
   }
 }
 

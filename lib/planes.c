@@ -1,7 +1,9 @@
-/* GRID in planes (options.planes, kernels/planes.cl): a cloth grid's or
- * a lattice's steps, every integrator's (implicit Euler's CG:
- * planes_implicit.c), over x, y, z planes of padded rows, which PoCL's
- * CPU device runs eight points to an instruction. The state is copied
+/* Planes (options.planes, kernels/planes.cl): a model's steps, every
+ * integrator's (implicit Euler's CG: planes_implicit.c), over x, y, z
+ * planes of floats - GRID's padded rows, or BUFFER's and IMAGE2D's points
+ * in index order, their neighbours found through the layout's own
+ * connectivity - which PoCL's CPU device runs eight or sixteen points to
+ * an instruction. The state is copied
  * into the planes at the first step and stays there between calls;
  * whatever reads the engine's float4 buffers (reads, energy, normals, the
  * blow-up check's saved state) first calls msocl__planes_current, and
@@ -51,6 +53,27 @@ static struct geometry geometry_in(int nx, int ny, int nz)
 static struct geometry geometry_of(const msocl_model *m)
 {
   return geometry_in(m->grid.nx, m->grid.ny, m->grid.nz);
+}
+
+/* BUFFER and IMAGE2D: the n points in one row of work-groups of 64, no
+ * padding around them (no neighbour is read at an offset); `pitch`
+ * carries n to the kernels. */
+static struct geometry geometry_row(int n)
+{
+  struct geometry g;
+  g.group = 64;
+  g.wide = ((size_t)n + g.group - 1) / g.group * g.group;
+  g.pitch = (size_t)n;
+  g.slab = 0;
+  g.plane = g.wide;
+  return g;
+}
+
+static struct geometry geometry_engine(const msocl__engine *s)
+{
+  return s->lay.kind == MSOCL_LAYOUT_GRID
+             ? geometry_in(s->lay.grid_nx, s->lay.grid_ny, s->lay.grid_nz)
+             : geometry_row(s->n);
 }
 
 /* Planes (floats a padded point) each integrator and strain limit keeps:
@@ -132,14 +155,47 @@ int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
   return MSOCL_OK;
 }
 
+/* The widest BUFFER table the planes kernels unroll. */
+#define MSOCL__PLANES_SLOTS 64
+
+/* Whether AUTO runs BUFFER or IMAGE2D in planes: on CPU devices. */
+static int row_auto(const msocl__engine *s)
+{
+  return s->dev->info.type == MSOCL_DEVICE_CPU;
+}
+
+/* Why BUFFER's or IMAGE2D's connectivity cannot run in planes; NULL: it
+ * can. */
+static const char *unfit_row(const msocl__engine *s)
+{
+  if (s->lo != 0 || s->hi != s->n)
+    return "runs a whole model on one device (not a split)";
+  if (3 * geometry_row(s->n).plane > (size_t)INT_MAX)
+    return "index at most 2^31 floats (too many points)";
+  /* the spill's per-point loop would stop PoCL's vectorizer, and a wide
+   * table's unrolled slots bloat the kernels */
+  if (s->lay.spill)
+    return "hold a point's springs in BUFFER's table only, not a spill "
+           "list (a point has more springs than buffer_slots)";
+  if (s->lay.slots > MSOCL__PLANES_SLOTS)
+    return "take BUFFER tables of at most 64 slots";
+  return NULL;
+}
+
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
 {
-  const char *why = s->lay.kind != MSOCL_LAYOUT_GRID
-                        ? "needs the GRID layout"
-                        : unfit(m, s->lo, s->hi);
+  const msocl_layout kind = s->lay.kind;
+  const char *why = kind == MSOCL_LAYOUT_GRID ? unfit(m, s->lo, s->hi)
+                    : kind == MSOCL_LAYOUT_BUFFER ||
+                            kind == MSOCL_LAYOUT_IMAGE2D
+                        ? unfit_row(s)
+                        : "need the GRID, BUFFER or IMAGE2D layout, not EDGES";
   if (s->o.planes == 1 && why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "planes %s", why);
-  s->planes = chosen(s->dev, &s->o, m, why);
+  s->planes = kind == MSOCL_LAYOUT_GRID
+                  ? chosen(s->dev, &s->o, m, why)
+                  : !why && (s->o.planes == 1 ||
+                             (s->o.planes == -1 && row_auto(s)));
   return MSOCL_OK;
 }
 
@@ -157,8 +213,9 @@ int msocl__pl_arg(cl_kernel k, cl_uint i, size_t size, const void *v)
 
 int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx)
 {
+  const int nx = s->lay.kind == MSOCL_LAYOUT_GRID ? s->lay.grid_nx : s->n;
   if (with_nx)
-    TRY(arg(k, i++, sizeof(int), &s->lay.grid_nx));
+    TRY(arg(k, i++, sizeof(int), &nx));
   TRY(arg(k, i, sizeof(int), &s->pl_pitch));
   TRY(arg(k, i + 1, sizeof(int), &s->pl_slab));
   return arg(k, i + 2, sizeof(int), &s->pl_plane);
@@ -281,14 +338,13 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
   if (!s->planes)
     return MSOCL_OK;
   /* unfit() kept 3 planes within INT_MAX floats */
-  const struct geometry g =
-      geometry_in(s->lay.grid_nx, s->lay.grid_ny, s->lay.grid_nz);
+  const struct geometry g = geometry_engine(s);
   s->pl_group = g.group;
   s->pl_pitch = (int)g.pitch;
   s->pl_slab = (int)g.slab;
   s->pl_plane = (int)g.plane;
   s->pl_global[0] = g.wide;
-  s->pl_global[1] = (size_t)s->lay.grid_ny;
+  s->pl_global[1] = s->lay.grid_ny > 0 ? (size_t)s->lay.grid_ny : 1;
   s->pl_global[2] = s->lay.grid_nz > 0 ? (size_t)s->lay.grid_nz : 1;
   for (int q = 0; q < PL_COUNT; q++) {
     cl_int e;
