@@ -34,7 +34,8 @@
  * lattice's layers are `slab` floats apart, each padded by two rows, and
  * two padding layers lie at each end; a cloth has one layer (z 0).
  * BUFFER and IMAGE2D: point x of one unpadded row (y and z 0), `pitch`
- * its n points; the row is padded to whole work-groups. MSOCL_PLANES_NX:
+ * its n points; the row is padded to whole work-groups (BUFFER: `slab`
+ * the planes' length, the stride of their copy of the slot table). MSOCL_PLANES_NX:
  * the row's points in a gathering kernel, past which a work-item is
  * padding and stores nothing. */
 #define MSOCL_PLANES_XYZ                                                      \
@@ -152,8 +153,8 @@ static bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, int y, int z,
   int j = x;
   float r = 0.0f, kk = 0.0f, cc = 0.0f;
   (void)y; (void)z; (void)a; (void)slab;
-  if (x < pitch) {
 #if defined(MSOCL_LAYOUT_IMAGE2D)
+  if (x < pitch) { /* a padding work-item reads no texel */
     /* msocl_slot's reads: the entry, and the dashpot in its group's texel */
     const sampler_t smp =
         CLK_NORMALIZED_COORDS_FALSE | CLK_ADDRESS_NONE | CLK_FILTER_NEAREST;
@@ -169,12 +170,33 @@ static bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, int y, int z,
     const int q = s & 3;
     cc = q == 0 ? c4.x : q == 1 ? c4.y : q == 2 ? c4.z : c4.w;
 #endif
+  }
 #else
-    const int at = s * pitch + x;
+  /* BUFFER's table as planes.c copies it for the planes: slot s of point
+   * i at s * slab + i (slab: the plane's length, so a padding work-item
+   * reads a free slot), the rests in the first half of rk's floats and
+   * the stiffnesses in the second, each read as a vector by eight or
+   * sixteen work-items. The test keeps each slot's reads in a block of
+   * their own: straight-line, -O3 pairs two slots' differences into a
+   * <2 x float>, which stops PoCL vectorising across work-items. */
+  if (x < slab) {
+    const int at = s * slab + x;
     j = nbr[at];
-    msocl_values(rk, dmp, at, &r, &kk, &cc);
+#ifdef MSOCL_CLASSES
+    __global const float *v = (__global const float *)dmp + 4 * rk[at];
+    r = v[0];
+    kk = v[1];
+    cc = v[2];
+#else
+    __global const float *v = (__global const float *)rk;
+    r = v[at];
+    kk = v[MSOCL_SLOTS * slab + at];
+#ifdef MSOCL_DAMPING
+    cc = dmp[at];
+#endif
 #endif
   }
+#endif
   *b = j;
   *rest = r;
   *k = kk;

@@ -359,7 +359,11 @@ typedef struct {
    * (docs/PERFORMANCE.md: 17% at 512x512 on PoCL, 3-14% slower at
    * 96x96-128x128, whose table stays in cache). */
   int classes;
-  /* GRID in planes: every integrator on a cloth grid or lattice with the state held as separate x, y, z planes of rows padded
+  /* Planes: every integrator with the state held as separate x, y, z
+   * planes of floats - BUFFER and IMAGE2D (unpadded, 4 P F bytes with
+   * P = n rounded up to 64; BUFFER also copies its slot table with that
+   * stride; not with a spill or over 64 slots), and
+   * GRID: a cloth grid or lattice with the state in rows padded
    * at the edges, which a CPU device runs many points to an instruction
    * (docs/PERFORMANCE.md). Bitwise the same result; more device memory:
    * 4 P F bytes, P = (ceil(nx / w) w + 4) (ny + 4) (nz + 4) padded points
@@ -375,7 +379,8 @@ typedef struct {
    * integrator, either strain limit or none, one device, 3 P < 2^31;
    * MSOCL_ERR_BAD_VALUE before anything is allocated otherwise); 0:
    * never; -1 (default): where it applies on a CPU device, unless P is
-   * over 4 points a point and the planes over 64 MiB. */
+   * over 4 points a point and the planes over 64 MiB (GRID), or the
+   * layout is IMAGE2D. */
   int planes;
 } msocl_sim_options;
 

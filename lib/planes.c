@@ -12,6 +12,8 @@
 #include "planes.h"
 
 #include <limits.h>
+#include <stdlib.h>
+#include <string.h>
 
 _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_k /
                                sizeof(cl_kernel),
@@ -57,14 +59,15 @@ static struct geometry geometry_of(const msocl_model *m)
 
 /* BUFFER and IMAGE2D: the n points in one row of work-groups of 64, no
  * padding around them (no neighbour is read at an offset); `pitch`
- * carries n to the kernels. */
+ * carries n to the kernels, `slab` the stride of the planes' copy of
+ * BUFFER's table. */
 static struct geometry geometry_row(int n)
 {
   struct geometry g;
   g.group = 64;
   g.wide = ((size_t)n + g.group - 1) / g.group * g.group;
   g.pitch = (size_t)n;
-  g.slab = 0;
+  g.slab = g.wide;
   g.plane = g.wide;
   return g;
 }
@@ -158,10 +161,14 @@ int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
 /* The widest BUFFER table the planes kernels unroll. */
 #define MSOCL__PLANES_SLOTS 64
 
-/* Whether AUTO runs BUFFER or IMAGE2D in planes: on CPU devices. */
+/* Whether AUTO runs BUFFER or IMAGE2D in planes: BUFFER on CPU devices,
+ * where its gather vectorises (docs/PERFORMANCE.md); IMAGE2D's texel
+ * reads are float4-typed, which stops PoCL vectorising, so it keeps
+ * float4. */
 static int row_auto(const msocl__engine *s)
 {
-  return s->dev->info.type == MSOCL_DEVICE_CPU;
+  return s->lay.kind == MSOCL_LAYOUT_BUFFER &&
+         s->dev->info.type == MSOCL_DEVICE_CPU;
 }
 
 /* Why BUFFER's or IMAGE2D's connectivity cannot run in planes; NULL: it
@@ -234,7 +241,7 @@ static int fixed_args(msocl__engine *s)
   for (int q = 0; q < 7; q++) {
     k = s->pl_k[gathers[q]];
     cl_uint a;
-    TRY(msocl__layout_set_args(&s->lay, k, &a));
+    TRY(msocl__layout_set_args(&s->pl_lay, k, &a));
     s->pl_conn = a;
     a += q == 0 ? 3 : q < 4 ? 4 : 8;
     TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
@@ -271,7 +278,7 @@ static int fixed_args(msocl__engine *s)
    * commit (p, corrected, v, nx and shape, dt) */
   k = s->pl_k[PL_STRAIN]; /* its connectivity ends at pl_conn too */
   cl_uint c;
-  TRY(msocl__layout_set_args(&s->lay, k, &c));
+  TRY(msocl__layout_set_args(&s->pl_lay, k, &c));
   TRY(arg(k, c + 2, sizeof s->pl_aux, &s->pl_aux));
   TRY(shape(s, k, c + 3, 0));
   TRY(arg(k, c + 6, sizeof(float), &s->o.strain_limit));
@@ -281,7 +288,7 @@ static int fixed_args(msocl__engine *s)
   /* the velocity kind's sweep (connectivity, p, v, v_out, aux, shape,
    * limit, dt, col) */
   k = s->pl_k[PL_STRAIN_V];
-  TRY(msocl__layout_set_args(&s->lay, k, &c));
+  TRY(msocl__layout_set_args(&s->pl_lay, k, &c));
   TRY(arg(k, c + 3, sizeof s->pl_aux, &s->pl_aux));
   TRY(shape(s, k, c + 4, 0));
   TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
@@ -333,6 +340,72 @@ static int collider_table(msocl__engine *s)
   return MSOCL_OK;
 }
 
+/* BUFFER's slot table for the planes kernels: each slot `plane` entries
+ * apart instead of n, the padding work-items' entries free slots (the
+ * point itself, zeros), and (rest, k) pairs split into a plane of rests
+ * and one of stiffnesses: eight or sixteen work-items read a slot with
+ * contiguous vector loads, not gathers. */
+static int padded_table(msocl__engine *s)
+{
+  s->pl_lay = s->lay;
+  if (s->lay.kind != MSOCL_LAYOUT_BUFFER)
+    return MSOCL_OK;
+  const size_t n = (size_t)s->n, S = (size_t)s->lay.slots,
+               P = (size_t)s->pl_plane;
+  /* bytes an entry: nbr; rk (classes: a byte, else rest and k); dashpots
+   * where each slot has its own (values, damped) */
+  const size_t size[3] = {sizeof(cl_int),
+                          s->lay.classes ? 1 : 2 * sizeof(cl_float),
+                          !s->lay.classes && s->damped ? sizeof(cl_float)
+                                                       : 0};
+  cl_mem from[3] = {s->lay.con, s->lay.rk, s->lay.damp};
+  int rc = MSOCL_OK;
+  for (int q = 0; q < 3 && rc == MSOCL_OK; q++) {
+    if (!size[q])
+      continue;
+    unsigned char *in = malloc(S * n * size[q]),
+                  *out = calloc(S * P, size[q]);
+    if (!in || !out)
+      rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "planes' slot table");
+    cl_int e = CL_SUCCESS;
+    if (rc == MSOCL_OK)
+      e = clEnqueueReadBuffer(s->dev->queue, from[q], CL_TRUE, 0,
+                              S * n * size[q], in, 0, NULL, NULL);
+    if (rc == MSOCL_OK && e != CL_SUCCESS)
+      rc = msocl__fail(e, "reading the slot table: %s", msocl_err_name(e));
+    for (size_t t = 0; rc == MSOCL_OK && t < S; t++) {
+      if (q == 1 && !s->lay.classes) /* rests, then stiffnesses */
+        for (size_t i = 0; i < n; i++) {
+          memcpy(out + (t * P + i) * sizeof(float),
+                 in + (t * n + i) * size[q], sizeof(float));
+          memcpy(out + ((S + t) * P + i) * sizeof(float),
+                 in + (t * n + i) * size[q] + sizeof(float), sizeof(float));
+        }
+      else
+        memcpy(out + t * P * size[q], in + t * n * size[q], n * size[q]);
+      for (size_t i = n; q == 0 && i < P; i++) /* free: the point itself */
+        ((cl_int *)out)[t * P + i] = (cl_int)i;
+    }
+    if (rc == MSOCL_OK) {
+      s->pl_table[q] = clCreateBuffer(
+          s->dev->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+          S * P * size[q], out, &e);
+      if (e != CL_SUCCESS)
+        rc = msocl__fail(e, "clCreateBuffer(planes' slot table): %s",
+                         msocl_err_name(e));
+    }
+    free(in);
+    free(out);
+  }
+  if (rc != MSOCL_OK)
+    return rc;
+  s->pl_lay.con = s->pl_table[0];
+  s->pl_lay.rk = s->pl_table[1];
+  if (s->pl_table[2])
+    s->pl_lay.damp = s->pl_table[2];
+  return MSOCL_OK;
+}
+
 int msocl__planes_create(msocl__engine *s, cl_program prog)
 {
   if (!s->planes)
@@ -381,6 +454,7 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
                                   0, bytes, 0, NULL, NULL));
   }
   TRY(collider_table(s));
+  TRY(padded_table(s));
   return fixed_args(s);
 }
 
@@ -599,4 +673,7 @@ void msocl__planes_release(msocl__engine *s)
       clReleaseMemObject(m[q]);
   if (s->pl_col)
     clReleaseMemObject(s->pl_col);
+  for (int q = 0; q < 3; q++)
+    if (s->pl_table[q])
+      clReleaseMemObject(s->pl_table[q]);
 }

@@ -21,7 +21,7 @@ int msocl__pl_implicit_args(msocl__engine *s)
   /* rhs: connectivity, p, v, x, r, d, dots, aux, shape, gravity, viscous,
    * dt */
   cl_kernel k = s->pl_k[PL_IE_RHS];
-  TRY(msocl__layout_set_args(&s->lay, k, &c));
+  TRY(msocl__layout_set_args(&s->pl_lay, k, &c));
   const cl_mem rhs[4] = {x, r, d, dots};
   for (cl_uint q = 0; q < 4; q++)
     TRY(msocl__pl_arg(k, c + 2 + q, sizeof rhs[q], &rhs[q]));
@@ -32,7 +32,7 @@ int msocl__pl_implicit_args(msocl__engine *s)
   TRY(msocl__pl_arg(k, c + 12, sizeof(float), &dt));
   /* apply: connectivity, p, d, ap, dots, aux, shape, viscous, dt */
   k = s->pl_k[PL_IE_APPLY];
-  TRY(msocl__layout_set_args(&s->lay, k, &c));
+  TRY(msocl__layout_set_args(&s->pl_lay, k, &c));
   const cl_mem apply[3] = {d, ap, dots};
   for (cl_uint q = 0; q < 3; q++)
     TRY(msocl__pl_arg(k, c + 1 + q, sizeof apply[q], &apply[q]));

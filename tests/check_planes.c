@@ -880,6 +880,28 @@ START_TEST(spill_refused)
 }
 END_TEST
 
+/* AUTO runs BUFFER in planes on a CPU device (its gather vectorises),
+ * IMAGE2D in float4 (its texel reads do not). */
+START_TEST(auto_meshes)
+{
+  msocl_model *m = obj_sheet(12, 10);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  const msocl_layout kinds[3] = {MSOCL_LAYOUT_AUTO, MSOCL_LAYOUT_BUFFER,
+                                 MSOCL_LAYOUT_IMAGE2D};
+  for (int q = 0; q < 3; q++) {
+    o.layout = kinds[q];
+    msocl_sim *s = NULL;
+    int on = -1;
+    ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
+    ck_assert_int_eq(on, q < 2);
+    msocl_sim_destroy(s);
+  }
+  msocl_model_destroy(m);
+}
+END_TEST
+
 int main(void)
 {
   scene_require_device("check_planes");
@@ -904,6 +926,7 @@ int main(void)
                       (int)(sizeof meshes / sizeof meshes[0]));
   tcase_add_loop_test(tc, mesh_writes_between_calls, 0, 2);
   tcase_add_test(tc, spill_refused);
+  tcase_add_test(tc, auto_meshes);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }
