@@ -221,41 +221,133 @@ static bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, int y, int z,
   const bool there = msocl_planes_neighbor(MSOCL_CONN_ARGS, s, x, y, z, a,   \
                                            pitch, slab, &b, &rest, &kk, &cc)
 
-/* msocl_force at the point at a = (x, y, z), viscous damping included. */
-static void msocl_planes_force(MSOCL_CONN, __global const float *p,
+#ifdef MSOCL_SPILL
+/* BUFFER's springs past the table, as planes.c copies them after it:
+ * entry o's other end and values. */
+static void msocl_planes_spill_slot(MSOCL_CONN, int o, int slab, int *b,
+                                    float *rest, float *k, float *c)
+{
+  const int at = MSOCL_SLOTS * slab + o;
+  *b = nbr[at];
+#ifdef MSOCL_CLASSES
+  __global const float *v = (__global const float *)dmp + 4 * rk[at];
+  *rest = v[0];
+  *k = v[1];
+  *c = v[2];
+#else
+  __global const float *v =
+      (__global const float *)rk + 2 * (MSOCL_SLOTS * slab + o);
+  *rest = v[0];
+  *k = v[1];
+#ifdef MSOCL_DAMPING
+  *c = dmp[at];
+#else
+  *c = 0.0f;
+#endif
+#endif
+}
+
+/* A gathering kernel runs twice: over the rows (pass 0), storing nothing
+ * for a point with springs past the table, and over just those points
+ * (pass 1, the kernel's _spill twin), their springs past the table
+ * summed after the table's one at a time, as msocl_force and msocl_slot
+ * do. A loop of run-time length in the first would stop PoCL
+ * vectorising it; `pass` is a constant in each, so the loop below
+ * folds away in the first. */
+#define MSOCL_PLANES_SPILLS                                                   \
+  for (int o = pass ? spill[x] : 0, o_end = pass ? spill[x + 1] : 0;        \
+       o < o_end; o++)
+#define MSOCL_PLANES_SPILL_NEIGHBOR(o)                                        \
+  int b;                                                                     \
+  float rest, kk, cc;                                                        \
+  const bool there = true;                                                   \
+  msocl_planes_spill_slot(MSOCL_CONN_ARGS, o, slab, &b, &rest, &kk, &cc)
+#define MSOCL_PLANES_LIVE                                                     \
+  (pass || (x < MSOCL_PLANES_NX && spill[x + 1] == spill[x]))
+#define MSOCL_PLANES_SPILL_TWIN(name, params, args)                           \
+  __kernel void name##_spill(MSOCL_PLANES_UNPAREN params,                    \
+                             __global const int *spilled)                    \
+  {                                                                          \
+    name##_at(1, spilled[get_global_id(0)], 0, 0, MSOCL_PLANES_UNPAREN args); \
+  }
+#else
+/* whether the work-item's point stores its result */
+#define MSOCL_PLANES_LIVE (x < MSOCL_PLANES_NX)
+#define MSOCL_PLANES_SPILL_TWIN(name, params, args)
+#endif
+
+/* A gathering kernel `name` with parameters `params` (their names:
+ * `args`): its body, name##_at, is written once for both passes and
+ * follows the macro. */
+#define MSOCL_PLANES_UNPAREN(...) __VA_ARGS__
+#define MSOCL_PLANES_GATHER(name, params, args)                               \
+  static void name##_at(const int pass, const int x, const int y,            \
+                        const int z, MSOCL_PLANES_UNPAREN params);           \
+  __kernel void name(MSOCL_PLANES_UNPAREN params)                            \
+  {                                                                          \
+    MSOCL_PLANES_XYZ;                                                        \
+    name##_at(0, x, y, z, MSOCL_PLANES_UNPAREN args);                        \
+  }                                                                          \
+  MSOCL_PLANES_SPILL_TWIN(name, params, args)                                \
+  static void name##_at(const int pass, const int x, const int y,            \
+                        const int z, MSOCL_PLANES_UNPAREN params)
+
+/* One slot's part of msocl_force on the point whose position and
+ * velocity are q[0..5]: the spring's and its dashpot's pull from the
+ * neighbour at b, added to f[0..2] where the spring exists. */
+static void msocl_planes_pull(__global const float *p,
+                              __global const float *v, int plane,
+                              const float *q, int b, bool there, float rest,
+                              float kk, float cc, float *f)
+{
+  const float dx = p[b] - q[0], dy = p[plane + b] - q[1],
+              dz = p[2 * plane + b] - q[2];
+  const float len2 = dx * dx + dy * dy + dz * dz;
+  const float len = MSOCL_SQRT(len2);
+  const float t = kk * MSOCL_DIV(len - rest, len);
+  const bool on = there && len > 0.0f;
+  f[0] += on ? t * dx : 0.0f;
+  f[1] += on ? t * dy : 0.0f;
+  f[2] += on ? t * dz : 0.0f;
+#ifdef MSOCL_DAMPING
+  const float wx = v[b] - q[3], wy = v[plane + b] - q[4],
+              wz = v[2 * plane + b] - q[5];
+  const float u = cc * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
+  const bool onh = there && len2 > 0.0f;
+  f[0] += onh ? u * dx : 0.0f;
+  f[1] += onh ? u * dy : 0.0f;
+  f[2] += onh ? u * dz : 0.0f;
+#endif
+  (void)v; (void)cc; /* read by dashpots */
+}
+
+/* msocl_force at the point at a = (x, y, z), viscous damping included
+ * (pass: MSOCL_PLANES_SPILLS). */
+static void msocl_planes_force(MSOCL_CONN, const int pass,
+                               __global const float *p,
                                __global const float *v, int pitch, int slab,
                                int plane, float viscous, int x, int y, int z,
                                int a, float *fx_out, float *fy_out,
                                float *fz_out)
 {
-  __global const float *py_ = p + plane, *pz_ = py_ + plane;
-  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
-  const float px = p[a], py = py_[a], pz = pz_[a];
-  const float vx = v[a], vy = vy_[a], vz = vz_[a];
-  float fx = 0.0f, fy = 0.0f, fz = 0.0f;
+  const float vx = v[a], vy = v[plane + a], vz = v[2 * plane + a];
+  const float q[6] = {p[a], p[plane + a], p[2 * plane + a], vx, vy, vz};
+  float f[3] = {0.0f, 0.0f, 0.0f};
 #pragma unroll
   for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
     if (MSOCL_PLANES_SKIP(s))
       continue;
     MSOCL_PLANES_NEIGHBOR(s);
-    const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
-    const float len2 = dx * dx + dy * dy + dz * dz;
-    const float len = MSOCL_SQRT(len2);
-    const float t = kk * MSOCL_DIV(len - rest, len);
-    const bool on = there && len > 0.0f;
-    fx += on ? t * dx : 0.0f;
-    fy += on ? t * dy : 0.0f;
-    fz += on ? t * dz : 0.0f;
-#ifdef MSOCL_DAMPING
-    const float wx = v[b] - vx, wy = vy_[b] - vy, wz = vz_[b] - vz;
-    const float u = cc * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
-    const bool onh = there && len2 > 0.0f;
-    fx += onh ? u * dx : 0.0f;
-    fy += onh ? u * dy : 0.0f;
-    fz += onh ? u * dz : 0.0f;
-#endif
-    (void)cc; /* read by dashpots */
+    msocl_planes_pull(p, v, plane, q, b, there, rest, kk, cc, f);
   }
+#ifdef MSOCL_SPILL
+  MSOCL_PLANES_SPILLS {
+    MSOCL_PLANES_SPILL_NEIGHBOR(o);
+    msocl_planes_pull(p, v, plane, q, b, there, rest, kk, cc, f);
+  }
+#endif
+  (void)pass;
+  float fx = f[0], fy = f[1], fz = f[2];
 #ifdef MSOCL_VISCOUS
   fx = fx - viscous * vx;
   fy = fy - viscous * vy;
@@ -312,7 +404,8 @@ static void msocl_planes_air(float air, float *vx, float *vy, float *vz)
 
 /* The velocity pass for the point at a = (x, y, z): its new velocity in
  * *vx.., and whether it is pinned. */
-static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
+static void msocl_planes_kick(MSOCL_CONN, const int pass,
+                              __global const float *p,
                               __global const float *v,
                               __global const float *aux, int pitch, int slab,
                               int plane, float4 gravity, float viscous,
@@ -321,8 +414,8 @@ static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
                               float *vy_out, float *vz_out, bool *pinned)
 {
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
-                     y, z, a, &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, pass, p, v, pitch, slab, plane,
+                     viscous, x, y, z, a, &fx, &fy, &fz);
   const float im = aux[a];
   float vx = v[a] + dt * (fx * im + gravity.x);
   float vy = v[plane + a] + dt * (fy * im + gravity.y);
@@ -342,42 +435,46 @@ static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
   __global const float *aux, int pitch, int slab, int plane,                 \
       float4 gravity, float viscous, float air, float dt,                    \
       __constant float4 *col
+#define MSOCL_PLANES_ARG_NAMES                                                \
+  aux, pitch, slab, plane, gravity, viscous, air, dt, col
 
 /* Both kernels' point (x, y, z), at a, and its new velocity; then the
  * store of that velocity. */
 #define MSOCL_PLANES_KICK                                                     \
-  MSOCL_PLANES_XYZ;                                                          \
   const int a = MSOCL_PLANES_AT(x, y, z);                                    \
   float vx, vy, vz;                                                          \
   bool pinned;                                                               \
-  msocl_planes_kick(MSOCL_CONN_ARGS, p, v, aux, pitch, slab, plane, gravity, \
-                    viscous, air, dt, col, x, y, z, a, &vx, &vy, &vz,        \
-                    &pinned)
+  msocl_planes_kick(MSOCL_CONN_ARGS, pass, p, v, aux, pitch, slab, plane,    \
+                    gravity, viscous, air, dt, col, x, y, z, a, &vx, &vy,    \
+                    &vz, &pinned)
 #define MSOCL_PLANES_STORE_V                                                  \
   v_out[a] = vx;                                                             \
   v_out[plane + a] = vy;                                                     \
   v_out[2 * plane + a] = vz
 
-__kernel void msocl_planes_velocity(MSOCL_CONN, __global const float *p,
-                                    __global const float *v,
-                                    __global float *v_out,
-                                    MSOCL_PLANES_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_velocity,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *v_out,
+                     MSOCL_PLANES_ARGS),
+                    (MSOCL_CONN_ARGS, p, v, v_out, MSOCL_PLANES_ARG_NAMES))
 {
   MSOCL_PLANES_KICK;
-  if (x < MSOCL_PLANES_NX) {
+  if (MSOCL_PLANES_LIVE) {
     MSOCL_PLANES_STORE_V;
   }
 }
 
 /* Both passes in one kernel (options.fused), as msocl_fused: the point
  * moves by its new velocity at once; others read only the old p. */
-__kernel void msocl_planes_fused(MSOCL_CONN, __global const float *p,
-                                 __global const float *v,
-                                 __global float *v_out, __global float *p_out,
-                                 MSOCL_PLANES_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_fused,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *v_out,
+                     __global float *p_out, MSOCL_PLANES_ARGS),
+                    (MSOCL_CONN_ARGS, p, v, v_out, p_out,
+                     MSOCL_PLANES_ARG_NAMES))
 {
   MSOCL_PLANES_KICK;
-  if (x < MSOCL_PLANES_NX) {
+  if (MSOCL_PLANES_LIVE) {
     __global const float *py_ = p + plane, *pz_ = py_ + plane;
     __global float *qy = p_out + plane, *qz = qy + plane;
     const float cx = p[a], cy = py_[a], cz = pz_[a];
@@ -441,16 +538,17 @@ __kernel void msocl_planes_drift(__global const float *p, __global float *v,
 }
 
 /* Kick: a' = a(p', v+), v' = v+ + dt/2 a'; a' kept for the next drift. */
-__kernel void msocl_planes_vkick(MSOCL_CONN, __global const float *p,
-                                 __global const float *v,
-                                 __global float *v_out,
-                                 __global float *acc_out, MSOCL_PLANES_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_vkick,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *v_out,
+                     __global float *acc_out, MSOCL_PLANES_ARGS),
+                    (MSOCL_CONN_ARGS, p, v, v_out, acc_out,
+                     MSOCL_PLANES_ARG_NAMES))
 {
-  MSOCL_PLANES_XYZ;
   const int a = MSOCL_PLANES_AT(x, y, z);
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
-                     y, z, a, &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, pass, p, v, pitch, slab, plane,
+                     viscous, x, y, z, a, &fx, &fy, &fz);
   const float im = aux[a], h = 0.5f * dt;
   const float ax = fx * im + gravity.x, ay = fy * im + gravity.y,
               az = fz * im + gravity.z;
@@ -459,7 +557,7 @@ __kernel void msocl_planes_vkick(MSOCL_CONN, __global const float *p,
   msocl_planes_air(air, &vx, &vy, &vz);
   (void)col;
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
-  if (x < MSOCL_PLANES_NX) {
+  if (MSOCL_PLANES_LIVE) {
     v_out[a] = pinned ? 0.0f : vx;
     v_out[plane + a] = pinned ? 0.0f : vy;
     v_out[2 * plane + a] = pinned ? 0.0f : vz;
@@ -503,16 +601,17 @@ static void msocl_planes_project(float *px, float *py, float *pz, float *vx,
 /* Forward Euler in planes, as msocl_euler: p' = p + dt v, v' = v + dt
  * a(p, v), times air, projected out of the colliders; pinned points
  * stay. */
-__kernel void msocl_planes_euler(MSOCL_CONN, __global const float *p,
-                                 __global const float *v,
-                                 __global float *v_out, __global float *p_out,
-                                 MSOCL_PLANES_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_euler,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *v_out,
+                     __global float *p_out, MSOCL_PLANES_ARGS),
+                    (MSOCL_CONN_ARGS, p, v, v_out, p_out,
+                     MSOCL_PLANES_ARG_NAMES))
 {
-  MSOCL_PLANES_XYZ;
   const int a = MSOCL_PLANES_AT(x, y, z);
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
-                     y, z, a, &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, pass, p, v, pitch, slab, plane,
+                     viscous, x, y, z, a, &fx, &fy, &fz);
   const float im = aux[a];
   const int ay = plane + a, az = 2 * plane + a;
   float px = p[a] + dt * v[a], py = p[ay] + dt * v[ay],
@@ -523,7 +622,7 @@ __kernel void msocl_planes_euler(MSOCL_CONN, __global const float *p,
   msocl_planes_air(air, &vx, &vy, &vz);
   msocl_planes_project(&px, &py, &pz, &vx, &vy, &vz, col);
   const bool pinned = MSOCL_PLANES_PINNED(aux[ay]);
-  if (x < MSOCL_PLANES_NX) {
+  if (MSOCL_PLANES_LIVE) {
     p_out[a] = pinned ? p[a] : px;
     p_out[ay] = pinned ? p[ay] : py;
     p_out[az] = pinned ? p[az] : pz;
@@ -535,7 +634,9 @@ __kernel void msocl_planes_euler(MSOCL_CONN, __global const float *p,
 
 /* One RK4 stage in planes, as msocl_rk4_stage; mode a constant in each of
  * the three kernels below, so its branches fold away. */
-static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
+static void msocl_planes_rk4(MSOCL_CONN, const int pass, const int x,
+                             const int y, const int z,
+                             __global const float *p0,
                              __global const float *v0,
                              __global const float *sp,
                              __global const float *sv, __global float *sum_p,
@@ -545,11 +646,10 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
                              float viscous, float air, float dt,
                              __constant float4 *col, float c, const int mode)
 {
-  MSOCL_PLANES_XYZ;
   const int a = MSOCL_PLANES_AT(x, y, z);
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, viscous, x,
-                     y, z, a, &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, pass, sp, sv, pitch, slab, plane,
+                     viscous, x, y, z, a, &fx, &fy, &fz);
   const float im = aux[a];
   const float kv[3] = {fx * im + gravity.x, fy * im + gravity.y,
                        fz * im + gravity.z};
@@ -573,7 +673,7 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
       const float kp = sv[q * plane + a];
       const float sp_ = mode == 0 ? kp : sum_p[q * plane + a] + 2.0f * kp;
       const float sv_ = mode == 0 ? kv[q] : sum_v[q * plane + a] + 2.0f * kv[q];
-      if (x < MSOCL_PLANES_NX) {
+      if (MSOCL_PLANES_LIVE) {
         sum_p[q * plane + a] = sp_;
         sum_v[q * plane + a] = sv_;
       }
@@ -583,7 +683,7 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
   }
   (void)air;
   (void)col;
-  if (x < MSOCL_PLANES_NX) {
+  if (MSOCL_PLANES_LIVE) {
 #pragma unroll
     for (int q = 0; q < 3; q++) {
       np[q * plane + a] = pinned ? p0[q * plane + a] : p[q];
@@ -593,26 +693,32 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
 }
 
 #define MSOCL_PLANES_RK4_ARGS                                                 \
-  MSOCL_CONN, __global const float *p0, __global const float *v0,            \
-      __global const float *sp, __global const float *sv,                    \
-      __global float *sum_p, __global float *sum_v, __global float *np,      \
-      __global float *nv, MSOCL_PLANES_ARGS, float c
+  (MSOCL_CONN, __global const float *p0, __global const float *v0,           \
+   __global const float *sp, __global const float *sv,                       \
+   __global float *sum_p, __global float *sum_v, __global float *np,         \
+   __global float *nv, MSOCL_PLANES_ARGS, float c)
+#define MSOCL_PLANES_RK4_NAMES                                                \
+  (MSOCL_CONN_ARGS, p0, v0, sp, sv, sum_p, sum_v, np, nv,                    \
+   MSOCL_PLANES_ARG_NAMES, c)
 #define MSOCL_PLANES_RK4_CALL(mode)                                           \
-  msocl_planes_rk4(MSOCL_CONN_ARGS, p0, v0, sp, sv, sum_p, sum_v, np, nv,    \
-                   aux, pitch, slab, plane, gravity, viscous, air, dt, col, \
-                   c, mode)
+  msocl_planes_rk4(MSOCL_CONN_ARGS, pass, x, y, z, p0, v0, sp, sv, sum_p,    \
+                   sum_v, np, nv, aux, pitch, slab, plane, gravity, viscous, \
+                   air, dt, col, c, mode)
 
-__kernel void msocl_planes_rk4_first(MSOCL_PLANES_RK4_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_rk4_first, MSOCL_PLANES_RK4_ARGS,
+                    MSOCL_PLANES_RK4_NAMES)
 {
   MSOCL_PLANES_RK4_CALL(0);
 }
 
-__kernel void msocl_planes_rk4_middle(MSOCL_PLANES_RK4_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_rk4_middle, MSOCL_PLANES_RK4_ARGS,
+                    MSOCL_PLANES_RK4_NAMES)
 {
   MSOCL_PLANES_RK4_CALL(1);
 }
 
-__kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_rk4_last, MSOCL_PLANES_RK4_ARGS,
+                    MSOCL_PLANES_RK4_NAMES)
 {
   MSOCL_PLANES_RK4_CALL(2);
 }
@@ -623,41 +729,62 @@ __kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
  * neighbour's spring all of it); pinned points stay. (In
  * float4 a missing neighbour is the point itself, whose zero length asks
  * nothing; here `there` masks it.) */
-__kernel void msocl_planes_strain(MSOCL_CONN, __global const float *p,
-                                  __global float *p_out,
-                                  __global const float *aux, int pitch,
-                                  int slab, int plane, float limit)
+/* One slot's ask in Provot's sweep on the point at q[0..2], added to
+ * d[0..3] (the move and the weight) where the spring is over its limit. */
+static void msocl_planes_provot(__global const float *p,
+                                __global const float *aux, int plane,
+                                float limit, const float *q, int b,
+                                bool there, float rest, float *d)
 {
-  MSOCL_PLANES_XYZ;
+  const float dx = p[b] - q[0], dy = p[plane + b] - q[1],
+              dz = p[2 * plane + b] - q[2];
+  const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+  const float over = len - (1.0f + limit) * rest;
+  const float ask = (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) *
+                    over;
+  const float t = ask * MSOCL_DIV(ask, len);
+  const bool on = there && over > 0.0f;
+  d[0] += on ? t * dx : 0.0f;
+  d[1] += on ? t * dy : 0.0f;
+  d[2] += on ? t * dz : 0.0f;
+  d[3] += on ? ask : 0.0f;
+}
+
+MSOCL_PLANES_GATHER(msocl_planes_strain,
+                    (MSOCL_CONN, __global const float *p,
+                     __global float *p_out, __global const float *aux,
+                     int pitch, int slab, int plane, float limit),
+                    (MSOCL_CONN_ARGS, p, p_out, aux, pitch, slab, plane,
+                     limit))
+{
   const int a = MSOCL_PLANES_AT(x, y, z);
-  __global const float *py_ = p + plane, *pz_ = py_ + plane;
-  const float px = p[a], py = py_[a], pz = pz_[a];
-  float dpx = 0.0f, dpy = 0.0f, dpz = 0.0f, weight = 0.0f;
+  const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
+  const float q[3] = {px, py, pz};
+  float d[4] = {0.0f, 0.0f, 0.0f, 0.0f};
 #pragma unroll
   for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
     if (MSOCL_PLANES_SKIP(s))
       continue;
     MSOCL_PLANES_NEIGHBOR(s);
     (void)kk; (void)cc;
-    const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
-    const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
-    const float over = len - (1.0f + limit) * rest;
-    const float ask = (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) *
-                      over;
-    const float t = ask * MSOCL_DIV(ask, len);
-    const bool on = there && over > 0.0f;
-    dpx += on ? t * dx : 0.0f;
-    dpy += on ? t * dy : 0.0f;
-    dpz += on ? t * dz : 0.0f;
-    weight += on ? ask : 0.0f;
+    msocl_planes_provot(p, aux, plane, limit, q, b, there, rest, d);
   }
+#ifdef MSOCL_SPILL
+  MSOCL_PLANES_SPILLS {
+    MSOCL_PLANES_SPILL_NEIGHBOR(o);
+    (void)kk; (void)cc;
+    msocl_planes_provot(p, aux, plane, limit, q, b, there, rest, d);
+  }
+#endif
+  float dpx = d[0], dpy = d[1], dpz = d[2];
+  const float weight = d[3];
   if (weight > 0.0f) {
     dpx = MSOCL_DIV(dpx, weight);
     dpy = MSOCL_DIV(dpy, weight);
     dpz = MSOCL_DIV(dpz, weight);
   }
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
-  if (x < MSOCL_PLANES_NX) {
+  if (MSOCL_PLANES_LIVE) {
     p_out[a] = pinned ? px : px + dpx;
     p_out[plane + a] = pinned ? py : py + dpy;
     p_out[2 * plane + a] = pinned ? pz : pz + dpz;
@@ -692,42 +819,65 @@ __kernel void msocl_planes_commit(__global float *p,
  * (the relative speed along a spring beyond what brings it to the limit
  * within the step: half of it, a pinned neighbour's spring all of it),
  * then the collision response again without friction. */
-__kernel void msocl_planes_strain_v(MSOCL_CONN, __global const float *p,
-                                    __global const float *v,
-                                    __global float *v_out,
-                                    __global const float *aux, int pitch,
-                                    int slab, int plane, float limit,
-                                    float dt, __constant float4 *col)
+/* One slot's ask in the velocity kind's sweep on the point whose position
+ * and velocity are q[0..5], added to d[0..3] (the change and the weight)
+ * where the spring would pass its limit. */
+static void msocl_planes_vassilev(__global const float *p,
+                                  __global const float *v,
+                                  __global const float *aux, int plane,
+                                  float limit, float dt, const float *q,
+                                  int b, bool there, float rest, float *d)
 {
-  MSOCL_PLANES_XYZ;
+  const float dx = p[b] - q[0], dy = p[plane + b] - q[1],
+              dz = p[2 * plane + b] - q[2];
+  const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+  const float allowed = MSOCL_DIV((1.0f + limit) * rest - len, dt);
+  const float excess =
+      MSOCL_DIV(MSOCL_DOT3(v[b] - q[3], v[plane + b] - q[4],
+                           v[2 * plane + b] - q[5], dx, dy, dz),
+                len) -
+      allowed;
+  const float ask =
+      (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) * excess;
+  const float t = ask * MSOCL_DIV(ask, len);
+  const bool on = there && len > 0.0f && excess > 0.0f;
+  d[0] += on ? t * dx : 0.0f;
+  d[1] += on ? t * dy : 0.0f;
+  d[2] += on ? t * dz : 0.0f;
+  d[3] += on ? ask : 0.0f;
+}
+
+MSOCL_PLANES_GATHER(msocl_planes_strain_v,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *v_out,
+                     __global const float *aux, int pitch, int slab,
+                     int plane, float limit, float dt,
+                     __constant float4 *col),
+                    (MSOCL_CONN_ARGS, p, v, v_out, aux, pitch, slab, plane,
+                     limit, dt, col))
+{
   const int a = MSOCL_PLANES_AT(x, y, z);
-  __global const float *py_ = p + plane, *pz_ = py_ + plane;
-  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
-  const float px = p[a], py = py_[a], pz = pz_[a];
-  const float vx = v[a], vy = vy_[a], vz = vz_[a];
-  float dvx = 0.0f, dvy = 0.0f, dvz = 0.0f, weight = 0.0f;
+  const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
+  const float vx = v[a], vy = v[plane + a], vz = v[2 * plane + a];
+  const float q[6] = {px, py, pz, vx, vy, vz};
+  float d[4] = {0.0f, 0.0f, 0.0f, 0.0f};
 #pragma unroll
   for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
     if (MSOCL_PLANES_SKIP(s))
       continue;
     MSOCL_PLANES_NEIGHBOR(s);
     (void)kk; (void)cc;
-    const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
-    const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
-    const float allowed = MSOCL_DIV((1.0f + limit) * rest - len, dt);
-    const float excess =
-        MSOCL_DIV(MSOCL_DOT3(v[b] - vx, vy_[b] - vy, vz_[b] - vz, dx, dy, dz),
-                  len) -
-        allowed;
-    const float ask =
-        (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) * excess;
-    const float t = ask * MSOCL_DIV(ask, len);
-    const bool on = there && len > 0.0f && excess > 0.0f;
-    dvx += on ? t * dx : 0.0f;
-    dvy += on ? t * dy : 0.0f;
-    dvz += on ? t * dz : 0.0f;
-    weight += on ? ask : 0.0f;
+    msocl_planes_vassilev(p, v, aux, plane, limit, dt, q, b, there, rest, d);
   }
+#ifdef MSOCL_SPILL
+  MSOCL_PLANES_SPILLS {
+    MSOCL_PLANES_SPILL_NEIGHBOR(o);
+    (void)kk; (void)cc;
+    msocl_planes_vassilev(p, v, aux, plane, limit, dt, q, b, there, rest, d);
+  }
+#endif
+  float dvx = d[0], dvy = d[1], dvz = d[2];
+  const float weight = d[3];
   if (weight > 0.0f) {
     dvx = MSOCL_DIV(dvx, weight);
     dvy = MSOCL_DIV(dvy, weight);
@@ -736,7 +886,7 @@ __kernel void msocl_planes_strain_v(MSOCL_CONN, __global const float *p,
   float wx = vx + dvx, wy = vy + dvy, wz = vz + dvz;
   msocl_planes_collide(px, py, pz, &wx, &wy, &wz, dt, col, 0.0f);
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
-  if (x < MSOCL_PLANES_NX) {
+  if (MSOCL_PLANES_LIVE) {
     v_out[a] = pinned ? 0.0f : wx;
     v_out[plane + a] = pinned ? 0.0f : wy;
     v_out[2 * plane + a] = pinned ? 0.0f : wz;

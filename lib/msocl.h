@@ -362,7 +362,7 @@ typedef struct {
   /* Planes: every integrator with the state held as separate x, y, z
    * planes of floats - BUFFER and IMAGE2D (unpadded, 4 P F bytes with
    * P = n rounded up to 64; BUFFER also copies its slot table with that
-   * stride; not with a spill or over 64 slots), and
+   * stride, and takes tables of at most 64 slots), and
    * GRID: a cloth grid or lattice with the state in rows padded
    * at the edges, which a CPU device runs many points to an instruction
    * (docs/PERFORMANCE.md). Bitwise the same result; more device memory:

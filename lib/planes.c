@@ -12,12 +12,16 @@
 #include "planes.h"
 
 #include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_k /
                                sizeof(cl_kernel),
                "msocl__engine.pl_k holds every planes kernel");
+_Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_ks /
+                               sizeof(cl_kernel),
+               "msocl__engine.pl_ks holds every twin");
 
 static const char *const names[PL_COUNT] = {
     "msocl_planes_velocity", "msocl_planes_position", "msocl_planes_pack",
@@ -28,6 +32,16 @@ static const char *const names[PL_COUNT] = {
     "msocl_planes_strain_v", "msocl_planes_ie_rhs", "msocl_planes_ie_apply",
     "msocl_planes_cg_step", "msocl_planes_cg_direction",
     "msocl_planes_ie_finish", "msocl_sum_points", "msocl_planes_euler"};
+
+/* Whether planes kernel q gathers over its springs (and so has a _spill
+ * twin in a program built with a spill). */
+static int gathers(int q)
+{
+  return q == PL_VELOCITY || q == PL_FUSED || q == PL_EULER || q == PL_KICK ||
+         q == PL_RK4 || q == PL_RK4_MID || q == PL_RK4_LAST ||
+         q == PL_STRAIN || q == PL_STRAIN_V || q == PL_IE_RHS ||
+         q == PL_IE_APPLY;
+}
 
 /* The planes' shape for model m's grid: rows padded to whole work-groups
  * - of 64 points, or of 32, 16 or 8 for a narrow grid (a lattice's rows
@@ -179,11 +193,7 @@ static const char *unfit_row(const msocl__engine *s)
     return "runs a whole model on one device (not a split)";
   if (3 * geometry_row(s->n).plane > (size_t)INT_MAX)
     return "index at most 2^31 floats (too many points)";
-  /* the spill's per-point loop would stop PoCL's vectorizer, and a wide
-   * table's unrolled slots bloat the kernels */
-  if (s->lay.spill)
-    return "hold a point's springs in BUFFER's table only, not a spill "
-           "list (a point has more springs than buffer_slots)";
+  /* a wide table's unrolled slots would bloat the kernels */
   if (s->lay.slots > MSOCL__PLANES_SLOTS)
     return "take BUFFER tables of at most 64 slots";
   return NULL;
@@ -206,14 +216,35 @@ int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
   return MSOCL_OK;
 }
 
-int msocl__pl_arg(cl_kernel k, cl_uint i, size_t size, const void *v)
+/* The _spill twin of planes kernel k, or NULL. */
+static cl_kernel twin(const msocl__engine *s, cl_kernel k)
+{
+  for (int q = 0; q < PL_COUNT; q++)
+    if (s->pl_k[q] == k)
+      return s->pl_ks[q];
+  return NULL;
+}
+
+int msocl__pl_arg(msocl__engine *s, cl_kernel k, cl_uint i, size_t size,
+                  const void *v)
 {
   MSOCL__CL(clSetKernelArg(k, i, size, v));
+  cl_kernel t = twin(s, k);
+  if (t)
+    MSOCL__CL(clSetKernelArg(t, i, size, v));
   return MSOCL_OK;
 }
 
+int msocl__pl_conn(msocl__engine *s, cl_kernel k, cl_uint *next)
+{
+  cl_kernel t = twin(s, k);
+  if (t)
+    MSOCL__TRY(msocl__layout_set_args(&s->pl_lay, t, next));
+  return msocl__layout_set_args(&s->pl_lay, k, next);
+}
+
 /* planes.h's helpers, by the short names this file has always used */
-#define arg msocl__pl_arg
+#define arg(k, ...) msocl__pl_arg(s, k, __VA_ARGS__)
 #define shape msocl__pl_shape
 #define launch msocl__pl_launch
 #define TRY MSOCL__TRY
@@ -241,7 +272,7 @@ static int fixed_args(msocl__engine *s)
   for (int q = 0; q < 7; q++) {
     k = s->pl_k[gathers[q]];
     cl_uint a;
-    TRY(msocl__layout_set_args(&s->pl_lay, k, &a));
+    TRY(msocl__pl_conn(s, k, &a));
     s->pl_conn = a;
     a += q == 0 ? 3 : q < 4 ? 4 : 8;
     TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
@@ -278,7 +309,7 @@ static int fixed_args(msocl__engine *s)
    * commit (p, corrected, v, nx and shape, dt) */
   k = s->pl_k[PL_STRAIN]; /* its connectivity ends at pl_conn too */
   cl_uint c;
-  TRY(msocl__layout_set_args(&s->pl_lay, k, &c));
+  TRY(msocl__pl_conn(s, k, &c));
   TRY(arg(k, c + 2, sizeof s->pl_aux, &s->pl_aux));
   TRY(shape(s, k, c + 3, 0));
   TRY(arg(k, c + 6, sizeof(float), &s->o.strain_limit));
@@ -288,7 +319,7 @@ static int fixed_args(msocl__engine *s)
   /* the velocity kind's sweep (connectivity, p, v, v_out, aux, shape,
    * limit, dt, col) */
   k = s->pl_k[PL_STRAIN_V];
-  TRY(msocl__layout_set_args(&s->pl_lay, k, &c));
+  TRY(msocl__pl_conn(s, k, &c));
   TRY(arg(k, c + 3, sizeof s->pl_aux, &s->pl_aux));
   TRY(shape(s, k, c + 4, 0));
   TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
@@ -340,11 +371,57 @@ static int collider_table(msocl__engine *s)
   return MSOCL_OK;
 }
 
+/* A device buffer of `bytes` from host memory, into *out. */
+static int upload(msocl__engine *s, const void *host, size_t bytes,
+                  cl_mem *out)
+{
+  cl_int e;
+  *out = clCreateBuffer(s->dev->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                        bytes, (void *)host, &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateBuffer(planes' slot table): %s",
+                       msocl_err_name(e));
+  return MSOCL_OK;
+}
+
+/* The spill's offsets, padded to the plane (a padding point spills
+ * nothing), and the list of the points that spill, for the _spill
+ * twins. */
+static int spill_list(msocl__engine *s, size_t n, size_t P, int *nsp)
+{
+  int *off = malloc((P + 1) * sizeof *off), *list = malloc(n * sizeof *list);
+  int rc = off && list ? MSOCL_OK
+                       : msocl__fail(MSOCL_ERR_NO_MEMORY, "planes' spill");
+  cl_int e = CL_SUCCESS;
+  if (rc == MSOCL_OK)
+    e = clEnqueueReadBuffer(s->dev->queue, s->lay.spill, CL_TRUE, 0,
+                            (n + 1) * sizeof *off, off, 0, NULL, NULL);
+  if (rc == MSOCL_OK && e != CL_SUCCESS)
+    rc = msocl__fail(e, "reading the spill: %s", msocl_err_name(e));
+  if (rc == MSOCL_OK) {
+    for (size_t i = n + 1; i <= P; i++)
+      off[i] = off[n];
+    int nl = 0;
+    for (size_t i = 0; i < n; i++)
+      if (off[i + 1] > off[i])
+        list[nl++] = (int)i;
+    *nsp = off[n];
+    s->pl_nspill = nl;
+    rc = upload(s, off, (P + 1) * sizeof *off, &s->pl_table[3]);
+    if (rc == MSOCL_OK)
+      rc = upload(s, list, (size_t)nl * sizeof *list, &s->pl_list);
+  }
+  free(off);
+  free(list);
+  return rc;
+}
+
 /* BUFFER's slot table for the planes kernels: each slot `plane` entries
  * apart instead of n, the padding work-items' entries free slots (the
  * point itself, zeros), and (rest, k) pairs split into a plane of rests
- * and one of stiffnesses: eight or sixteen work-items read a slot with
- * contiguous vector loads, not gathers. */
+ * and one of stiffnesses - eight or sixteen work-items read a slot with
+ * contiguous vector loads, not gathers; the spill's entries follow the
+ * table as they do in the layout's (pairs after both planes). */
 static int padded_table(msocl__engine *s)
 {
   s->pl_lay = s->lay;
@@ -352,6 +429,8 @@ static int padded_table(msocl__engine *s)
     return MSOCL_OK;
   const size_t n = (size_t)s->n, S = (size_t)s->lay.slots,
                P = (size_t)s->pl_plane;
+  int nsp = 0, rc = s->lay.spill ? spill_list(s, n, P, &nsp) : MSOCL_OK;
+  const size_t sp = (size_t)nsp;
   /* bytes an entry: nbr; rk (classes: a byte, else rest and k); dashpots
    * where each slot has its own (values, damped) */
   const size_t size[3] = {sizeof(cl_int),
@@ -359,40 +438,36 @@ static int padded_table(msocl__engine *s)
                           !s->lay.classes && s->damped ? sizeof(cl_float)
                                                        : 0};
   cl_mem from[3] = {s->lay.con, s->lay.rk, s->lay.damp};
-  int rc = MSOCL_OK;
   for (int q = 0; q < 3 && rc == MSOCL_OK; q++) {
     if (!size[q])
       continue;
-    unsigned char *in = malloc(S * n * size[q]),
-                  *out = calloc(S * P, size[q]);
+    const size_t z = size[q];
+    unsigned char *in = malloc((S * n + sp) * z),
+                  *out = calloc(S * P + sp, z);
     if (!in || !out)
       rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "planes' slot table");
     cl_int e = CL_SUCCESS;
     if (rc == MSOCL_OK)
       e = clEnqueueReadBuffer(s->dev->queue, from[q], CL_TRUE, 0,
-                              S * n * size[q], in, 0, NULL, NULL);
+                              (S * n + sp) * z, in, 0, NULL, NULL);
     if (rc == MSOCL_OK && e != CL_SUCCESS)
       rc = msocl__fail(e, "reading the slot table: %s", msocl_err_name(e));
     for (size_t t = 0; rc == MSOCL_OK && t < S; t++) {
       if (q == 1 && !s->lay.classes) /* rests, then stiffnesses */
         for (size_t i = 0; i < n; i++) {
-          memcpy(out + (t * P + i) * sizeof(float),
-                 in + (t * n + i) * size[q], sizeof(float));
+          memcpy(out + (t * P + i) * sizeof(float), in + (t * n + i) * z,
+                 sizeof(float));
           memcpy(out + ((S + t) * P + i) * sizeof(float),
-                 in + (t * n + i) * size[q] + sizeof(float), sizeof(float));
+                 in + (t * n + i) * z + sizeof(float), sizeof(float));
         }
       else
-        memcpy(out + t * P * size[q], in + t * n * size[q], n * size[q]);
+        memcpy(out + t * P * z, in + t * n * z, n * z);
       for (size_t i = n; q == 0 && i < P; i++) /* free: the point itself */
         ((cl_int *)out)[t * P + i] = (cl_int)i;
     }
     if (rc == MSOCL_OK) {
-      s->pl_table[q] = clCreateBuffer(
-          s->dev->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-          S * P * size[q], out, &e);
-      if (e != CL_SUCCESS)
-        rc = msocl__fail(e, "clCreateBuffer(planes' slot table): %s",
-                         msocl_err_name(e));
+      memcpy(out + S * P * z, in + S * n * z, sp * z);
+      rc = upload(s, out, (S * P + sp) * z, &s->pl_table[q]);
     }
     free(in);
     free(out);
@@ -403,6 +478,8 @@ static int padded_table(msocl__engine *s)
   s->pl_lay.rk = s->pl_table[1];
   if (s->pl_table[2])
     s->pl_lay.damp = s->pl_table[2];
+  if (s->pl_table[3])
+    s->pl_lay.spill = s->pl_table[3];
   return MSOCL_OK;
 }
 
@@ -425,6 +502,23 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
     if (e != CL_SUCCESS)
       return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
                          msocl_err_name(e));
+  }
+  TRY(padded_table(s));
+  for (int q = 0; s->pl_nspill > 0 && q < PL_COUNT; q++) {
+    if (!gathers(q))
+      continue;
+    char name[64];
+    snprintf(name, sizeof name, "%s_spill", names[q]);
+    cl_int e;
+    s->pl_ks[q] = clCreateKernel(prog, name, &e);
+    if (e != CL_SUCCESS)
+      return msocl__fail(e, "clCreateKernel(%s): %s", name,
+                         msocl_err_name(e));
+    cl_uint last = 0;
+    MSOCL__CL(clGetKernelInfo(s->pl_ks[q], CL_KERNEL_NUM_ARGS, sizeof last,
+                              &last, NULL));
+    MSOCL__CL(clSetKernelArg(s->pl_ks[q], last - 1, sizeof s->pl_list,
+                             &s->pl_list));
   }
   /* and Verlet's acceleration, RK4's stage states and sums, Provot's
    * sweeps */
@@ -454,7 +548,6 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
                                   0, bytes, 0, NULL, NULL));
   }
   TRY(collider_table(s));
-  TRY(padded_table(s));
   return fixed_args(s);
 }
 
@@ -466,6 +559,11 @@ int msocl__pl_launch(msocl__engine *s, int k)
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 3, NULL,
                                    s->pl_global, group, 0, NULL, NULL));
+  if (s->pl_ks[k]) {
+    const size_t spilled = (size_t)s->pl_nspill;
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_ks[k], 1, NULL,
+                                     &spilled, NULL, 0, NULL, NULL));
+  }
   return MSOCL_OK;
 }
 
@@ -673,7 +771,12 @@ void msocl__planes_release(msocl__engine *s)
       clReleaseMemObject(m[q]);
   if (s->pl_col)
     clReleaseMemObject(s->pl_col);
-  for (int q = 0; q < 3; q++)
+  for (int q = 0; q < PL_COUNT; q++)
+    if (s->pl_ks[q])
+      clReleaseKernel(s->pl_ks[q]);
+  for (int q = 0; q < 4; q++)
     if (s->pl_table[q])
       clReleaseMemObject(s->pl_table[q]);
+  if (s->pl_list)
+    clReleaseMemObject(s->pl_list);
 }
