@@ -93,8 +93,11 @@ static double run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
   int n = 0;
   msocl_model_point_count(m, &n);
   r.points = n;
+  /* implicit Euler has no bound (+infinity): four times symplectic's */
   float dt = 1e-4f;
   msocl_safe_dt(m, (msocl_integrator)in, &dt);
+  if (!isfinite(dt) && msocl_safe_dt(m, MSOCL_SYMPLECTIC_EULER, &dt) == MSOCL_OK)
+    dt *= 4.0f;
   r.dt = dt;
   r.steps = o->steps;
   msocl_sim_options so;

@@ -54,6 +54,11 @@
 #define MSOCL_PLANES_NX pitch
 #endif
 
+/* For the helpers a gather calls once a slot (and again for the spill):
+ * a call left in the kernel, or -O3's pairing of two values inside it
+ * into a <2 x float>, would stop PoCL vectorising the kernel. */
+#define MSOCL_PLANES_INLINE inline __attribute__((always_inline))
+
 /* dot(a, b) of float3 as the other kernels compute it: (x + y) + z. */
 #define MSOCL_DOT3(ax, ay, az, bx, by, bz) ((ax) * (bx) + (ay) * (by) + (az) * (bz))
 
@@ -127,7 +132,7 @@ static float msocl_planes_gap(float px, float py, float pz,
  * k 0) reading the padding or another row; BUFFER and IMAGE2D: the other
  * end that msocl_slot finds, a free slot the point itself (a padding
  * work-item reads no slot: the table holds n points a slot). */
-static bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, int y, int z,
+static MSOCL_PLANES_INLINE bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, int y, int z,
                                   int a, int pitch, int slab, int *b,
                                   float *rest, float *k, float *c)
 {
@@ -224,7 +229,7 @@ static bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, int y, int z,
 #ifdef MSOCL_SPILL
 /* BUFFER's springs past the table, as planes.c copies them after it:
  * entry o's other end and values. */
-static void msocl_planes_spill_slot(MSOCL_CONN, int o, int slab, int *b,
+static MSOCL_PLANES_INLINE void msocl_planes_spill_slot(MSOCL_CONN, int o, int slab, int *b,
                                     float *rest, float *k, float *c)
 {
   const int at = MSOCL_SLOTS * slab + o;
@@ -295,7 +300,7 @@ static void msocl_planes_spill_slot(MSOCL_CONN, int o, int slab, int *b,
 /* One slot's part of msocl_force on the point whose position and
  * velocity are q[0..5]: the spring's and its dashpot's pull from the
  * neighbour at b, added to f[0..2] where the spring exists. */
-static void msocl_planes_pull(__global const float *p,
+static MSOCL_PLANES_INLINE void msocl_planes_pull(__global const float *p,
                               __global const float *v, int plane,
                               const float *q, int b, bool there, float rest,
                               float kk, float cc, float *f)
@@ -323,7 +328,7 @@ static void msocl_planes_pull(__global const float *p,
 
 /* msocl_force at the point at a = (x, y, z), viscous damping included
  * (pass: MSOCL_PLANES_SPILLS). */
-static void msocl_planes_force(MSOCL_CONN, const int pass,
+static MSOCL_PLANES_INLINE void msocl_planes_force(MSOCL_CONN, const int pass,
                                __global const float *p,
                                __global const float *v, int pitch, int slab,
                                int plane, float viscous, int x, int y, int z,
@@ -731,7 +736,7 @@ MSOCL_PLANES_GATHER(msocl_planes_rk4_last, MSOCL_PLANES_RK4_ARGS,
  * nothing; here `there` masks it.) */
 /* One slot's ask in Provot's sweep on the point at q[0..2], added to
  * d[0..3] (the move and the weight) where the spring is over its limit. */
-static void msocl_planes_provot(__global const float *p,
+static MSOCL_PLANES_INLINE void msocl_planes_provot(__global const float *p,
                                 __global const float *aux, int plane,
                                 float limit, const float *q, int b,
                                 bool there, float rest, float *d)
@@ -822,7 +827,7 @@ __kernel void msocl_planes_commit(__global float *p,
 /* One slot's ask in the velocity kind's sweep on the point whose position
  * and velocity are q[0..5], added to d[0..3] (the change and the weight)
  * where the spring would pass its limit. */
-static void msocl_planes_vassilev(__global const float *p,
+static MSOCL_PLANES_INLINE void msocl_planes_vassilev(__global const float *p,
                                   __global const float *v,
                                   __global const float *aux, int plane,
                                   float limit, float dt, const float *q,

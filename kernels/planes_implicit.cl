@@ -25,7 +25,7 @@ void msocl_sum_points(__global const float *dots, __global float4 *partial,
 
 /* msocl_jacobian in scalars, added to *j.. where `on`: J e for the spring
  * from the point to a neighbour d = (dx, dy, dz) away. */
-static void msocl_planes_jacobian(float dx, float dy, float dz, float rest,
+static MSOCL_PLANES_INLINE void msocl_planes_jacobian(float dx, float dy, float dz, float rest,
                                   float k, float ex, float ey, float ez,
                                   bool on, float *jx, float *jy, float *jz)
 {
@@ -41,7 +41,7 @@ static void msocl_planes_jacobian(float dx, float dy, float dz, float rest,
 }
 
 /* One slot's J (v_b - v_a) for the point at a, added to k[0..2]. */
-static void msocl_planes_stiff(__global const float *p,
+static MSOCL_PLANES_INLINE void msocl_planes_stiff(__global const float *p,
                                __global const float *v, int plane, int a,
                                int b, bool there, float rest, float kk,
                                float *k)
@@ -102,7 +102,7 @@ MSOCL_PLANES_GATHER(msocl_planes_ie_rhs,
 /* One slot's part of A d for the point whose position and direction are
  * q[0..5]: J (d_b - d_a) added to k[0..2], the dashpot's
  * (msocl_damp_jacobian) to c[0..2]. */
-static void msocl_planes_product(__global const float *p,
+static MSOCL_PLANES_INLINE void msocl_planes_product(__global const float *p,
                                  __global const float *d, int plane,
                                  const float *q, int b, bool there,
                                  float rest, float kk, float cc, float *k,
