@@ -77,7 +77,7 @@
 
 /* msocl_collider_gap in scalars for collider c: g, and the unit gradient
  * in *nx.. */
-static float msocl_planes_gap(float px, float py, float pz,
+static MSOCL_PLANES_INLINE float msocl_planes_gap(float px, float py, float pz,
                               __constant const float *col, int c, float *nx,
                               float *ny, float *nz)
 {
@@ -366,7 +366,7 @@ static MSOCL_PLANES_INLINE void msocl_planes_force(MSOCL_CONN, const int pass,
 }
 
 /* msocl_collide, its branches as selects. */
-static void msocl_planes_collide(float px, float py, float pz, float *vx_io,
+static MSOCL_PLANES_INLINE void msocl_planes_collide(float px, float py, float pz, float *vx_io,
                                  float *vy_io, float *vz_io, float dt,
                                  __constant float4 *col, float fscale)
 {
@@ -397,7 +397,7 @@ static void msocl_planes_collide(float px, float py, float pz, float *vx_io,
 }
 
 /* Air resistance (MSOCL_AIR): the velocity times `air`. */
-static void msocl_planes_air(float air, float *vx, float *vy, float *vz)
+static MSOCL_PLANES_INLINE void msocl_planes_air(float air, float *vx, float *vy, float *vz)
 {
 #ifdef MSOCL_AIR
   *vx = air * *vx;
@@ -409,7 +409,7 @@ static void msocl_planes_air(float air, float *vx, float *vy, float *vz)
 
 /* The velocity pass for the point at a = (x, y, z): its new velocity in
  * *vx.., and whether it is pinned. */
-static void msocl_planes_kick(MSOCL_CONN, const int pass,
+static MSOCL_PLANES_INLINE void msocl_planes_kick(MSOCL_CONN, const int pass,
                               __global const float *p,
                               __global const float *v,
                               __global const float *aux, int pitch, int slab,
@@ -574,7 +574,7 @@ MSOCL_PLANES_GATHER(msocl_planes_vkick,
 
 /* msocl_project in scalars (explicit methods: a point found inside a
  * collider goes back to its surface and loses its inward speed). */
-static void msocl_planes_project(float *px, float *py, float *pz, float *vx,
+static MSOCL_PLANES_INLINE void msocl_planes_project(float *px, float *py, float *pz, float *vx,
                                  float *vy, float *vz,
                                  __constant float4 *col)
 {
@@ -639,7 +639,7 @@ MSOCL_PLANES_GATHER(msocl_planes_euler,
 
 /* One RK4 stage in planes, as msocl_rk4_stage; mode a constant in each of
  * the three kernels below, so its branches fold away. */
-static void msocl_planes_rk4(MSOCL_CONN, const int pass, const int x,
+static MSOCL_PLANES_INLINE void msocl_planes_rk4(MSOCL_CONN, const int pass, const int x,
                              const int y, const int z,
                              __global const float *p0,
                              __global const float *v0,

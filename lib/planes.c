@@ -427,7 +427,9 @@ static int padded_table(msocl__engine *s)
   s->pl_lay = s->lay;
   if (s->lay.kind != MSOCL_LAYOUT_BUFFER)
     return MSOCL_OK;
-  const size_t n = (size_t)s->n, S = (size_t)s->lay.slots,
+  /* a model without springs still has one (free) slot, as layout.c's */
+  const size_t n = (size_t)s->n,
+               S = (size_t)(s->lay.slots > 0 ? s->lay.slots : 1),
                P = (size_t)s->pl_plane;
   int nsp = 0, rc = s->lay.spill ? spill_list(s, n, P, &nsp) : MSOCL_OK;
   const size_t sp = (size_t)nsp;
