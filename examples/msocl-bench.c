@@ -3,7 +3,7 @@
  * math mode (precision), and the second seed's jello cube per engine
  * (lattice). A table on stdout, one CSV row per run.
  *
- *   msocl-bench [table1|precision|lattice|strain|colliders] [-d SPEC] [-g LIST] [-s STEPS]
+ *   msocl-bench [table1|precision|lattice|strain|colliders|meshes] [-d SPEC] [-g LIST] [-s STEPS]
  *               [-l LIST] [-i LIST] [-m LIST] [-T SECONDS] [--from X]
  *               [--levels N]
  *               [--max-grid N] [--big-steps N] [--repeat N] [--copy-mib N]
@@ -25,7 +25,8 @@ const char *const bench_integrator_names[5] = {"symplectic", "explicit",
 static int usage(FILE *f, int code)
 {
   fprintf(f,
-"usage: msocl-bench [table1|precision|lattice|strain|colliders] [options]\n"
+"usage: msocl-bench [table1|precision|lattice|strain|colliders|meshes]\n"
+"                   [options]\n"
 "  table1     the paper's Table 1: tablecloth on a round table, serial C\n"
 "             (Algorithm 1) against libmsocl per layout, with a roofline\n"
 "             column from the device's measured copy bandwidth (default)\n"
@@ -42,6 +43,10 @@ static int usage(FILE *f, int code)
 "  colliders  the tablecloth with no collider, a plane, a sphere or the\n"
 "             table, per engine (GRID in planes, in float4, BUFFER), each\n"
 "             against no collider (-g default 96,256; -s default 200)\n"
+"  meshes     the soft ball (-g's first size: icosphere subdivisions,\n"
+"             default 6) and an n x n cloth read as OBJ (the second,\n"
+"             default 256): BUFFER in float4 and in planes, and AUTO\n"
+"             (-s default 200; -i default symplectic)\n"
 "options:\n"
 "  -d SPEC        device spec (MSOCL_DEVICE grammar; 'all' = every device)\n"
 "  -g LIST        grid sizes, e.g. 48,64,96 (table1: default 48,64,96,128,\n"
@@ -152,6 +157,8 @@ int main(int argc, char **argv)
       mode = 3, takes = 0;
     } else if (!strcmp(w, "colliders") && a == 1) {
       mode = 4, takes = 0;
+    } else if (!strcmp(w, "meshes") && a == 1) {
+      mode = 5, takes = 0;
     } else if (!strcmp(w, "--fused")) {
       o.fused = 1, takes = 0;
     } else if (!strcmp(w, "--values")) {
@@ -240,16 +247,19 @@ int main(int argc, char **argv)
     static const int t1q[] = {16, 24}, lat[] = {16, 32, 64}, latq[] = {6};
     static const int str[] = {32, 64}, strq[] = {8};
     static const int col[] = {96, 256}, colq[] = {8};
+    static const int msh[] = {6, 256}, mshq[] = {2, 16};
     const int *g = mode == 1   ? NULL
                    : mode == 2 ? (o.quick ? latq : lat)
                    : mode == 3 ? (o.quick ? strq : str)
                    : mode == 4 ? (o.quick ? colq : col)
+                   : mode == 5 ? (o.quick ? mshq : msh)
                    : o.quick   ? t1q
                                : t1;
     o.ngrids = mode == 1   ? 1
                : mode == 2 ? (o.quick ? 1 : 3)
                : mode == 3 ? (o.quick ? 1 : 2)
                : mode == 4 ? (o.quick ? 1 : 2)
+               : mode == 5 ? 2
                : o.quick   ? 2
                            : 8;
     for (int i = 0; i < o.ngrids; i++)
@@ -269,7 +279,7 @@ int main(int argc, char **argv)
   }
   if (mode == 2 && !have_s)
     o.steps = o.quick ? 5 : 200;
-  if (mode == 4 && !have_s)
+  if ((mode == 4 || mode == 5) && !have_s)
     o.steps = o.quick ? 5 : 200;
   if (mode == 3 && !have_t)
     o.sim_time = o.quick ? 0.02 : 2.0;
@@ -293,7 +303,8 @@ int main(int argc, char **argv)
            : mode == 1 ? bench_precision(&o, csv)
            : mode == 2 ? bench_lattice(&o, csv)
            : mode == 3 ? bench_strain(&o, csv)
-                       : bench_colliders(&o, csv);
+           : mode == 4 ? bench_colliders(&o, csv)
+                       : bench_meshes(&o, csv);
   if (csv && fclose(csv) != 0) {
     perror(o.csv);
     rc = 1;

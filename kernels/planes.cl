@@ -28,19 +28,36 @@
  * when the program is built so that their loop unrolls (a loop of run-time
  * length inside would stop the vectorizer); MSOCL_GRID_KINDS: a bit for
  * each kind of spring the model has. */
-#if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID)
+#if defined(MSOCL_PLANES)
 
-/* The work-item's point (x, y, z) and where it sits in a plane: a
+/* The work-item's point (x, y, z) and where it sits in a plane (GRID): a
  * lattice's layers are `slab` floats apart, each padded by two rows, and
- * two padding layers lie at each end; a cloth has one layer (z 0). */
+ * two padding layers lie at each end; a cloth has one layer (z 0).
+ * BUFFER and IMAGE2D: point x of one unpadded row (y and z 0), `pitch`
+ * its n points; the row is padded to whole work-groups (BUFFER: `slab`
+ * the planes' length, the stride of their copy of the slot table). MSOCL_PLANES_NX:
+ * the row's points in a gathering kernel, past which a work-item is
+ * padding and stores nothing. */
 #define MSOCL_PLANES_XYZ                                                      \
   const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2); \
-  (void)z /* a cloth's address leaves it out */
-#ifdef MSOCL_GRID_3D
+  (void)y; (void)z /* a cloth's address leaves z out, BUFFER's both */
+#if defined(MSOCL_LAYOUT_GRID) && defined(MSOCL_GRID_3D)
 #define MSOCL_PLANES_AT(x, y, z) (((z) + 2) * slab + ((y) + 2) * pitch + (x) + 2)
-#else
+#elif defined(MSOCL_LAYOUT_GRID)
 #define MSOCL_PLANES_AT(x, y, z) (((y) + 2) * pitch + (x) + 2)
+#else
+#define MSOCL_PLANES_AT(x, y, z) (x)
 #endif
+#ifdef MSOCL_LAYOUT_GRID
+#define MSOCL_PLANES_NX grid_nx
+#else
+#define MSOCL_PLANES_NX pitch
+#endif
+
+/* For the helpers a gather calls once a slot (and again for the spill):
+ * a call left in the kernel, or -O3's pairing of two values inside it
+ * into a <2 x float>, would stop PoCL vectorising the kernel. */
+#define MSOCL_PLANES_INLINE inline __attribute__((always_inline))
 
 /* dot(a, b) of float3 as the other kernels compute it: (x + y) + z. */
 #define MSOCL_DOT3(ax, ay, az, bx, by, bz) ((ax) * (bx) + (ay) * (by) + (az) * (bz))
@@ -60,7 +77,7 @@
 
 /* msocl_collider_gap in scalars for collider c: g, and the unit gradient
  * in *nx.. */
-static float msocl_planes_gap(float px, float py, float pz,
+static MSOCL_PLANES_INLINE float msocl_planes_gap(float px, float py, float pz,
                               __constant const float *col, int c, float *nx,
                               float *ny, float *nz)
 {
@@ -108,68 +125,234 @@ static float msocl_planes_gap(float px, float py, float pz,
 }
 
 /* Slot s of the point (x, y, z) at a: where its neighbour sits in the
- * planes (*b), and whether that spring exists. A missing neighbour (past
- * the grid's edge, or a kind with k 0) reads the padding or another row,
- * not the point itself as in float4, so every user masks it. */
-static bool msocl_planes_slot(MSOCL_CONN, int s, int x, int y, int z, int a,
-                              int pitch, int slab, int *b)
+ * planes (*b), the spring's rest length, stiffness and dashpot, and
+ * whether the spring exists; a missing one's terms are masked by every
+ * user (they replace the exact zeros its float4 twin adds). GRID: the
+ * neighbour a fixed offset away, past the grid's edge (or of a kind with
+ * k 0) reading the padding or another row; BUFFER and IMAGE2D: the other
+ * end that msocl_slot finds, a free slot the point itself (a padding
+ * work-item reads no slot: the table holds n points a slot). */
+static MSOCL_PLANES_INLINE bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, int y, int z,
+                                  int a, int pitch, int slab, int *b,
+                                  float *rest, float *k, float *c)
 {
+#if defined(MSOCL_LAYOUT_GRID)
   const int qx = x + msocl_grid_dx[s], qy = y + msocl_grid_dy[s];
+  *rest = MSOCL_GRID_R(s);
+  *k = MSOCL_GRID_K(s);
+  *c = MSOCL_GRID_C;
 #ifdef MSOCL_GRID_3D
   const int qz = z + msocl_grid_dz[s];
   *b = a + msocl_grid_dz[s] * slab + msocl_grid_dy[s] * pitch +
        msocl_grid_dx[s];
   return qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny && qz >= 0 &&
-         qz < grid_nz && MSOCL_GRID_K(s) != 0.0f;
+         qz < grid_nz && *k != 0.0f;
 #else
   (void)z;
   (void)slab;
   *b = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];
-  return qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny &&
-         MSOCL_GRID_K(s) != 0.0f;
+  return qx >= 0 && qx < grid_nx && qy >= 0 && qy < grid_ny && *k != 0.0f;
+#endif
+#else
+  /* point i = x of n = pitch, at a = i in the planes */
+  int j = x;
+  float r = 0.0f, kk = 0.0f, cc = 0.0f;
+  (void)y; (void)z; (void)a; (void)slab;
+#if defined(MSOCL_LAYOUT_IMAGE2D)
+  if (x < pitch) { /* a padding work-item reads no texel */
+    /* msocl_slot's reads: the entry, and the dashpot in its group's texel */
+    const sampler_t smp =
+        CLK_NORMALIZED_COORDS_FALSE | CLK_ADDRESS_NONE | CLK_FILTER_NEAREST;
+    const int tx = x % tex_w, ty = x / tex_w;
+    const float4 e = read_imagef(con, smp, (int2)(tx + (s & 3) * tex_w,
+                                                  ty + (s >> 2) * tex_h));
+    const bool on = e.x >= 0.0f;
+    j = on ? (int)e.y * tex_w + (int)e.x : x;
+    r = on ? e.z : 0.0f;
+    kk = on ? e.w : 0.0f;
+#ifdef MSOCL_DAMPING
+    const float4 c4 = read_imagef(dmp, smp, (int2)(tx + (s >> 2) * tex_w, ty));
+    const int q = s & 3;
+    cc = q == 0 ? c4.x : q == 1 ? c4.y : q == 2 ? c4.z : c4.w;
+#endif
+  }
+#else
+  /* BUFFER's table as planes.c copies it for the planes: slot s of point
+   * i at s * slab + i (slab: the plane's length, so a padding work-item
+   * reads a free slot), the rests in the first half of rk's floats and
+   * the stiffnesses in the second, each read as a vector by eight or
+   * sixteen work-items. The test keeps each slot's reads in a block of
+   * their own: straight-line, -O3 pairs two slots' differences into a
+   * <2 x float>, which stops PoCL vectorising across work-items. */
+  if (x < slab) {
+    const int at = s * slab + x;
+    j = nbr[at];
+#ifdef MSOCL_CLASSES
+    __global const float *v = (__global const float *)dmp + 4 * rk[at];
+    r = v[0];
+    kk = v[1];
+    cc = v[2];
+#else
+    __global const float *v = (__global const float *)rk;
+    r = v[at];
+    kk = v[MSOCL_SLOTS * slab + at];
+#ifdef MSOCL_DAMPING
+    cc = dmp[at];
+#endif
+#endif
+  }
+#endif
+  *b = j;
+  *rest = r;
+  *k = kk;
+  *c = cc;
+  return j != x;
 #endif
 }
 
-/* msocl_force at the point at a = (x, y, z), viscous damping included. */
-static void msocl_planes_force(MSOCL_CONN, __global const float *p,
+/* Whether slot s is of a kind the model leaves out (GRID, where BUFFER
+ * would have no slot for it either): skipped when the program is built. */
+#ifdef MSOCL_LAYOUT_GRID
+#define MSOCL_PLANES_SKIP(s) (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+#else
+#define MSOCL_PLANES_SKIP(s) false
+#endif
+
+/* Slot s of the point (x, y, z) at a, declared as the gathering loops
+ * use it: b, rest, kk, cc and there. */
+#define MSOCL_PLANES_NEIGHBOR(s)                                              \
+  int b;                                                                     \
+  float rest, kk, cc;                                                        \
+  const bool there = msocl_planes_neighbor(MSOCL_CONN_ARGS, s, x, y, z, a,   \
+                                           pitch, slab, &b, &rest, &kk, &cc)
+
+#ifdef MSOCL_SPILL
+/* BUFFER's springs past the table, as planes.c copies them after it:
+ * entry o's other end and values. */
+static MSOCL_PLANES_INLINE void msocl_planes_spill_slot(MSOCL_CONN, int o, int slab, int *b,
+                                    float *rest, float *k, float *c)
+{
+  const int at = MSOCL_SLOTS * slab + o;
+  *b = nbr[at];
+#ifdef MSOCL_CLASSES
+  __global const float *v = (__global const float *)dmp + 4 * rk[at];
+  *rest = v[0];
+  *k = v[1];
+  *c = v[2];
+#else
+  __global const float *v =
+      (__global const float *)rk + 2 * (MSOCL_SLOTS * slab + o);
+  *rest = v[0];
+  *k = v[1];
+#ifdef MSOCL_DAMPING
+  *c = dmp[at];
+#else
+  *c = 0.0f;
+#endif
+#endif
+}
+
+/* A gathering kernel runs twice: over the rows (pass 0), storing nothing
+ * for a point with springs past the table, and over just those points
+ * (pass 1, the kernel's _spill twin), their springs past the table
+ * summed after the table's one at a time, as msocl_force and msocl_slot
+ * do. A loop of run-time length in the first would stop PoCL
+ * vectorising it; `pass` is a constant in each, so the loop below
+ * folds away in the first. */
+#define MSOCL_PLANES_SPILLS                                                   \
+  for (int o = pass ? spill[x] : 0, o_end = pass ? spill[x + 1] : 0;        \
+       o < o_end; o++)
+#define MSOCL_PLANES_SPILL_NEIGHBOR(o)                                        \
+  int b;                                                                     \
+  float rest, kk, cc;                                                        \
+  const bool there = true;                                                   \
+  msocl_planes_spill_slot(MSOCL_CONN_ARGS, o, slab, &b, &rest, &kk, &cc)
+#define MSOCL_PLANES_LIVE                                                     \
+  (pass || (x < MSOCL_PLANES_NX && spill[x + 1] == spill[x]))
+#define MSOCL_PLANES_SPILL_TWIN(name, params, args)                           \
+  __kernel void name##_spill(MSOCL_PLANES_UNPAREN params,                    \
+                             __global const int *spilled)                    \
+  {                                                                          \
+    name##_at(1, spilled[get_global_id(0)], 0, 0, MSOCL_PLANES_UNPAREN args); \
+  }
+#else
+/* whether the work-item's point stores its result */
+#define MSOCL_PLANES_LIVE (x < MSOCL_PLANES_NX)
+#define MSOCL_PLANES_SPILL_TWIN(name, params, args)
+#endif
+
+/* A gathering kernel `name` with parameters `params` (their names:
+ * `args`): its body, name##_at, is written once for both passes and
+ * follows the macro. */
+#define MSOCL_PLANES_UNPAREN(...) __VA_ARGS__
+#define MSOCL_PLANES_GATHER(name, params, args)                               \
+  static void name##_at(const int pass, const int x, const int y,            \
+                        const int z, MSOCL_PLANES_UNPAREN params);           \
+  __kernel void name(MSOCL_PLANES_UNPAREN params)                            \
+  {                                                                          \
+    MSOCL_PLANES_XYZ;                                                        \
+    name##_at(0, x, y, z, MSOCL_PLANES_UNPAREN args);                        \
+  }                                                                          \
+  MSOCL_PLANES_SPILL_TWIN(name, params, args)                                \
+  static void name##_at(const int pass, const int x, const int y,            \
+                        const int z, MSOCL_PLANES_UNPAREN params)
+
+/* One slot's part of msocl_force on the point whose position and
+ * velocity are q[0..5]: the spring's and its dashpot's pull from the
+ * neighbour at b, added to f[0..2] where the spring exists. */
+static MSOCL_PLANES_INLINE void msocl_planes_pull(__global const float *p,
+                              __global const float *v, int plane,
+                              const float *q, int b, bool there, float rest,
+                              float kk, float cc, float *f)
+{
+  const float dx = p[b] - q[0], dy = p[plane + b] - q[1],
+              dz = p[2 * plane + b] - q[2];
+  const float len2 = dx * dx + dy * dy + dz * dz;
+  const float len = MSOCL_SQRT(len2);
+  const float t = kk * MSOCL_DIV(len - rest, len);
+  const bool on = there && len > 0.0f;
+  f[0] += on ? t * dx : 0.0f;
+  f[1] += on ? t * dy : 0.0f;
+  f[2] += on ? t * dz : 0.0f;
+#ifdef MSOCL_DAMPING
+  const float wx = v[b] - q[3], wy = v[plane + b] - q[4],
+              wz = v[2 * plane + b] - q[5];
+  const float u = cc * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
+  const bool onh = there && len2 > 0.0f;
+  f[0] += onh ? u * dx : 0.0f;
+  f[1] += onh ? u * dy : 0.0f;
+  f[2] += onh ? u * dz : 0.0f;
+#endif
+  (void)v; (void)cc; /* read by dashpots */
+}
+
+/* msocl_force at the point at a = (x, y, z), viscous damping included
+ * (pass: MSOCL_PLANES_SPILLS). */
+static MSOCL_PLANES_INLINE void msocl_planes_force(MSOCL_CONN, const int pass,
+                               __global const float *p,
                                __global const float *v, int pitch, int slab,
                                int plane, float viscous, int x, int y, int z,
                                int a, float *fx_out, float *fy_out,
                                float *fz_out)
 {
-  __global const float *py_ = p + plane, *pz_ = py_ + plane;
-  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
-  const float px = p[a], py = py_[a], pz = pz_[a];
-  const float vx = v[a], vy = vy_[a], vz = vz_[a];
-  float fx = 0.0f, fy = 0.0f, fz = 0.0f;
+  const float vx = v[a], vy = v[plane + a], vz = v[2 * plane + a];
+  const float q[6] = {p[a], p[plane + a], p[2 * plane + a], vx, vy, vz};
+  float f[3] = {0.0f, 0.0f, 0.0f};
 #pragma unroll
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    /* a kind the model leaves out: BUFFER has no slot for it either */
-    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
       continue;
-    const float kk = MSOCL_GRID_K(s), rest = MSOCL_GRID_R(s);
-    /* a missing neighbour's terms are replaced by the exact zeros
-     * msocl_force adds for it */
-    int b;
-    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
-                                         pitch, slab, &b);
-    const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
-    const float len2 = dx * dx + dy * dy + dz * dz;
-    const float len = MSOCL_SQRT(len2);
-    const float t = kk * MSOCL_DIV(len - rest, len);
-    const bool on = there && len > 0.0f;
-    fx += on ? t * dx : 0.0f;
-    fy += on ? t * dy : 0.0f;
-    fz += on ? t * dz : 0.0f;
-#ifdef MSOCL_DAMPING
-    const float wx = v[b] - vx, wy = vy_[b] - vy, wz = vz_[b] - vz;
-    const float u = MSOCL_GRID_C * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
-    const bool onh = there && len2 > 0.0f;
-    fx += onh ? u * dx : 0.0f;
-    fy += onh ? u * dy : 0.0f;
-    fz += onh ? u * dz : 0.0f;
-#endif
+    MSOCL_PLANES_NEIGHBOR(s);
+    msocl_planes_pull(p, v, plane, q, b, there, rest, kk, cc, f);
   }
+#ifdef MSOCL_SPILL
+  MSOCL_PLANES_SPILLS {
+    MSOCL_PLANES_SPILL_NEIGHBOR(o);
+    msocl_planes_pull(p, v, plane, q, b, there, rest, kk, cc, f);
+  }
+#endif
+  (void)pass;
+  float fx = f[0], fy = f[1], fz = f[2];
 #ifdef MSOCL_VISCOUS
   fx = fx - viscous * vx;
   fy = fy - viscous * vy;
@@ -183,7 +366,7 @@ static void msocl_planes_force(MSOCL_CONN, __global const float *p,
 }
 
 /* msocl_collide, its branches as selects. */
-static void msocl_planes_collide(float px, float py, float pz, float *vx_io,
+static MSOCL_PLANES_INLINE void msocl_planes_collide(float px, float py, float pz, float *vx_io,
                                  float *vy_io, float *vz_io, float dt,
                                  __constant float4 *col, float fscale)
 {
@@ -214,7 +397,7 @@ static void msocl_planes_collide(float px, float py, float pz, float *vx_io,
 }
 
 /* Air resistance (MSOCL_AIR): the velocity times `air`. */
-static void msocl_planes_air(float air, float *vx, float *vy, float *vz)
+static MSOCL_PLANES_INLINE void msocl_planes_air(float air, float *vx, float *vy, float *vz)
 {
 #ifdef MSOCL_AIR
   *vx = air * *vx;
@@ -226,7 +409,8 @@ static void msocl_planes_air(float air, float *vx, float *vy, float *vz)
 
 /* The velocity pass for the point at a = (x, y, z): its new velocity in
  * *vx.., and whether it is pinned. */
-static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
+static MSOCL_PLANES_INLINE void msocl_planes_kick(MSOCL_CONN, const int pass,
+                              __global const float *p,
                               __global const float *v,
                               __global const float *aux, int pitch, int slab,
                               int plane, float4 gravity, float viscous,
@@ -235,8 +419,8 @@ static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
                               float *vy_out, float *vz_out, bool *pinned)
 {
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
-                     y, z, a, &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, pass, p, v, pitch, slab, plane,
+                     viscous, x, y, z, a, &fx, &fy, &fz);
   const float im = aux[a];
   float vx = v[a] + dt * (fx * im + gravity.x);
   float vy = v[plane + a] + dt * (fy * im + gravity.y);
@@ -256,42 +440,46 @@ static void msocl_planes_kick(MSOCL_CONN, __global const float *p,
   __global const float *aux, int pitch, int slab, int plane,                 \
       float4 gravity, float viscous, float air, float dt,                    \
       __constant float4 *col
+#define MSOCL_PLANES_ARG_NAMES                                                \
+  aux, pitch, slab, plane, gravity, viscous, air, dt, col
 
 /* Both kernels' point (x, y, z), at a, and its new velocity; then the
  * store of that velocity. */
 #define MSOCL_PLANES_KICK                                                     \
-  MSOCL_PLANES_XYZ;                                                          \
   const int a = MSOCL_PLANES_AT(x, y, z);                                    \
   float vx, vy, vz;                                                          \
   bool pinned;                                                               \
-  msocl_planes_kick(MSOCL_CONN_ARGS, p, v, aux, pitch, slab, plane, gravity, \
-                    viscous, air, dt, col, x, y, z, a, &vx, &vy, &vz,        \
-                    &pinned)
+  msocl_planes_kick(MSOCL_CONN_ARGS, pass, p, v, aux, pitch, slab, plane,    \
+                    gravity, viscous, air, dt, col, x, y, z, a, &vx, &vy,    \
+                    &vz, &pinned)
 #define MSOCL_PLANES_STORE_V                                                  \
   v_out[a] = vx;                                                             \
   v_out[plane + a] = vy;                                                     \
   v_out[2 * plane + a] = vz
 
-__kernel void msocl_planes_velocity(MSOCL_CONN, __global const float *p,
-                                    __global const float *v,
-                                    __global float *v_out,
-                                    MSOCL_PLANES_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_velocity,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *v_out,
+                     MSOCL_PLANES_ARGS),
+                    (MSOCL_CONN_ARGS, p, v, v_out, MSOCL_PLANES_ARG_NAMES))
 {
   MSOCL_PLANES_KICK;
-  if (x < grid_nx) {
+  if (MSOCL_PLANES_LIVE) {
     MSOCL_PLANES_STORE_V;
   }
 }
 
 /* Both passes in one kernel (options.fused), as msocl_fused: the point
  * moves by its new velocity at once; others read only the old p. */
-__kernel void msocl_planes_fused(MSOCL_CONN, __global const float *p,
-                                 __global const float *v,
-                                 __global float *v_out, __global float *p_out,
-                                 MSOCL_PLANES_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_fused,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *v_out,
+                     __global float *p_out, MSOCL_PLANES_ARGS),
+                    (MSOCL_CONN_ARGS, p, v, v_out, p_out,
+                     MSOCL_PLANES_ARG_NAMES))
 {
   MSOCL_PLANES_KICK;
-  if (x < grid_nx) {
+  if (MSOCL_PLANES_LIVE) {
     __global const float *py_ = p + plane, *pz_ = py_ + plane;
     __global float *qy = p_out + plane, *qz = qy + plane;
     const float cx = p[a], cy = py_[a], cz = pz_[a];
@@ -355,16 +543,17 @@ __kernel void msocl_planes_drift(__global const float *p, __global float *v,
 }
 
 /* Kick: a' = a(p', v+), v' = v+ + dt/2 a'; a' kept for the next drift. */
-__kernel void msocl_planes_vkick(MSOCL_CONN, __global const float *p,
-                                 __global const float *v,
-                                 __global float *v_out,
-                                 __global float *acc_out, MSOCL_PLANES_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_vkick,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *v_out,
+                     __global float *acc_out, MSOCL_PLANES_ARGS),
+                    (MSOCL_CONN_ARGS, p, v, v_out, acc_out,
+                     MSOCL_PLANES_ARG_NAMES))
 {
-  MSOCL_PLANES_XYZ;
   const int a = MSOCL_PLANES_AT(x, y, z);
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
-                     y, z, a, &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, pass, p, v, pitch, slab, plane,
+                     viscous, x, y, z, a, &fx, &fy, &fz);
   const float im = aux[a], h = 0.5f * dt;
   const float ax = fx * im + gravity.x, ay = fy * im + gravity.y,
               az = fz * im + gravity.z;
@@ -373,7 +562,7 @@ __kernel void msocl_planes_vkick(MSOCL_CONN, __global const float *p,
   msocl_planes_air(air, &vx, &vy, &vz);
   (void)col;
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
-  if (x < grid_nx) {
+  if (MSOCL_PLANES_LIVE) {
     v_out[a] = pinned ? 0.0f : vx;
     v_out[plane + a] = pinned ? 0.0f : vy;
     v_out[2 * plane + a] = pinned ? 0.0f : vz;
@@ -385,7 +574,7 @@ __kernel void msocl_planes_vkick(MSOCL_CONN, __global const float *p,
 
 /* msocl_project in scalars (explicit methods: a point found inside a
  * collider goes back to its surface and loses its inward speed). */
-static void msocl_planes_project(float *px, float *py, float *pz, float *vx,
+static MSOCL_PLANES_INLINE void msocl_planes_project(float *px, float *py, float *pz, float *vx,
                                  float *vy, float *vz,
                                  __constant float4 *col)
 {
@@ -417,16 +606,17 @@ static void msocl_planes_project(float *px, float *py, float *pz, float *vx,
 /* Forward Euler in planes, as msocl_euler: p' = p + dt v, v' = v + dt
  * a(p, v), times air, projected out of the colliders; pinned points
  * stay. */
-__kernel void msocl_planes_euler(MSOCL_CONN, __global const float *p,
-                                 __global const float *v,
-                                 __global float *v_out, __global float *p_out,
-                                 MSOCL_PLANES_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_euler,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *v_out,
+                     __global float *p_out, MSOCL_PLANES_ARGS),
+                    (MSOCL_CONN_ARGS, p, v, v_out, p_out,
+                     MSOCL_PLANES_ARG_NAMES))
 {
-  MSOCL_PLANES_XYZ;
   const int a = MSOCL_PLANES_AT(x, y, z);
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
-                     y, z, a, &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, pass, p, v, pitch, slab, plane,
+                     viscous, x, y, z, a, &fx, &fy, &fz);
   const float im = aux[a];
   const int ay = plane + a, az = 2 * plane + a;
   float px = p[a] + dt * v[a], py = p[ay] + dt * v[ay],
@@ -437,7 +627,7 @@ __kernel void msocl_planes_euler(MSOCL_CONN, __global const float *p,
   msocl_planes_air(air, &vx, &vy, &vz);
   msocl_planes_project(&px, &py, &pz, &vx, &vy, &vz, col);
   const bool pinned = MSOCL_PLANES_PINNED(aux[ay]);
-  if (x < grid_nx) {
+  if (MSOCL_PLANES_LIVE) {
     p_out[a] = pinned ? p[a] : px;
     p_out[ay] = pinned ? p[ay] : py;
     p_out[az] = pinned ? p[az] : pz;
@@ -449,7 +639,9 @@ __kernel void msocl_planes_euler(MSOCL_CONN, __global const float *p,
 
 /* One RK4 stage in planes, as msocl_rk4_stage; mode a constant in each of
  * the three kernels below, so its branches fold away. */
-static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
+static MSOCL_PLANES_INLINE void msocl_planes_rk4(MSOCL_CONN, const int pass, const int x,
+                             const int y, const int z,
+                             __global const float *p0,
                              __global const float *v0,
                              __global const float *sp,
                              __global const float *sv, __global float *sum_p,
@@ -459,11 +651,10 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
                              float viscous, float air, float dt,
                              __constant float4 *col, float c, const int mode)
 {
-  MSOCL_PLANES_XYZ;
   const int a = MSOCL_PLANES_AT(x, y, z);
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, viscous, x,
-                     y, z, a, &fx, &fy, &fz);
+  msocl_planes_force(MSOCL_CONN_ARGS, pass, sp, sv, pitch, slab, plane,
+                     viscous, x, y, z, a, &fx, &fy, &fz);
   const float im = aux[a];
   const float kv[3] = {fx * im + gravity.x, fy * im + gravity.y,
                        fz * im + gravity.z};
@@ -487,7 +678,7 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
       const float kp = sv[q * plane + a];
       const float sp_ = mode == 0 ? kp : sum_p[q * plane + a] + 2.0f * kp;
       const float sv_ = mode == 0 ? kv[q] : sum_v[q * plane + a] + 2.0f * kv[q];
-      if (x < grid_nx) {
+      if (MSOCL_PLANES_LIVE) {
         sum_p[q * plane + a] = sp_;
         sum_v[q * plane + a] = sv_;
       }
@@ -497,7 +688,7 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
   }
   (void)air;
   (void)col;
-  if (x < grid_nx) {
+  if (MSOCL_PLANES_LIVE) {
 #pragma unroll
     for (int q = 0; q < 3; q++) {
       np[q * plane + a] = pinned ? p0[q * plane + a] : p[q];
@@ -507,26 +698,32 @@ static void msocl_planes_rk4(MSOCL_CONN, __global const float *p0,
 }
 
 #define MSOCL_PLANES_RK4_ARGS                                                 \
-  MSOCL_CONN, __global const float *p0, __global const float *v0,            \
-      __global const float *sp, __global const float *sv,                    \
-      __global float *sum_p, __global float *sum_v, __global float *np,      \
-      __global float *nv, MSOCL_PLANES_ARGS, float c
+  (MSOCL_CONN, __global const float *p0, __global const float *v0,           \
+   __global const float *sp, __global const float *sv,                       \
+   __global float *sum_p, __global float *sum_v, __global float *np,         \
+   __global float *nv, MSOCL_PLANES_ARGS, float c)
+#define MSOCL_PLANES_RK4_NAMES                                                \
+  (MSOCL_CONN_ARGS, p0, v0, sp, sv, sum_p, sum_v, np, nv,                    \
+   MSOCL_PLANES_ARG_NAMES, c)
 #define MSOCL_PLANES_RK4_CALL(mode)                                           \
-  msocl_planes_rk4(MSOCL_CONN_ARGS, p0, v0, sp, sv, sum_p, sum_v, np, nv,    \
-                   aux, pitch, slab, plane, gravity, viscous, air, dt, col, \
-                   c, mode)
+  msocl_planes_rk4(MSOCL_CONN_ARGS, pass, x, y, z, p0, v0, sp, sv, sum_p,    \
+                   sum_v, np, nv, aux, pitch, slab, plane, gravity, viscous, \
+                   air, dt, col, c, mode)
 
-__kernel void msocl_planes_rk4_first(MSOCL_PLANES_RK4_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_rk4_first, MSOCL_PLANES_RK4_ARGS,
+                    MSOCL_PLANES_RK4_NAMES)
 {
   MSOCL_PLANES_RK4_CALL(0);
 }
 
-__kernel void msocl_planes_rk4_middle(MSOCL_PLANES_RK4_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_rk4_middle, MSOCL_PLANES_RK4_ARGS,
+                    MSOCL_PLANES_RK4_NAMES)
 {
   MSOCL_PLANES_RK4_CALL(1);
 }
 
-__kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
+MSOCL_PLANES_GATHER(msocl_planes_rk4_last, MSOCL_PLANES_RK4_ARGS,
+                    MSOCL_PLANES_RK4_NAMES)
 {
   MSOCL_PLANES_RK4_CALL(2);
 }
@@ -537,43 +734,62 @@ __kernel void msocl_planes_rk4_last(MSOCL_PLANES_RK4_ARGS)
  * neighbour's spring all of it); pinned points stay. (In
  * float4 a missing neighbour is the point itself, whose zero length asks
  * nothing; here `there` masks it.) */
-__kernel void msocl_planes_strain(MSOCL_CONN, __global const float *p,
-                                  __global float *p_out,
-                                  __global const float *aux, int pitch,
-                                  int slab, int plane, float limit)
+/* One slot's ask in Provot's sweep on the point at q[0..2], added to
+ * d[0..3] (the move and the weight) where the spring is over its limit. */
+static MSOCL_PLANES_INLINE void msocl_planes_provot(__global const float *p,
+                                __global const float *aux, int plane,
+                                float limit, const float *q, int b,
+                                bool there, float rest, float *d)
 {
-  MSOCL_PLANES_XYZ;
+  const float dx = p[b] - q[0], dy = p[plane + b] - q[1],
+              dz = p[2 * plane + b] - q[2];
+  const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+  const float over = len - (1.0f + limit) * rest;
+  const float ask = (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) *
+                    over;
+  const float t = ask * MSOCL_DIV(ask, len);
+  const bool on = there && over > 0.0f;
+  d[0] += on ? t * dx : 0.0f;
+  d[1] += on ? t * dy : 0.0f;
+  d[2] += on ? t * dz : 0.0f;
+  d[3] += on ? ask : 0.0f;
+}
+
+MSOCL_PLANES_GATHER(msocl_planes_strain,
+                    (MSOCL_CONN, __global const float *p,
+                     __global float *p_out, __global const float *aux,
+                     int pitch, int slab, int plane, float limit),
+                    (MSOCL_CONN_ARGS, p, p_out, aux, pitch, slab, plane,
+                     limit))
+{
   const int a = MSOCL_PLANES_AT(x, y, z);
-  __global const float *py_ = p + plane, *pz_ = py_ + plane;
-  const float px = p[a], py = py_[a], pz = pz_[a];
-  float dpx = 0.0f, dpy = 0.0f, dpz = 0.0f, weight = 0.0f;
+  const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
+  const float q[3] = {px, py, pz};
+  float d[4] = {0.0f, 0.0f, 0.0f, 0.0f};
 #pragma unroll
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
       continue;
-    const float rest = MSOCL_GRID_R(s);
-    int b;
-    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
-                                         pitch, slab, &b);
-    const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
-    const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
-    const float over = len - (1.0f + limit) * rest;
-    const float ask = (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) *
-                      over;
-    const float t = ask * MSOCL_DIV(ask, len);
-    const bool on = there && over > 0.0f;
-    dpx += on ? t * dx : 0.0f;
-    dpy += on ? t * dy : 0.0f;
-    dpz += on ? t * dz : 0.0f;
-    weight += on ? ask : 0.0f;
+    MSOCL_PLANES_NEIGHBOR(s);
+    (void)kk; (void)cc;
+    msocl_planes_provot(p, aux, plane, limit, q, b, there, rest, d);
   }
+#ifdef MSOCL_SPILL
+  MSOCL_PLANES_SPILLS {
+    MSOCL_PLANES_SPILL_NEIGHBOR(o);
+    (void)kk; (void)cc;
+    msocl_planes_provot(p, aux, plane, limit, q, b, there, rest, d);
+  }
+#endif
+  float dpx = d[0], dpy = d[1], dpz = d[2];
+  const float weight = d[3];
   if (weight > 0.0f) {
     dpx = MSOCL_DIV(dpx, weight);
     dpy = MSOCL_DIV(dpy, weight);
     dpz = MSOCL_DIV(dpz, weight);
   }
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
-  if (x < grid_nx) {
+  if (MSOCL_PLANES_LIVE) {
     p_out[a] = pinned ? px : px + dpx;
     p_out[plane + a] = pinned ? py : py + dpy;
     p_out[2 * plane + a] = pinned ? pz : pz + dpz;
@@ -608,44 +824,65 @@ __kernel void msocl_planes_commit(__global float *p,
  * (the relative speed along a spring beyond what brings it to the limit
  * within the step: half of it, a pinned neighbour's spring all of it),
  * then the collision response again without friction. */
-__kernel void msocl_planes_strain_v(MSOCL_CONN, __global const float *p,
-                                    __global const float *v,
-                                    __global float *v_out,
-                                    __global const float *aux, int pitch,
-                                    int slab, int plane, float limit,
-                                    float dt, __constant float4 *col)
+/* One slot's ask in the velocity kind's sweep on the point whose position
+ * and velocity are q[0..5], added to d[0..3] (the change and the weight)
+ * where the spring would pass its limit. */
+static MSOCL_PLANES_INLINE void msocl_planes_vassilev(__global const float *p,
+                                  __global const float *v,
+                                  __global const float *aux, int plane,
+                                  float limit, float dt, const float *q,
+                                  int b, bool there, float rest, float *d)
 {
-  MSOCL_PLANES_XYZ;
+  const float dx = p[b] - q[0], dy = p[plane + b] - q[1],
+              dz = p[2 * plane + b] - q[2];
+  const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+  const float allowed = MSOCL_DIV((1.0f + limit) * rest - len, dt);
+  const float excess =
+      MSOCL_DIV(MSOCL_DOT3(v[b] - q[3], v[plane + b] - q[4],
+                           v[2 * plane + b] - q[5], dx, dy, dz),
+                len) -
+      allowed;
+  const float ask =
+      (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) * excess;
+  const float t = ask * MSOCL_DIV(ask, len);
+  const bool on = there && len > 0.0f && excess > 0.0f;
+  d[0] += on ? t * dx : 0.0f;
+  d[1] += on ? t * dy : 0.0f;
+  d[2] += on ? t * dz : 0.0f;
+  d[3] += on ? ask : 0.0f;
+}
+
+MSOCL_PLANES_GATHER(msocl_planes_strain_v,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *v_out,
+                     __global const float *aux, int pitch, int slab,
+                     int plane, float limit, float dt,
+                     __constant float4 *col),
+                    (MSOCL_CONN_ARGS, p, v, v_out, aux, pitch, slab, plane,
+                     limit, dt, col))
+{
   const int a = MSOCL_PLANES_AT(x, y, z);
-  __global const float *py_ = p + plane, *pz_ = py_ + plane;
-  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
-  const float px = p[a], py = py_[a], pz = pz_[a];
-  const float vx = v[a], vy = vy_[a], vz = vz_[a];
-  float dvx = 0.0f, dvy = 0.0f, dvz = 0.0f, weight = 0.0f;
+  const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
+  const float vx = v[a], vy = v[plane + a], vz = v[2 * plane + a];
+  const float q[6] = {px, py, pz, vx, vy, vz};
+  float d[4] = {0.0f, 0.0f, 0.0f, 0.0f};
 #pragma unroll
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
       continue;
-    const float rest = MSOCL_GRID_R(s);
-    int b;
-    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
-                                         pitch, slab, &b);
-    const float dx = p[b] - px, dy = py_[b] - py, dz = pz_[b] - pz;
-    const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
-    const float allowed = MSOCL_DIV((1.0f + limit) * rest - len, dt);
-    const float excess =
-        MSOCL_DIV(MSOCL_DOT3(v[b] - vx, vy_[b] - vy, vz_[b] - vz, dx, dy, dz),
-                  len) -
-        allowed;
-    const float ask =
-        (MSOCL_PLANES_PINNED(aux[plane + b]) ? 1.0f : 0.5f) * excess;
-    const float t = ask * MSOCL_DIV(ask, len);
-    const bool on = there && len > 0.0f && excess > 0.0f;
-    dvx += on ? t * dx : 0.0f;
-    dvy += on ? t * dy : 0.0f;
-    dvz += on ? t * dz : 0.0f;
-    weight += on ? ask : 0.0f;
+    MSOCL_PLANES_NEIGHBOR(s);
+    (void)kk; (void)cc;
+    msocl_planes_vassilev(p, v, aux, plane, limit, dt, q, b, there, rest, d);
   }
+#ifdef MSOCL_SPILL
+  MSOCL_PLANES_SPILLS {
+    MSOCL_PLANES_SPILL_NEIGHBOR(o);
+    (void)kk; (void)cc;
+    msocl_planes_vassilev(p, v, aux, plane, limit, dt, q, b, there, rest, d);
+  }
+#endif
+  float dvx = d[0], dvy = d[1], dvz = d[2];
+  const float weight = d[3];
   if (weight > 0.0f) {
     dvx = MSOCL_DIV(dvx, weight);
     dvy = MSOCL_DIV(dvy, weight);
@@ -654,7 +891,7 @@ __kernel void msocl_planes_strain_v(MSOCL_CONN, __global const float *p,
   float wx = vx + dvx, wy = vy + dvy, wz = vz + dvz;
   msocl_planes_collide(px, py, pz, &wx, &wy, &wz, dt, col, 0.0f);
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
-  if (x < grid_nx) {
+  if (MSOCL_PLANES_LIVE) {
     v_out[a] = pinned ? 0.0f : wx;
     v_out[plane + a] = pinned ? 0.0f : wy;
     v_out[2 * plane + a] = pinned ? 0.0f : wz;

@@ -18,14 +18,14 @@ void msocl_sum_points(__global const float *dots, __global float4 *partial,
   msocl_group_sum(i < n ? dots[i] : 0.0f, part, partial);
 }
 
-#if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID)
+#if defined(MSOCL_PLANES)
 
 /* The point's float4 index, (z ny + y) nx + x. */
 #define MSOCL_PLANES_INDEX(nx) ((z * (int)get_global_size(1) + y) * (nx) + x)
 
 /* msocl_jacobian in scalars, added to *j.. where `on`: J e for the spring
  * from the point to a neighbour d = (dx, dy, dz) away. */
-static void msocl_planes_jacobian(float dx, float dy, float dz, float rest,
+static MSOCL_PLANES_INLINE void msocl_planes_jacobian(float dx, float dy, float dz, float rest,
                                   float k, float ex, float ey, float ez,
                                   bool on, float *jx, float *jy, float *jz)
 {
@@ -40,89 +40,120 @@ static void msocl_planes_jacobian(float dx, float dy, float dz, float rest,
   *jz += live ? k * (az + t * (ez - az)) : 0.0f;
 }
 
-/* As msocl_ie_rhs: b = dt (f + dt K v); x = 0, r = d = b; dots: b.b */
-__kernel void msocl_planes_ie_rhs(MSOCL_CONN, __global const float *p,
-                                  __global const float *v,
-                                  __global float *x_out,
-                                  __global float *r_out,
-                                  __global float *d_out,
-                                  __global float *dots,
-                                  __global const float *aux, int pitch,
-                                  int slab, int plane, float4 gravity,
-                                  float viscous, float dt)
+/* One slot's J (v_b - v_a) for the point at a, added to k[0..2]. */
+static MSOCL_PLANES_INLINE void msocl_planes_stiff(__global const float *p,
+                               __global const float *v, int plane, int a,
+                               int b, bool there, float rest, float kk,
+                               float *k)
 {
-  MSOCL_PLANES_XYZ;
-  const int a = MSOCL_PLANES_AT(x, y, z);
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
   __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
+  msocl_planes_jacobian(p[b] - p[a], py_[b] - py_[a], pz_[b] - pz_[a], rest,
+                        kk, v[b] - v[a], vy_[b] - vy_[a], vz_[b] - vz_[a],
+                        there, &k[0], &k[1], &k[2]);
+}
+
+/* As msocl_ie_rhs: b = dt (f + dt K v); x = 0, r = d = b; dots: b.b */
+MSOCL_PLANES_GATHER(msocl_planes_ie_rhs,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *v, __global float *x_out,
+                     __global float *r_out, __global float *d_out,
+                     __global float *dots, __global const float *aux,
+                     int pitch, int slab, int plane, float4 gravity,
+                     float viscous, float dt),
+                    (MSOCL_CONN_ARGS, p, v, x_out, r_out, d_out, dots, aux,
+                     pitch, slab, plane, gravity, viscous, dt))
+{
+  const int a = MSOCL_PLANES_AT(x, y, z);
   float fx, fy, fz;
-  msocl_planes_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, viscous, x,
-                     y, z, a, &fx, &fy, &fz);
-  float kx = 0.0f, ky = 0.0f, kz = 0.0f;
+  msocl_planes_force(MSOCL_CONN_ARGS, pass, p, v, pitch, slab, plane,
+                     viscous, x, y, z, a, &fx, &fy, &fz);
+  float k[3] = {0.0f, 0.0f, 0.0f};
 #pragma unroll
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
       continue;
-    int b;
-    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
-                                         pitch, slab, &b);
-    msocl_planes_jacobian(p[b] - p[a], py_[b] - py_[a], pz_[b] - pz_[a],
-                          MSOCL_GRID_R(s), MSOCL_GRID_K(s), v[b] - v[a],
-                          vy_[b] - vy_[a], vz_[b] - vz_[a], there, &kx, &ky,
-                          &kz);
+    MSOCL_PLANES_NEIGHBOR(s);
+    (void)cc;
+    msocl_planes_stiff(p, v, plane, a, b, there, rest, kk, k);
   }
+#ifdef MSOCL_SPILL
+  MSOCL_PLANES_SPILLS {
+    MSOCL_PLANES_SPILL_NEIGHBOR(o);
+    (void)cc;
+    msocl_planes_stiff(p, v, plane, a, b, there, rest, kk, k);
+  }
+#endif
+  const float kx = k[0], ky = k[1], kz = k[2];
   const float m = 1.0f / aux[a];
   const bool pinned = MSOCL_PLANES_PINNED(aux[plane + a]);
   const float bx = pinned ? 0.0f : dt * (fx + m * gravity.x + dt * kx);
   const float by = pinned ? 0.0f : dt * (fy + m * gravity.y + dt * ky);
   const float bz = pinned ? 0.0f : dt * (fz + m * gravity.z + dt * kz);
-  if (x < grid_nx) {
+  if (MSOCL_PLANES_LIVE) {
     x_out[a] = x_out[plane + a] = x_out[2 * plane + a] = 0.0f;
     r_out[a] = d_out[a] = bx;
     r_out[plane + a] = d_out[plane + a] = by;
     r_out[2 * plane + a] = d_out[2 * plane + a] = bz;
-    dots[MSOCL_PLANES_INDEX(grid_nx)] = MSOCL_DOT3(bx, by, bz, bx, by, bz);
+    dots[MSOCL_PLANES_INDEX(MSOCL_PLANES_NX)] = MSOCL_DOT3(bx, by, bz, bx, by, bz);
   }
 }
 
-/* As msocl_ie_apply: ap = A d; dots: d.Ad */
-__kernel void msocl_planes_ie_apply(MSOCL_CONN, __global const float *p,
-                                    __global const float *d,
-                                    __global float *ap,
-                                    __global float *dots,
-                                    __global const float *aux, int pitch,
-                                    int slab, int plane, float viscous,
-                                    float dt)
+/* One slot's part of A d for the point whose position and direction are
+ * q[0..5]: J (d_b - d_a) added to k[0..2], the dashpot's
+ * (msocl_damp_jacobian) to c[0..2]. */
+static MSOCL_PLANES_INLINE void msocl_planes_product(__global const float *p,
+                                 __global const float *d, int plane,
+                                 const float *q, int b, bool there,
+                                 float rest, float kk, float cc, float *k,
+                                 float *c)
 {
-  MSOCL_PLANES_XYZ;
-  const int a = MSOCL_PLANES_AT(x, y, z);
-  __global const float *py_ = p + plane, *pz_ = py_ + plane;
-  __global const float *dy_ = d + plane, *dz_ = dy_ + plane;
-  const float px = p[a], py = py_[a], pz = pz_[a];
-  const float ix = d[a], iy = dy_[a], iz = dz_[a];
-  float kx = 0.0f, ky = 0.0f, kz = 0.0f, cx = 0.0f, cy = 0.0f, cz = 0.0f;
-#pragma unroll
-  for (int s = 0; s < MSOCL_MAX_SLOTS; s++) {
-    if (!((MSOCL_GRID_KINDS >> msocl_grid_kind[s]) & 1))
-      continue;
-    int b;
-    const bool there = msocl_planes_slot(MSOCL_CONN_ARGS, s, x, y, z, a,
-                                         pitch, slab, &b);
-    const float qx = p[b] - px, qy = py_[b] - py, qz = pz_[b] - pz;
-    const float ex = d[b] - ix, ey = dy_[b] - iy, ez = dz_[b] - iz;
-    msocl_planes_jacobian(qx, qy, qz, MSOCL_GRID_R(s), MSOCL_GRID_K(s), ex,
-                          ey, ez, there, &kx, &ky, &kz);
+  const float qx = p[b] - q[0], qy = p[plane + b] - q[1],
+              qz = p[2 * plane + b] - q[2];
+  const float ex = d[b] - q[3], ey = d[plane + b] - q[4],
+              ez = d[2 * plane + b] - q[5];
+  msocl_planes_jacobian(qx, qy, qz, rest, kk, ex, ey, ez, there, &k[0],
+                        &k[1], &k[2]);
 #ifdef MSOCL_DAMPING
-    /* msocl_damp_jacobian */
-    const float len2 = MSOCL_DOT3(qx, qy, qz, qx, qy, qz);
-    const float u =
-        MSOCL_GRID_C * MSOCL_DIV(MSOCL_DOT3(qx, qy, qz, ex, ey, ez), len2);
-    const bool live = there && len2 > 0.0f;
-    cx += live ? u * qx : 0.0f;
-    cy += live ? u * qy : 0.0f;
-    cz += live ? u * qz : 0.0f;
+  const float len2 = MSOCL_DOT3(qx, qy, qz, qx, qy, qz);
+  const float u = cc * MSOCL_DIV(MSOCL_DOT3(qx, qy, qz, ex, ey, ez), len2);
+  const bool live = there && len2 > 0.0f;
+  c[0] += live ? u * qx : 0.0f;
+  c[1] += live ? u * qy : 0.0f;
+  c[2] += live ? u * qz : 0.0f;
 #endif
+  (void)cc; (void)c; /* the dashpots' */
+}
+
+/* As msocl_ie_apply: ap = A d; dots: d.Ad */
+MSOCL_PLANES_GATHER(msocl_planes_ie_apply,
+                    (MSOCL_CONN, __global const float *p,
+                     __global const float *d, __global float *ap,
+                     __global float *dots, __global const float *aux,
+                     int pitch, int slab, int plane, float viscous,
+                     float dt),
+                    (MSOCL_CONN_ARGS, p, d, ap, dots, aux, pitch, slab,
+                     plane, viscous, dt))
+{
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  const float ix = d[a], iy = d[plane + a], iz = d[2 * plane + a];
+  const float q[6] = {p[a], p[plane + a], p[2 * plane + a], ix, iy, iz};
+  float k[3] = {0.0f, 0.0f, 0.0f}, c[3] = {0.0f, 0.0f, 0.0f};
+#pragma unroll
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
+      continue;
+    MSOCL_PLANES_NEIGHBOR(s);
+    msocl_planes_product(p, d, plane, q, b, there, rest, kk, cc, k, c);
   }
+#ifdef MSOCL_SPILL
+  MSOCL_PLANES_SPILLS {
+    MSOCL_PLANES_SPILL_NEIGHBOR(o);
+    msocl_planes_product(p, d, plane, q, b, there, rest, kk, cc, k, c);
+  }
+#endif
+  const float kx = k[0], ky = k[1], kz = k[2], cx = c[0], cy = c[1],
+              cz = c[2];
   const float m = 1.0f / aux[a];
 #ifdef MSOCL_VISCOUS
   const float mv = m + dt * viscous;
@@ -135,11 +166,11 @@ __kernel void msocl_planes_ie_apply(MSOCL_CONN, __global const float *p,
   const float yx = pinned ? ix : mv * ix - dt * cx - (dt * dt) * kx;
   const float yy = pinned ? iy : mv * iy - dt * cy - (dt * dt) * ky;
   const float yz = pinned ? iz : mv * iz - dt * cz - (dt * dt) * kz;
-  if (x < grid_nx) {
+  if (MSOCL_PLANES_LIVE) {
     ap[a] = yx;
     ap[plane + a] = yy;
     ap[2 * plane + a] = yz;
-    dots[MSOCL_PLANES_INDEX(grid_nx)] = MSOCL_DOT3(ix, iy, iz, yx, yy, yz);
+    dots[MSOCL_PLANES_INDEX(MSOCL_PLANES_NX)] = MSOCL_DOT3(ix, iy, iz, yx, yy, yz);
   }
 }
 

@@ -1,7 +1,9 @@
-/* GRID in planes (tuning.planes, kernels/planes.cl): a cloth grid's or
- * a lattice's steps, every integrator's (implicit Euler's CG:
- * planes_implicit.c), over x, y, z planes of padded rows, which PoCL's
- * CPU device runs eight points to an instruction. The state is copied
+/* Planes (tuning.planes, kernels/planes.cl): a model's steps, every
+ * integrator's (implicit Euler's CG: planes_implicit.c), over x, y, z
+ * planes of floats - GRID's padded rows, or BUFFER's and IMAGE2D's points
+ * in index order, their neighbours found through the layout's own
+ * connectivity - which PoCL's CPU device runs eight or sixteen points to
+ * an instruction. The state is copied
  * into the planes at the first step and stays there between calls;
  * whatever reads the engine's float4 buffers (reads, energy, normals, the
  * blow-up check's saved state) first calls msocl__planes_current, and
@@ -11,10 +13,16 @@
 #include "schedule.h"
 
 #include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_k /
                                sizeof(cl_kernel),
                "msocl__engine.pl_k holds every planes kernel");
+_Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_ks /
+                               sizeof(cl_kernel),
+               "msocl__engine.pl_ks holds every twin");
 
 static const char *const names[PL_COUNT] = {
     "msocl_planes_velocity", "msocl_planes_position", "msocl_planes_pack",
@@ -25,6 +33,16 @@ static const char *const names[PL_COUNT] = {
     "msocl_planes_strain_v", "msocl_planes_ie_rhs", "msocl_planes_ie_apply",
     "msocl_planes_cg_step", "msocl_planes_cg_direction",
     "msocl_planes_ie_finish", "msocl_sum_points", "msocl_planes_euler"};
+
+/* Whether planes kernel q gathers over its springs (and so has a _spill
+ * twin in a program built with a spill). */
+static int gathers(int q)
+{
+  return q == PL_VELOCITY || q == PL_FUSED || q == PL_EULER || q == PL_KICK ||
+         q == PL_RK4 || q == PL_RK4_MID || q == PL_RK4_LAST ||
+         q == PL_STRAIN || q == PL_STRAIN_V || q == PL_IE_RHS ||
+         q == PL_IE_APPLY;
+}
 
 /* The planes' shape for model m's grid: rows padded to whole work-groups
  * - of 64 points, or of 32, 16 or 8 for a narrow grid (a lattice's rows
@@ -52,6 +70,28 @@ static struct geometry geometry_in(int nx, int ny, int nz)
 static struct geometry geometry_of(const msocl_model *m)
 {
   return geometry_in(m->grid.nx, m->grid.ny, m->grid.nz);
+}
+
+/* BUFFER and IMAGE2D: the n points in one row of work-groups of 64, no
+ * padding around them (no neighbour is read at an offset); `pitch`
+ * carries n to the kernels, `slab` the stride of the planes' copy of
+ * BUFFER's table. */
+static struct geometry geometry_row(int n)
+{
+  struct geometry g;
+  g.group = 64;
+  g.wide = ((size_t)n + g.group - 1) / g.group * g.group;
+  g.pitch = (size_t)n;
+  g.slab = g.wide;
+  g.plane = g.wide;
+  return g;
+}
+
+static struct geometry geometry_engine(const msocl__engine *s)
+{
+  return s->lay.kind == MSOCL_LAYOUT_GRID
+             ? geometry_in(s->lay.grid_nx, s->lay.grid_ny, s->lay.grid_nz)
+             : geometry_row(s->n);
 }
 
 /* Planes (floats a padded point) each integrator and strain limit keeps:
@@ -134,33 +174,89 @@ int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
   return MSOCL_OK;
 }
 
+/* The widest BUFFER table the planes kernels unroll. */
+#define MSOCL__PLANES_SLOTS 64
+
+/* Whether AUTO runs BUFFER or IMAGE2D in planes: BUFFER on CPU devices,
+ * where its gather vectorises (docs/PERFORMANCE.md); IMAGE2D's texel
+ * reads are float4-typed, which stops PoCL vectorising, so it keeps
+ * float4. */
+static int row_auto(const msocl__engine *s)
+{
+  return s->lay.kind == MSOCL_LAYOUT_BUFFER &&
+         s->dev->info.type == MSOCL_DEVICE_CPU;
+}
+
+/* Why BUFFER's or IMAGE2D's connectivity cannot run in planes; NULL: it
+ * can. */
+static const char *unfit_row(const msocl__engine *s)
+{
+  if (s->lo != 0 || s->hi != s->n)
+    return "runs a whole model on one device (not a split)";
+  if (3 * geometry_row(s->n).plane > (size_t)INT_MAX)
+    return "index at most 2^31 floats (too many points)";
+  /* a wide table's unrolled slots would bloat the kernels */
+  if (s->lay.slots > MSOCL__PLANES_SLOTS)
+    return "take BUFFER tables of at most 64 slots";
+  return NULL;
+}
+
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
 {
-  const char *why = s->lay.kind != MSOCL_LAYOUT_GRID
-                        ? "needs the GRID layout"
-                        : unfit(m, s->lo, s->hi);
+  const msocl_layout kind = s->lay.kind;
+  const char *why = kind == MSOCL_LAYOUT_GRID ? unfit(m, s->lo, s->hi)
+                    : kind == MSOCL_LAYOUT_BUFFER ||
+                            kind == MSOCL_LAYOUT_IMAGE2D
+                        ? unfit_row(s)
+                        : "need the GRID, BUFFER or IMAGE2D layout, not EDGES";
   if (s->o.tuning.planes == MSOCL_ON && why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "planes %s", why);
-  s->planes = chosen(s->dev, &s->o, m, why);
+  s->planes = kind == MSOCL_LAYOUT_GRID
+                  ? chosen(s->dev, &s->o, m, why)
+                  : !why && (s->o.tuning.planes == MSOCL_ON ||
+                             (s->o.tuning.planes == MSOCL_AUTO &&
+                              row_auto(s)));
   return MSOCL_OK;
 }
 
-int msocl__pl_arg(cl_kernel k, cl_uint i, size_t size, const void *v)
+/* The _spill twin of planes kernel k, or NULL. */
+static cl_kernel twin(const msocl__engine *s, cl_kernel k)
+{
+  for (int q = 0; q < PL_COUNT; q++)
+    if (s->pl_k[q] == k)
+      return s->pl_ks[q];
+  return NULL;
+}
+
+int msocl__pl_arg(msocl__engine *s, cl_kernel k, cl_uint i, size_t size,
+                  const void *v)
 {
   MSOCL__CL(clSetKernelArg(k, i, size, v));
+  cl_kernel t = twin(s, k);
+  if (t)
+    MSOCL__CL(clSetKernelArg(t, i, size, v));
   return MSOCL_OK;
+}
+
+int msocl__pl_conn(msocl__engine *s, cl_kernel k, cl_uint *next)
+{
+  cl_kernel t = twin(s, k);
+  if (t)
+    MSOCL__TRY(msocl__layout_set_args(&s->pl_lay, t, next));
+  return msocl__layout_set_args(&s->pl_lay, k, next);
 }
 
 /* planes.h's helpers, by the short names this file has always used */
-#define arg msocl__pl_arg
+#define arg(k, ...) msocl__pl_arg(s, k, __VA_ARGS__)
 #define shape msocl__pl_shape
 #define launch msocl__pl_launch
 #define TRY MSOCL__TRY
 
 int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx)
 {
+  const int nx = s->lay.kind == MSOCL_LAYOUT_GRID ? s->lay.grid_nx : s->n;
   if (with_nx)
-    TRY(arg(k, i++, sizeof(int), &s->lay.grid_nx));
+    TRY(arg(k, i++, sizeof(int), &nx));
   TRY(arg(k, i, sizeof(int), &s->pl_pitch));
   TRY(arg(k, i + 1, sizeof(int), &s->pl_slab));
   return arg(k, i + 2, sizeof(int), &s->pl_plane);
@@ -179,7 +275,7 @@ static int fixed_args(msocl__engine *s)
   for (int q = 0; q < 7; q++) {
     k = s->pl_k[gathers[q]];
     cl_uint a;
-    TRY(msocl__layout_set_args(&s->lay, k, &a));
+    TRY(msocl__pl_conn(s, k, &a));
     s->pl_conn = a;
     a += q == 0 ? 3 : q < 4 ? 4 : 8;
     TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
@@ -216,7 +312,7 @@ static int fixed_args(msocl__engine *s)
    * commit (p, corrected, v, nx and shape, dt) */
   k = s->pl_k[PL_STRAIN]; /* its connectivity ends at pl_conn too */
   cl_uint c;
-  TRY(msocl__layout_set_args(&s->lay, k, &c));
+  TRY(msocl__pl_conn(s, k, &c));
   TRY(arg(k, c + 2, sizeof s->pl_aux, &s->pl_aux));
   TRY(shape(s, k, c + 3, 0));
   TRY(arg(k, c + 6, sizeof(float), &s->o.strain_limit));
@@ -226,7 +322,7 @@ static int fixed_args(msocl__engine *s)
   /* the velocity kind's sweep (connectivity, p, v, v_out, aux, shape,
    * limit, dt, col) */
   k = s->pl_k[PL_STRAIN_V];
-  TRY(msocl__layout_set_args(&s->lay, k, &c));
+  TRY(msocl__pl_conn(s, k, &c));
   TRY(arg(k, c + 3, sizeof s->pl_aux, &s->pl_aux));
   TRY(shape(s, k, c + 4, 0));
   TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
@@ -276,19 +372,132 @@ static int collider_table(msocl__engine *s)
   return MSOCL_OK;
 }
 
+/* A device buffer of `bytes` from host memory, into *out. */
+static int upload(msocl__engine *s, const void *host, size_t bytes,
+                  cl_mem *out)
+{
+  cl_int e;
+  *out = clCreateBuffer(s->dev->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                        bytes, (void *)host, &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateBuffer(planes' slot table): %s",
+                       msocl_err_name(e));
+  return MSOCL_OK;
+}
+
+/* The spill's offsets, padded to the plane (a padding point spills
+ * nothing), and the list of the points that spill, for the _spill
+ * twins. */
+static int spill_list(msocl__engine *s, size_t n, size_t P, int *nsp)
+{
+  int *off = malloc((P + 1) * sizeof *off), *list = malloc(n * sizeof *list);
+  int rc = off && list ? MSOCL_OK
+                       : msocl__fail(MSOCL_ERR_NO_MEMORY, "planes' spill");
+  cl_int e = CL_SUCCESS;
+  if (rc == MSOCL_OK)
+    e = clEnqueueReadBuffer(s->dev->queue, s->lay.spill, CL_TRUE, 0,
+                            (n + 1) * sizeof *off, off, 0, NULL, NULL);
+  if (rc == MSOCL_OK && e != CL_SUCCESS)
+    rc = msocl__fail(e, "reading the spill: %s", msocl_err_name(e));
+  if (rc == MSOCL_OK) {
+    for (size_t i = n + 1; i <= P; i++)
+      off[i] = off[n];
+    int nl = 0;
+    for (size_t i = 0; i < n; i++)
+      if (off[i + 1] > off[i])
+        list[nl++] = (int)i;
+    *nsp = off[n];
+    s->pl_nspill = nl;
+    rc = upload(s, off, (P + 1) * sizeof *off, &s->pl_table[3]);
+    if (rc == MSOCL_OK)
+      rc = upload(s, list, (size_t)nl * sizeof *list, &s->pl_list);
+  }
+  free(off);
+  free(list);
+  return rc;
+}
+
+/* BUFFER's slot table for the planes kernels: each slot `plane` entries
+ * apart instead of n, the padding work-items' entries free slots (the
+ * point itself, zeros), and (rest, k) pairs split into a plane of rests
+ * and one of stiffnesses - eight or sixteen work-items read a slot with
+ * contiguous vector loads, not gathers; the spill's entries follow the
+ * table as they do in the layout's (pairs after both planes). */
+static int padded_table(msocl__engine *s)
+{
+  s->pl_lay = s->lay;
+  if (s->lay.kind != MSOCL_LAYOUT_BUFFER)
+    return MSOCL_OK;
+  /* a model without springs still has one (free) slot, as layout.c's */
+  const size_t n = (size_t)s->n,
+               S = (size_t)(s->lay.slots > 0 ? s->lay.slots : 1),
+               P = (size_t)s->pl_plane;
+  int nsp = 0, rc = s->lay.spill ? spill_list(s, n, P, &nsp) : MSOCL_OK;
+  const size_t sp = (size_t)nsp;
+  /* bytes an entry: nbr; rk (classes: a byte, else rest and k); dashpots
+   * where each slot has its own (values, damped) */
+  const size_t size[3] = {sizeof(cl_int),
+                          s->lay.classes ? 1 : 2 * sizeof(cl_float),
+                          !s->lay.classes && s->damped ? sizeof(cl_float)
+                                                       : 0};
+  cl_mem from[3] = {s->lay.con, s->lay.rk, s->lay.damp};
+  for (int q = 0; q < 3 && rc == MSOCL_OK; q++) {
+    if (!size[q])
+      continue;
+    const size_t z = size[q];
+    unsigned char *in = malloc((S * n + sp) * z),
+                  *out = calloc(S * P + sp, z);
+    if (!in || !out)
+      rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "planes' slot table");
+    cl_int e = CL_SUCCESS;
+    if (rc == MSOCL_OK)
+      e = clEnqueueReadBuffer(s->dev->queue, from[q], CL_TRUE, 0,
+                              (S * n + sp) * z, in, 0, NULL, NULL);
+    if (rc == MSOCL_OK && e != CL_SUCCESS)
+      rc = msocl__fail(e, "reading the slot table: %s", msocl_err_name(e));
+    for (size_t t = 0; rc == MSOCL_OK && t < S; t++) {
+      if (q == 1 && !s->lay.classes) /* rests, then stiffnesses */
+        for (size_t i = 0; i < n; i++) {
+          memcpy(out + (t * P + i) * sizeof(float), in + (t * n + i) * z,
+                 sizeof(float));
+          memcpy(out + ((S + t) * P + i) * sizeof(float),
+                 in + (t * n + i) * z + sizeof(float), sizeof(float));
+        }
+      else
+        memcpy(out + t * P * z, in + t * n * z, n * z);
+      for (size_t i = n; q == 0 && i < P; i++) /* free: the point itself */
+        ((cl_int *)out)[t * P + i] = (cl_int)i;
+    }
+    if (rc == MSOCL_OK) {
+      memcpy(out + S * P * z, in + S * n * z, sp * z);
+      rc = upload(s, out, (S * P + sp) * z, &s->pl_table[q]);
+    }
+    free(in);
+    free(out);
+  }
+  if (rc != MSOCL_OK)
+    return rc;
+  s->pl_lay.con = s->pl_table[0];
+  s->pl_lay.rk = s->pl_table[1];
+  if (s->pl_table[2])
+    s->pl_lay.damp = s->pl_table[2];
+  if (s->pl_table[3])
+    s->pl_lay.spill = s->pl_table[3];
+  return MSOCL_OK;
+}
+
 int msocl__planes_create(msocl__engine *s, cl_program prog)
 {
   if (!s->planes)
     return MSOCL_OK;
   /* unfit() kept 3 planes within INT_MAX floats */
-  const struct geometry g =
-      geometry_in(s->lay.grid_nx, s->lay.grid_ny, s->lay.grid_nz);
+  const struct geometry g = geometry_engine(s);
   s->pl_group = g.group;
   s->pl_pitch = (int)g.pitch;
   s->pl_slab = (int)g.slab;
   s->pl_plane = (int)g.plane;
   s->pl_global[0] = g.wide;
-  s->pl_global[1] = (size_t)s->lay.grid_ny;
+  s->pl_global[1] = s->lay.grid_ny > 0 ? (size_t)s->lay.grid_ny : 1;
   s->pl_global[2] = s->lay.grid_nz > 0 ? (size_t)s->lay.grid_nz : 1;
   for (int q = 0; q < PL_COUNT; q++) {
     cl_int e;
@@ -296,6 +505,23 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
     if (e != CL_SUCCESS)
       return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
                          msocl_err_name(e));
+  }
+  TRY(padded_table(s));
+  for (int q = 0; s->pl_nspill > 0 && q < PL_COUNT; q++) {
+    if (!gathers(q))
+      continue;
+    char name[64];
+    snprintf(name, sizeof name, "%s_spill", names[q]);
+    cl_int e;
+    s->pl_ks[q] = clCreateKernel(prog, name, &e);
+    if (e != CL_SUCCESS)
+      return msocl__fail(e, "clCreateKernel(%s): %s", name,
+                         msocl_err_name(e));
+    cl_uint last = 0;
+    MSOCL__CL(clGetKernelInfo(s->pl_ks[q], CL_KERNEL_NUM_ARGS, sizeof last,
+                              &last, NULL));
+    MSOCL__CL(clSetKernelArg(s->pl_ks[q], last - 1, sizeof s->pl_list,
+                             &s->pl_list));
   }
   /* and Verlet's acceleration, RK4's stage states and sums, Provot's
    * sweeps */
@@ -336,6 +562,11 @@ int msocl__pl_launch(msocl__engine *s, int k)
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 3, NULL,
                                    s->pl_global, group, 0, NULL, NULL));
+  if (s->pl_ks[k]) {
+    const size_t spilled = (size_t)s->pl_nspill;
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_ks[k], 1, NULL,
+                                     &spilled, NULL, 0, NULL, NULL));
+  }
   return MSOCL_OK;
 }
 
@@ -534,4 +765,12 @@ void msocl__planes_release(msocl__engine *s)
       clReleaseMemObject(m[q]);
   if (s->pl_col)
     clReleaseMemObject(s->pl_col);
+  for (int q = 0; q < PL_COUNT; q++)
+    if (s->pl_ks[q])
+      clReleaseKernel(s->pl_ks[q]);
+  for (int q = 0; q < 4; q++)
+    if (s->pl_table[q])
+      clReleaseMemObject(s->pl_table[q]);
+  if (s->pl_list)
+    clReleaseMemObject(s->pl_list);
 }

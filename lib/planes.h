@@ -12,10 +12,16 @@ enum {
   PL_SUM, PL_EULER, PL_COUNT
 };
 
-int msocl__pl_arg(cl_kernel k, cl_uint i, size_t size, const void *v);
+/* Argument i of planes kernel k (and of its _spill twin, if any). */
+int msocl__pl_arg(msocl__engine *s, cl_kernel k, cl_uint i, size_t size,
+                  const void *v);
+/* Kernel k's connectivity arguments (and its twin's); *next: the first
+ * after them. */
+int msocl__pl_conn(msocl__engine *s, cl_kernel k, cl_uint *next);
 /* The planes' shape from argument i: (nx if with_nx,) pitch, slab, plane. */
 int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx);
-/* Kernel k over the padded grid. */
+/* Kernel k over the padded grid (then its twin over the points that
+ * spill). */
 int msocl__pl_launch(msocl__engine *s, int k);
 
 /* planes_implicit.c: its kernels' fixed arguments (its CG operations:

@@ -20,49 +20,49 @@ int msocl__pl_implicit_args(msocl__engine *s)
   /* rhs: connectivity, p, v, x, r, d, dots, aux, shape, gravity, viscous,
    * dt */
   cl_kernel k = s->pl_k[PL_IE_RHS];
-  TRY(msocl__layout_set_args(&s->lay, k, &c));
+  TRY(msocl__pl_conn(s, k, &c));
   const cl_mem rhs[4] = {x, r, d, dots};
   for (cl_uint q = 0; q < 4; q++)
-    TRY(msocl__pl_arg(k, c + 2 + q, sizeof rhs[q], &rhs[q]));
-  TRY(msocl__pl_arg(k, c + 6, sizeof s->pl_aux, &s->pl_aux));
+    TRY(msocl__pl_arg(s, k, c + 2 + q, sizeof rhs[q], &rhs[q]));
+  TRY(msocl__pl_arg(s, k, c + 6, sizeof s->pl_aux, &s->pl_aux));
   TRY(msocl__pl_shape(s, k, c + 7, 0));
-  TRY(msocl__pl_arg(k, c + 10, sizeof s->gravity, &s->gravity));
-  TRY(msocl__pl_arg(k, c + 11, sizeof(float), &s->viscous));
-  TRY(msocl__pl_arg(k, c + 12, sizeof(float), &dt));
+  TRY(msocl__pl_arg(s, k, c + 10, sizeof s->gravity, &s->gravity));
+  TRY(msocl__pl_arg(s, k, c + 11, sizeof(float), &s->viscous));
+  TRY(msocl__pl_arg(s, k, c + 12, sizeof(float), &dt));
   /* apply: connectivity, p, d, ap, dots, aux, shape, viscous, dt */
   k = s->pl_k[PL_IE_APPLY];
-  TRY(msocl__layout_set_args(&s->lay, k, &c));
+  TRY(msocl__pl_conn(s, k, &c));
   const cl_mem apply[3] = {d, ap, dots};
   for (cl_uint q = 0; q < 3; q++)
-    TRY(msocl__pl_arg(k, c + 1 + q, sizeof apply[q], &apply[q]));
-  TRY(msocl__pl_arg(k, c + 4, sizeof s->pl_aux, &s->pl_aux));
+    TRY(msocl__pl_arg(s, k, c + 1 + q, sizeof apply[q], &apply[q]));
+  TRY(msocl__pl_arg(s, k, c + 4, sizeof s->pl_aux, &s->pl_aux));
   TRY(msocl__pl_shape(s, k, c + 5, 0));
-  TRY(msocl__pl_arg(k, c + 8, sizeof(float), &s->viscous));
-  TRY(msocl__pl_arg(k, c + 9, sizeof(float), &dt));
+  TRY(msocl__pl_arg(s, k, c + 8, sizeof(float), &s->viscous));
+  TRY(msocl__pl_arg(s, k, c + 9, sizeof(float), &dt));
   /* CG step: x, r, d, ap, dots, nx and shape, alpha */
   k = s->pl_k[PL_CG_STEP];
   const cl_mem step[5] = {x, r, d, ap, dots};
   for (cl_uint q = 0; q < 5; q++)
-    TRY(msocl__pl_arg(k, q, sizeof step[q], &step[q]));
+    TRY(msocl__pl_arg(s, k, q, sizeof step[q], &step[q]));
   TRY(msocl__pl_shape(s, k, 5, 1));
   /* direction: d, r, nx and shape, beta */
   k = s->pl_k[PL_CG_DIR];
-  TRY(msocl__pl_arg(k, 0, sizeof d, &d));
-  TRY(msocl__pl_arg(k, 1, sizeof r, &r));
+  TRY(msocl__pl_arg(s, k, 0, sizeof d, &d));
+  TRY(msocl__pl_arg(s, k, 1, sizeof r, &r));
   TRY(msocl__pl_shape(s, k, 2, 1));
   /* finish: p, v, dv, v_out, aux, nx and shape, air, dt, col */
   k = s->pl_k[PL_IE_FINISH];
-  TRY(msocl__pl_arg(k, 2, sizeof x, &x));
-  TRY(msocl__pl_arg(k, 4, sizeof s->pl_aux, &s->pl_aux));
+  TRY(msocl__pl_arg(s, k, 2, sizeof x, &x));
+  TRY(msocl__pl_arg(s, k, 4, sizeof s->pl_aux, &s->pl_aux));
   TRY(msocl__pl_shape(s, k, 5, 1));
-  TRY(msocl__pl_arg(k, 9, sizeof(float), &s->air));
-  TRY(msocl__pl_arg(k, 10, sizeof(float), &dt));
-  TRY(msocl__pl_arg(k, 11, sizeof s->pl_col, &s->pl_col));
+  TRY(msocl__pl_arg(s, k, 9, sizeof(float), &s->air));
+  TRY(msocl__pl_arg(s, k, 10, sizeof(float), &dt));
+  TRY(msocl__pl_arg(s, k, 11, sizeof s->pl_col, &s->pl_col));
   /* the sums: dots, partial, n */
   k = s->pl_k[PL_SUM];
-  TRY(msocl__pl_arg(k, 0, sizeof dots, &dots));
-  TRY(msocl__pl_arg(k, 1, sizeof s->partial, &s->partial));
-  return msocl__pl_arg(k, 2, sizeof(int), &s->n);
+  TRY(msocl__pl_arg(s, k, 0, sizeof dots, &dots));
+  TRY(msocl__pl_arg(s, k, 1, sizeof s->partial, &s->partial));
+  return msocl__pl_arg(s, k, 2, sizeof(int), &s->n);
 }
 
 /* Kernel k over the planes, then the points' terms summed as float4's
@@ -78,7 +78,7 @@ static int reduce(msocl__engine *s, int k)
 
 static int set_float(msocl__engine *s, int k, cl_uint i, float v)
 {
-  return msocl__pl_arg(s->pl_k[k], i, sizeof v, &v);
+  return msocl__pl_arg(s, s->pl_k[k], i, sizeof v, &v);
 }
 
 /* The CG's operations (schedule.h) from plane set r = pl_set into v[w]. */
@@ -86,10 +86,10 @@ static int rhs(msocl__engine *s)
 {
   const cl_uint c = s->pl_conn;
   const int r = s->pl_set;
-  TRY(msocl__pl_arg(s->pl_k[PL_IE_RHS], c, sizeof s->pl_p[r], &s->pl_p[r]));
-  TRY(msocl__pl_arg(s->pl_k[PL_IE_RHS], c + 1, sizeof s->pl_v[r],
+  TRY(msocl__pl_arg(s, s->pl_k[PL_IE_RHS], c, sizeof s->pl_p[r], &s->pl_p[r]));
+  TRY(msocl__pl_arg(s, s->pl_k[PL_IE_RHS], c + 1, sizeof s->pl_v[r],
                     &s->pl_v[r]));
-  TRY(msocl__pl_arg(s->pl_k[PL_IE_APPLY], c, sizeof s->pl_p[r],
+  TRY(msocl__pl_arg(s, s->pl_k[PL_IE_APPLY], c, sizeof s->pl_p[r],
                     &s->pl_p[r]));
   return reduce(s, PL_IE_RHS);
 }
@@ -115,9 +115,9 @@ static int finish(msocl__engine *s)
 {
   const int r = s->pl_set, w = 1 - r;
   cl_kernel k = s->pl_k[PL_IE_FINISH];
-  TRY(msocl__pl_arg(k, 0, sizeof s->pl_p[r], &s->pl_p[r]));
-  TRY(msocl__pl_arg(k, 1, sizeof s->pl_v[r], &s->pl_v[r]));
-  TRY(msocl__pl_arg(k, 3, sizeof s->pl_v[w], &s->pl_v[w]));
+  TRY(msocl__pl_arg(s, k, 0, sizeof s->pl_p[r], &s->pl_p[r]));
+  TRY(msocl__pl_arg(s, k, 1, sizeof s->pl_v[r], &s->pl_v[r]));
+  TRY(msocl__pl_arg(s, k, 3, sizeof s->pl_v[w], &s->pl_v[w]));
   return msocl__pl_launch(s, PL_IE_FINISH);
 }
 

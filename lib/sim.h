@@ -69,6 +69,12 @@ struct msocl__engine {
   cl_mem pl_sp[2], pl_sv[2], pl_sum[2]; /* RK4: stage states, sums */
   cl_mem pl_s[2];         /* strain sweeps (velocity: pl_s[0]) */
   cl_mem pl_col;          /* the colliders, a float4 a value (planes.c) */
+  struct msocl__layout pl_lay; /* the planes kernels' connectivity: lay,
+                             BUFFER's table copied with a plane's stride */
+  cl_mem pl_table[4];     /* that copy's nbr, rk, dashpots, spill (owned) */
+  cl_mem pl_list;         /* BUFFER with a spill: the points that spill */
+  int pl_nspill;          /* ... and how many */
+  cl_kernel pl_ks[22];    /* the gathering kernels' _spill twins */
   cl_kernel pl_k[22];     /* planes.c's kernels (planes.h) */
   cl_uint pl_conn;        /* the gathering kernels' connectivity args */
   int pl_pitch, pl_slab, pl_plane; /* floats a row, a layer, a plane */

@@ -1,4 +1,4 @@
-/* GRID in planes (tuning.planes): a cloth grid's symplectic Euler steps
+/* Planes (tuning.planes): a cloth grid's symplectic Euler steps
  * (two passes or fused), Verlet and RK4 steps over x, y, z planes must be
  * bitwise the float4 kernels' steps - with
  * every feature the planes kernel compiles in (colliders of each kind,
@@ -6,7 +6,11 @@
  * work-group, and the state written between calls - and auto must take
  * planes exactly where they apply, and not where their padding would
  * multiply the memory (a skinny lattice); a grid too large for the
- * kernels' int indices is refused before anything is allocated. */
+ * kernels' int indices is refused before anything is allocated. BUFFER
+ * and IMAGE2D in planes are bitwise their float4 steps too, for every
+ * integrator and strain limit, on a cloth, a lattice, an irregular mesh
+ * from OBJ text and a ball (its hub in a wide table, or spilling past a
+ * narrow one). */
 #include "scenes.h"
 #include "sim.h" /* msocl__planes_bytes, _refused, _would */
 
@@ -64,12 +68,20 @@ static void state_free(struct state *st)
 /* planes: tuning.planes ON (1) or OFF (0), and 2: planes with the fused
  * kernel; 3: Verlet in planes, -3 Verlet in float4; 4 and -4 RK4; 5 and
  * -5 implicit Euler; 6 and -6 explicit Euler (otherwise symplectic Euler) */
+/* The layout, spring classes and table width the next sims get (the
+ * mesh cases set them; GRID otherwise). */
+static msocl_layout layout_ = MSOCL_LAYOUT_GRID;
+/* classes_: -1 AUTO, 0 OFF, 1 ON */
+static int classes_ = -1, slots_ = 0;
+
 static msocl_sim *make_strained(const msocl_model *m, int planes,
                                 msocl_math math, float dt,
                                 msocl_strain strain)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
+  o.tuning.classes = classes_ < 0 ? MSOCL_AUTO : classes_ ? MSOCL_ON : MSOCL_OFF;
+  o.tuning.buffer_slots = slots_;
   o.strain = strain;
   o.strain_iterations = 3; /* the sweeps ping-pong */
   if (abs(planes) >= 3) {
@@ -78,7 +90,7 @@ static msocl_sim *make_strained(const msocl_model *m, int planes,
     o.integrator = in[abs(planes) - 3];
     planes = planes > 0;
   }
-  o.tuning.layout = MSOCL_LAYOUT_GRID;
+  o.tuning.layout = layout_;
   o.tuning.planes = planes > 0 ? MSOCL_ON : MSOCL_OFF;
   o.tuning.fused = planes == 2 ? MSOCL_ON : MSOCL_OFF;
   o.math = math;
@@ -468,7 +480,8 @@ START_TEST(relaxed_close)
 }
 END_TEST
 
-/* Auto takes planes on a CPU device wherever they apply, and only there;
+/* Auto takes GRID's planes on a CPU device wherever they apply, and only
+ * there (never EDGES);
  * forcing them where they cannot run is a clear error. */
 START_TEST(auto_and_errors)
 {
@@ -504,8 +517,8 @@ START_TEST(auto_and_errors)
     msocl_strain strain;
     const char *words;
   } no[] = {
-      {MSOCL_LAYOUT_BUFFER, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE,
-       "GRID"},
+      {MSOCL_LAYOUT_EDGES, MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE,
+       "EDGES"},
   };
   for (size_t q = 0; q < sizeof no / sizeof no[0]; q++) {
     o.tuning.layout = no[q].layout;
@@ -621,6 +634,251 @@ START_TEST(skinny_lattice)
 }
 END_TEST
 
+/* An irregular sheet as OBJ text: nx x ny points, jittered, each quad cut
+ * along a diagonal a hash picks (so a point has 3 to 8 edges, and bending
+ * springs across them), held 5 cm over a ball and a floor, one corner
+ * pinned, with dashpots. */
+static msocl_model *obj_sheet(int nx, int ny)
+{
+  size_t cap = 64 * (size_t)(nx * ny) * 4, len = 0;
+  char *text = malloc(cap);
+  ck_assert_ptr_nonnull(text);
+  unsigned h = 12345u;
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++) {
+      h = h * 1103515245u + 12345u;
+      const float jx = (float)((h >> 8) % 1000) * 2e-5f;
+      h = h * 1103515245u + 12345u;
+      const float jz = (float)((h >> 8) % 1000) * 2e-5f;
+      len += (size_t)snprintf(text + len, cap - len, "v %.6f 0.05 %.6f\n",
+                              -0.4f + 0.8f * (float)i / (float)(nx - 1) + jx,
+                              -0.4f + 0.8f * (float)j / (float)(ny - 1) + jz);
+    }
+  for (int j = 0; j + 1 < ny; j++)
+    for (int i = 0; i + 1 < nx; i++) {
+      const int a = j * nx + i + 1, b = a + 1, c = a + nx, d = c + 1;
+      h = h * 1103515245u + 12345u;
+      if ((h >> 16) & 1)
+        len += (size_t)snprintf(text + len, cap - len, "f %d %d %d\nf %d %d %d\n",
+                                a, b, d, a, d, c);
+      else
+        len += (size_t)snprintf(text + len, cap - len, "f %d %d %d\nf %d %d %d\n",
+                                a, b, c, b, d, c);
+    }
+  ck_assert_uint_lt(len, cap);
+  msocl_obj_desc od;
+  msocl_obj_desc_init(&od);
+  od.k_edge = 40.0f;
+  od.k_bend = 5.0f;
+  od.damping = 2e-3f;
+  msocl_model *m = NULL;
+  int rc = msocl_model_from_obj_text(&m, text, len, &od);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  free(text);
+  const float ball[3] = {0.1f, -0.1f, 0.0f}, up[3] = {0.0f, 1.0f, 0.0f};
+  ck_assert_int_eq(msocl_model_add_sphere(m, ball, 0.14f, 0.4f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_plane(m, up, -0.05f, 0.3f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_pin(m, 0, 1), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_set_air_resistance(m, 0.999f), MSOCL_OK);
+  return m;
+}
+
+/* A 6 x 5 x 4 lattice just over a floor, its corner in a ball, one top
+ * corner pinned, viscous damping; `slim`: structural and body shear
+ * springs only (14 a point, within IMAGE2D's 16), else the default sets
+ * (24). */
+static msocl_model *busy_lattice(int slim)
+{
+  msocl_lattice_desc d;
+  msocl_lattice_desc_init(&d);
+  d.nx = 6;
+  d.ny = 5;
+  d.nz = 4;
+  if (slim) {
+    d.k_shear_face = d.k_bend = 0.0f;
+    d.k_shear_body = 80.0f;
+  }
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_lattice(&m, &d), MSOCL_OK);
+  const float up[3] = {0.0f, 1.0f, 0.0f}, ball[3] = {-0.07f, 0.09f, -0.07f};
+  ck_assert_int_eq(msocl_model_add_plane(m, up, 0.099f, 0.3f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_sphere(m, ball, 0.025f, 0.2f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_pin(m, 6 * 5 * 4 - 1, 1), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_set_viscous_damping(m, 1e-4f), MSOCL_OK);
+  return m;
+}
+
+/* The soft ball at subdivision 1 (42 surface points and a centre with 42
+ * springs) over a floor. */
+static msocl_model *small_ball(void)
+{
+  msocl_solid_desc d;
+  msocl_solid_desc_init(&d);
+  d.subdivisions = 1;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_solid(&m, &d), MSOCL_OK);
+  const float up[3] = {0.0f, 1.0f, 0.0f};
+  ck_assert_int_eq(msocl_model_add_plane(m, up, 0.0f, 0.3f), MSOCL_OK);
+  return m;
+}
+
+/* Every integrator and strain limit the planes run: float4 mode, planes
+ * mode (make_strained's codes), strain limit. */
+static const struct {
+  int f4, pl;
+  msocl_strain strain;
+  const char *what;
+} methods[] = {
+    {0, 1, MSOCL_STRAIN_NONE, "symplectic Euler"},
+    {0, 1, MSOCL_STRAIN_PROVOT, "symplectic Euler, Provot"},
+    {0, 1, MSOCL_STRAIN_VELOCITY, "symplectic Euler, velocity kind"},
+    {0, 2, MSOCL_STRAIN_NONE, "fused"},
+    {0, 2, MSOCL_STRAIN_PROVOT, "fused, Provot"},
+    {-3, 3, MSOCL_STRAIN_NONE, "Verlet"},
+    {-3, 3, MSOCL_STRAIN_PROVOT, "Verlet, Provot"},
+    {-4, 4, MSOCL_STRAIN_NONE, "RK4"},
+    {-4, 4, MSOCL_STRAIN_PROVOT, "RK4, Provot"},
+    {-5, 5, MSOCL_STRAIN_NONE, "implicit Euler"},
+    {-5, 5, MSOCL_STRAIN_PROVOT, "implicit Euler, Provot"},
+    {-5, 5, MSOCL_STRAIN_VELOCITY, "implicit Euler, velocity kind"},
+    {-6, 6, MSOCL_STRAIN_NONE, "explicit Euler"},
+    {-6, 6, MSOCL_STRAIN_PROVOT, "explicit Euler, Provot"},
+};
+
+/* Mesh case _i: scene (cloth, lattice, OBJ sheet, ball's wide table,
+ * ball spilling; the cloth, sheet and spill also with spring classes)
+ * and layout. */
+static const struct {
+  int scene;
+  msocl_layout layout;
+  int classes;
+} meshes[] = {
+    {0, MSOCL_LAYOUT_BUFFER, 0},  {0, MSOCL_LAYOUT_BUFFER, 1},
+    {0, MSOCL_LAYOUT_IMAGE2D, 0}, {1, MSOCL_LAYOUT_BUFFER, 0},
+    {1, MSOCL_LAYOUT_IMAGE2D, 0}, {2, MSOCL_LAYOUT_BUFFER, 0},
+    {2, MSOCL_LAYOUT_BUFFER, 1},  {2, MSOCL_LAYOUT_IMAGE2D, 0},
+    {3, MSOCL_LAYOUT_BUFFER, 0},  {4, MSOCL_LAYOUT_BUFFER, 0},
+    {4, MSOCL_LAYOUT_BUFFER, 1},
+};
+
+static msocl_model *mesh_scene(int q, char *label, size_t cap)
+{
+  static const char *const scenes[5] = {"cloth", "lattice", "OBJ sheet",
+                                        "ball", "ball, spilling"};
+  const int sc = meshes[q].scene;
+  const int image = meshes[q].layout == MSOCL_LAYOUT_IMAGE2D;
+  msocl_model *m = sc == 0   ? busy_cloth(20, 17)
+                   : sc == 1 ? busy_lattice(image)
+                   : sc == 2 ? obj_sheet(18, 15)
+                             : small_ball();
+  layout_ = meshes[q].layout;
+  classes_ = meshes[q].classes;
+  /* the ball's hub in the table, or past a table of 8 slots */
+  slots_ = sc == 3 ? 48 : sc == 4 ? 8 : 0;
+  snprintf(label, cap, "%s, %s%s", scenes[sc], image ? "IMAGE2D" : "BUFFER",
+           meshes[q].classes ? " with classes" : "");
+  return m;
+}
+
+static void mesh_done(msocl_model *m)
+{
+  layout_ = MSOCL_LAYOUT_GRID;
+  classes_ = -1;
+  slots_ = 0;
+  msocl_model_destroy(m);
+}
+
+/* BUFFER and IMAGE2D in planes are bitwise float4's, for every
+ * integrator and strain limit, in three calls (the state kept in the
+ * planes between them); and the motion was not nothing. */
+START_TEST(meshes_bitwise)
+{
+  char label[64];
+  msocl_model *m = mesh_scene(_i, label, sizeof label);
+  int degree = 0;
+  msocl_model_max_degree(m, &degree);
+  float dt;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  for (size_t q = 0; q < sizeof methods / sizeof methods[0]; q++) {
+    const int in = abs(methods[q].pl);
+    const float h = in == 5 ? 2.0f * dt : in == 6 ? 0.1f * dt : 0.5f * dt;
+    struct state f4 = float4_vs_planes(m, methods[q].f4, methods[q].pl, h,
+                                       20, methods[q].strain, label,
+                                       methods[q].what);
+    ck_assert_int_eq(f4.planes, 0);
+    if (q == 0) {
+      double far = 0.0;
+      for (int i = 0; i < f4.n; i++)
+        far = fmax(far, fabs(f4.vel[3 * i + 1]));
+      ck_assert_msg(far > 1e-3, "%s: fastest vertical speed %g m/s", label,
+                    far);
+    }
+    state_free(&f4);
+  }
+  printf("%s (degree %d): planes bitwise float4 for %zu methods\n", label,
+         degree, sizeof methods / sizeof methods[0]);
+  mesh_done(m);
+}
+END_TEST
+
+/* Writes between calls reach BUFFER's and IMAGE2D's planes, as GRID's
+ * (writes_between_calls): symplectic Euler and Verlet. */
+START_TEST(mesh_writes_between_calls)
+{
+  char label[64];
+  msocl_model *m = mesh_scene(_i == 0 ? 5 : 7, label, sizeof label);
+  float dt;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  dt *= 0.5f;
+  const int modes[4] = {0, 1, -3, 3};
+  struct state out[4];
+  for (int q = 0; q < 4; q++) {
+    msocl_sim *s = make(m, modes[q], MSOCL_MATH_PRECISE, dt);
+    ck_assert_int_eq(msocl_sim_step(s, 30), MSOCL_OK);
+    struct state mid = read_state(s);
+    for (int i = 0; i < mid.n; i++) {
+      mid.pos[3 * i + 1] += 0.02f;
+      mid.vel[3 * i] = 0.1f;
+    }
+    ck_assert_int_eq(msocl_sim_write_positions(s, mid.pos), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_step(s, 7), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_write_velocities(s, mid.vel), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_step(s, 30), MSOCL_OK);
+    out[q] = read_state(s);
+    ck_assert_int_eq(out[q].planes, modes[q] > 0);
+    state_free(&mid);
+    msocl_sim_destroy(s);
+  }
+  assert_bitwise(&out[0], &out[1], label);
+  assert_bitwise(&out[2], &out[3], label);
+  for (int q = 0; q < 4; q++)
+    state_free(&out[q]);
+  mesh_done(m);
+}
+END_TEST
+
+/* AUTO runs BUFFER in planes on a CPU device (its gather vectorises),
+ * IMAGE2D in float4 (its texel reads do not). */
+START_TEST(auto_meshes)
+{
+  msocl_model *m = obj_sheet(12, 10);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  const msocl_layout kinds[3] = {MSOCL_LAYOUT_AUTO, MSOCL_LAYOUT_BUFFER,
+                                 MSOCL_LAYOUT_IMAGE2D};
+  for (int q = 0; q < 3; q++) {
+    o.tuning.layout = kinds[q];
+    msocl_sim *s = NULL;
+    int on = -1;
+    ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
+    ck_assert_int_eq(on, q < 2);
+    msocl_sim_destroy(s);
+  }
+  msocl_model_destroy(m);
+}
+END_TEST
+
 int main(void)
 {
   scene_require_device("check_planes");
@@ -641,6 +899,10 @@ int main(void)
   tcase_add_test(tc, auto_and_errors);
   tcase_add_test(tc, split_keeps_float4);
   tcase_add_test(tc, skinny_lattice);
+  tcase_add_loop_test(tc, meshes_bitwise, 0,
+                      (int)(sizeof meshes / sizeof meshes[0]));
+  tcase_add_loop_test(tc, mesh_writes_between_calls, 0, 2);
+  tcase_add_test(tc, auto_meshes);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }
