@@ -325,7 +325,8 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
                                   0, bytes, 0, NULL, NULL));
   }
   TRY(collider_table(s));
-  return fixed_args(s);
+  TRY(fixed_args(s));
+  return msocl__pl_rows_create(s, prog);
 }
 
 /* A pass over the padded grid; CPU devices in work-groups of a row's
@@ -438,6 +439,8 @@ static int step(msocl__engine *s, int r, int w)
 static int integrator_step(msocl__engine *s, int r, int w)
 {
   const cl_mem *p = s->pl_p, *v = s->pl_v;
+  if (s->pl_rows)
+    return msocl__pl_rows_step(s, r, w);
   if (s->o.integrator == MSOCL_RK4) {
     for (int q = 0; q < 4; q++)
       TRY(rk4_stage(s, q, r, w));
@@ -543,4 +546,5 @@ void msocl__planes_release(msocl__engine *s)
       clReleaseMemObject(m[q]);
   if (s->pl_col)
     clReleaseMemObject(s->pl_col);
+  msocl__pl_rows_release(s);
 }
