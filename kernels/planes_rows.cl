@@ -1,10 +1,10 @@
 /* Symplectic Euler on a cloth grid in planes, one sweep a step, each
  * spring computed once (lib/planes_rows.c takes it where it applies: a
  * CPU device, no dashpots, no strain limit, rows at least MSOCL_ROWS_W
- * points wide). Needs common.cl before it, and planes.cl's
- * msocl_planes_* helpers' conventions: point (x, y) at (y + 2) * pitch +
- * x + 2 of each plane, aux the inverse masses then pos.w, col a float4 a
- * collider value.
+ * points wide). Needs common.cl and planes.cl before it (MSOCL_DOT3,
+ * MSOCL_PLANES_COL), and keeps planes.cl's layout: point (x, y) at
+ * (y + 2) * pitch + x + 2 of each plane, aux the inverse masses then
+ * pos.w, col a float4 a collider value.
  *
  * Why: the planes kernels compute each spring at both of its ends, two
  * square roots and two divisions a spring, and the dividers bound the
@@ -15,7 +15,8 @@
  * `ring`, then sums each point's twelve slots from the ring - a
  * backward spring is a forward one negated, bit for bit, as its d is -d
  * and its length the same - and moves the point, both passes at once as
- * in msocl_planes_fused (the new state goes to the other plane set).
+ * in msocl_planes_fused: its velocity in place (no other point reads
+ * it), its position into the other plane set.
  *
  * The position planes' padding holds NaN (lib/planes_rows.c): a missing
  * neighbour's length is NaN, `len > 0` fails and its term is the zero
@@ -190,11 +191,13 @@ msocl_rows_sum(__global const float *r0,
   return g;
 }
 
-/* Row y's kick and drift (msocl_planes_fused) from ring rows r0, r1, r2.
- * The last vector moves back to end at the row's last point. */
+/* Row y's kick and drift (msocl_planes_fused) from ring rows r0, r1, r2,
+ * the velocities in place (only the point reads its own). The last
+ * vector moves back to end at the row's last point, over points the one
+ * before it has updated: its velocities are read before that. */
 static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
-                            __global const float *v, __global float *v_out,
-                            __global float *p_out, __global const float *aux,
+                            __global float *v, __global float *p_out,
+                            __global const float *aux,
                             int pitch, int plane, float4 gravity,
                             float viscous, float air, float dt,
                             __constant const float *cf,
@@ -202,15 +205,19 @@ static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
                             __global const float *r1,
                             __global const float *r2, int y, int ring_w)
 {
-  const int row = (y + 2) * pitch + 2;
+  const int row = (y + 2) * pitch + 2, tail = grid_nx - MSOCL_ROWS_W;
+  const msocl_rows_f tx = MSOCL_ROWS_LOAD(v + row + tail),
+                     ty = MSOCL_ROWS_LOAD(v + plane + row + tail),
+                     tz = MSOCL_ROWS_LOAD(v + 2 * plane + row + tail);
   for (int x0 = 0; x0 < grid_nx; x0 += MSOCL_ROWS_W) {
-    const int x = min(x0, grid_nx - MSOCL_ROWS_W), a = row + x, c = x + 2;
+    const bool last = x0 >= tail;
+    const int x = last ? tail : x0, a = row + x, c = x + 2;
     const msocl_rows_f fx0 = msocl_rows_sum(r0, r1, r2, 0, c, ring_w),
                        fy0 = msocl_rows_sum(r0, r1, r2, 1, c, ring_w),
                        fz0 = msocl_rows_sum(r0, r1, r2, 2, c, ring_w);
-    const msocl_rows_f ux = MSOCL_ROWS_LOAD(v + a),
-                       uy = MSOCL_ROWS_LOAD(v + plane + a),
-                       uz = MSOCL_ROWS_LOAD(v + 2 * plane + a);
+    const msocl_rows_f ux = last ? tx : MSOCL_ROWS_LOAD(v + a),
+                       uy = last ? ty : MSOCL_ROWS_LOAD(v + plane + a),
+                       uz = last ? tz : MSOCL_ROWS_LOAD(v + 2 * plane + a);
     msocl_rows_f fx = fx0, fy = fy0, fz = fz0;
 #ifdef MSOCL_VISCOUS
     fx = fx - viscous * ux;
@@ -245,9 +252,9 @@ static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
     qy = MSOCL_ROWS_SEL(pinned, py, qy);
     qz = MSOCL_ROWS_SEL(pinned, pz, qz);
 #endif
-    MSOCL_ROWS_STORE(vx, v_out + a);
-    MSOCL_ROWS_STORE(vy, v_out + plane + a);
-    MSOCL_ROWS_STORE(vz, v_out + 2 * plane + a);
+    MSOCL_ROWS_STORE(vx, v + a);
+    MSOCL_ROWS_STORE(vy, v + plane + a);
+    MSOCL_ROWS_STORE(vz, v + 2 * plane + a);
     MSOCL_ROWS_STORE(qx, p_out + a);
     MSOCL_ROWS_STORE(qy, p_out + plane + a);
     MSOCL_ROWS_STORE(qz, p_out + 2 * plane + a);
@@ -258,8 +265,7 @@ static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
  * with its own ring of three rows: the two rows below the block first,
  * for its first rows' backward springs. */
 __kernel void msocl_planes_rows(MSOCL_CONN, __global const float *p,
-                                __global const float *v,
-                                __global float *v_out, __global float *p_out,
+                                __global float *v, __global float *p_out,
                                 __global const float *aux, int pitch,
                                 int plane, float4 gravity, float viscous,
                                 float air, float dt, __constant float4 *col,
@@ -275,7 +281,7 @@ __kernel void msocl_planes_rows(MSOCL_CONN, __global const float *p,
     msocl_rows_springs(MSOCL_CONN_ARGS, p, pitch, plane, y,
                        mine + (size_t)((y + 3) % 3) * one, ring_w);
     if (y >= y0)
-      msocl_rows_kick(MSOCL_CONN_ARGS, p, v, v_out, p_out, aux, pitch, plane,
+      msocl_rows_kick(MSOCL_CONN_ARGS, p, v, p_out, aux, pitch, plane,
                       gravity, viscous, air, dt, cf,
                       mine + (size_t)((y + 1) % 3) * one,
                       mine + (size_t)((y + 2) % 3) * one,

@@ -51,11 +51,11 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
     MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->pl_p[q], &nan, sizeof nan,
                                   0, 3 * (size_t)s->pl_plane * sizeof(float),
                                   0, NULL, NULL));
-  /* connectivity, p, v, v_out, p_out, then these */
+  /* connectivity, p, v (in place), p_out, then these */
   cl_kernel k = s->pl_rows;
   cl_uint a;
   MSOCL__TRY(msocl__layout_set_args(&s->lay, k, &a));
-  a += 4;
+  a += 3;
   MSOCL__TRY(msocl__pl_arg(k, a, sizeof s->pl_aux, &s->pl_aux));
   MSOCL__TRY(msocl__pl_arg(k, a + 1, sizeof(int), &s->pl_pitch));
   MSOCL__TRY(msocl__pl_arg(k, a + 2, sizeof(int), &s->pl_plane));
@@ -70,13 +70,17 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
 
 int msocl__pl_rows_step(msocl__engine *s, int r, int w)
 {
-  const cl_mem bufs[4] = {s->pl_p[r], s->pl_v[r], s->pl_v[w], s->pl_p[w]};
-  for (cl_uint q = 0; q < 4; q++)
+  const cl_mem bufs[3] = {s->pl_p[r], s->pl_v[r], s->pl_p[w]};
+  for (cl_uint q = 0; q < 3; q++)
     MSOCL__TRY(msocl__pl_arg(s->pl_rows, s->pl_conn + q, sizeof bufs[q],
                              &bufs[q]));
   const size_t one = 1;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_rows, 1, NULL,
                                    &s->pl_blocks, &one, 0, NULL, NULL));
+  /* the velocities moved in place: set w's are now that buffer */
+  const cl_mem t = s->pl_v[r];
+  s->pl_v[r] = s->pl_v[w];
+  s->pl_v[w] = t;
   return MSOCL_OK;
 }
 
