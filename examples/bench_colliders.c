@@ -64,8 +64,8 @@ static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
     msocl_sim_options so;
     msocl_sim_options_init(&so);
     so.dt = 1e-4f;
-    so.layout = engine < 2 ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
-    so.planes = engine == 0 ? 1 : 0;
+    so.tuning.layout = engine < 2 ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
+    so.tuning.planes = engine == 0 ? MSOCL_ON : MSOCL_OFF;
     so.check_every = 0;
     rc = m ? msocl_sim_create(&s[c], rt, m, &so) : MSOCL_ERR_NO_MEMORY;
     msocl_model_destroy(m);

@@ -62,8 +62,8 @@ static double run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
   msocl_sim_options_init(&so);
   so.dt = (float)r.dt;
   so.integrator = (msocl_integrator)in;
-  so.layout = engine ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
-  so.planes = engine == 2 ? 1 : 0;
+  so.tuning.layout = engine ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
+  so.tuning.planes = engine == 2 ? MSOCL_ON : MSOCL_OFF;
   so.check_every = 0;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, &so);

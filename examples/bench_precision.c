@@ -256,10 +256,10 @@ int bench_precision(const struct bench_opts *o, FILE *csv)
             msocl_sim_options so;
             msocl_sim_options_init(&so);
             so.dt = (float)r.dt;
-            so.layout = (msocl_layout)o->layouts[l];
+            so.tuning.layout = (msocl_layout)o->layouts[l];
             so.math = (msocl_math)o->maths[k];
             so.integrator = (msocl_integrator)o->integrators[it];
-            so.device = d;
+            so.tuning.device = d;
             so.check_every = CHECK_EVERY;
             msocl_sim *s = NULL;
             int e = steps > 1 << 30 ? MSOCL_ERR_TOO_MANY

@@ -360,13 +360,17 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
     msocl_sim_options so;
     msocl_sim_options_init(&so);
     so.dt = dt;
-    so.layout = (msocl_layout)layout;
+    so.tuning.layout = (msocl_layout)layout;
     so.math = (msocl_math)math;
-    so.device = dev;
+    so.tuning.device = dev;
     so.check_every = 0;
-    so.fused = fused;
-    so.classes = variant == CLASSES ? 1 : variant == VALUES ? 0 : -1;
-    so.planes = variant == PLANES ? 1 : variant == FLOAT4 ? 0 : -1;
+    so.tuning.fused = fused ? MSOCL_ON : MSOCL_AUTO;
+    so.tuning.classes = variant == CLASSES  ? MSOCL_ON
+                        : variant == VALUES ? MSOCL_OFF
+                                            : MSOCL_AUTO;
+    so.tuning.planes = variant == PLANES   ? MSOCL_ON
+                       : variant == FLOAT4 ? MSOCL_OFF
+                                           : MSOCL_AUTO;
     rc = msocl_sim_create(&s, c->rt, m, &so);
     int table = slots, classes = 0, planes = 0;
     if (rc == MSOCL_OK)

@@ -79,8 +79,8 @@ int drop_parse(drop_options *d, int argc, char **argv, int *done)
     case 'd': d->spec = optarg; break;
     case 'o': d->out = optarg; break;
     case 'K': d->keep_numbering = 1; break;
-    case 'P': d->planes = 1; break;
-    case 'F': d->planes = 0; break;
+    case 'P': d->planes = MSOCL_ON; break;
+    case 'F': d->planes = MSOCL_OFF; break;
     case 'i':
       if (!(rc = cli_pick(d->prog, opt, optarg, "integrator",
                           cli_integrators, 5, &k)))
@@ -226,9 +226,9 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.integrator = d->integrator;
-  o.layout = d->layout;
-  o.renumber = !d->keep_numbering;
-  o.planes = d->planes;
+  o.tuning.layout = d->layout;
+  o.tuning.renumber = d->keep_numbering ? MSOCL_OFF : MSOCL_AUTO;
+  o.tuning.planes = d->planes;
   o.dt = d->dt;
   const char *why = "-T";
   int rc = d->dt > 0 ? MSOCL_OK : choose_dt(d, m, &o.dt, &why);

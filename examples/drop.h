@@ -22,7 +22,7 @@ typedef struct {
   msocl_integrator integrator; /* -i */
   msocl_layout layout;         /* -l */
   int keep_numbering;          /* -K: no renumbering (to compare) */
-  int planes;                  /* -P 1, -F 0, as options.planes (-1) */
+  msocl_choice planes;         /* -P ON, -F OFF, as tuning.planes (AUTO) */
 } drop_options;
 
 /* Reads argv over the defaults already in *d and checks that d->out can

@@ -27,7 +27,7 @@ int main(int argc, char **argv)
                     .size_help = "points along each edge",
                     .size_name = "points along an edge",
                     .size = 8, .size_min = 2, .size_max = 64, .seconds = 3.0,
-                    .out = "jello.obj", .air = 0.999f, .planes = -1};
+                    .out = "jello.obj", .air = 0.999f};
   int done, rc = drop_parse(&d, argc, argv, &done);
   if (rc || done)
     return rc;

@@ -42,7 +42,7 @@ int main(int argc, char **argv)
                     .size_help = "icosphere subdivisions, 0: 12 surface "
                                  "points, 1: 42,\n      2: 162, ...",
                     .size = 2, .size_min = 0, .size_max = 7, .seconds = 3.0,
-                    .out = "ball.obj", .air = 0.998f, .planes = -1};
+                    .out = "ball.obj", .air = 0.998f};
   int done, rc = drop_parse(&d, argc, argv, &done);
   if (rc || done)
     return rc;

@@ -139,11 +139,12 @@ static int parse(int argc, char **argv, args *a, int *done)
                     &a->strain);
       break;
     case 'p':
-      rc = cli_int(PROG, opt, optarg, "parts", -1, 16, &o->ndevices);
+      rc = cli_int(PROG, opt, optarg, "parts", -1, MSOCL_MAX_DEVICES,
+                   &o->tuning.ndevices);
       break;
     case 'c':
       rc = cli_int(PROG, opt, optarg, "calibration steps", 0, INT_MAX,
-                   &o->calibrate_steps);
+                   &o->tuning.calibrate_steps);
       break;
     case 'k':
       rc = cli_int(PROG, opt, optarg, "steps a call", 0, INT_MAX,
@@ -153,12 +154,12 @@ static int parse(int argc, char **argv, args *a, int *done)
       rc = cli_int(PROG, opt, optarg, "sweeps", 1, 1000,
                    &o->strain_iterations);
       break;
-    case 'f': o->fused = 1; break;
-    case 'O': o->overlap = 0; break;
-    case 'C': o->classes = 1; break;
-    case 'V': o->classes = 0; break;
-    case 'P': o->planes = 1; break;
-    case 'F': o->planes = 0; break;
+    case 'f': o->tuning.fused = MSOCL_ON; break;
+    case 'O': o->tuning.overlap = MSOCL_OFF; break;
+    case 'C': o->tuning.classes = MSOCL_ON; break;
+    case 'V': o->tuning.classes = MSOCL_OFF; break;
+    case 'P': o->tuning.planes = MSOCL_ON; break;
+    case 'F': o->tuning.planes = MSOCL_OFF; break;
     case 'h': *done = 1; return usage();
     default: return cli_bad_option(PROG, opt);
     }
@@ -167,7 +168,7 @@ static int parse(int argc, char **argv, args *a, int *done)
     rc = cli_no_operands(PROG, optind, argc, argv);
   if (!rc)
     rc = cli_output(PROG, a->out, &a->ply);
-  o->layout = (msocl_layout)a->layout;
+  o->tuning.layout = (msocl_layout)a->layout;
   o->math = (msocl_math)a->math;
   o->integrator = (msocl_integrator)a->integrator;
   o->strain = (msocl_strain)a->strain;

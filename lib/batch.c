@@ -38,9 +38,9 @@ int msocl_batch_create(msocl_batch **out, msocl_runtime *rt, int count,
   msocl_sim_options_init(&o);
   if (opts)
     o = *opts;
-  o.ndevices = 1;
+  o.tuning.ndevices = 1;
   for (int i = 0; i < count; i++) {
-    o.device = i % rt->ndev;
+    o.tuning.device = i % rt->ndev;
     int rc = models[i] ? msocl_sim_create(&b->sims[i], rt, models[i], &o)
                        : msocl__fail(MSOCL_ERR_NULL_HANDLE, "model is NULL");
     if (rc != MSOCL_OK) {

@@ -120,7 +120,7 @@ int msocl__exchange_plan(msocl_sim *s)
     for (int k = 0; k < MSOCL__X_SLOTS; k++)
       x->area[p][k] = (cl_float4 *)((char *)x->host +
                                     (size_t)(p * MSOCL__X_SLOTS + k) * one);
-  x->overlap = s->o.overlap != 0;
+  x->overlap = s->o.tuning.overlap != MSOCL_OFF;
   for (int d = 0; x->overlap && d < s->nparts; d++) {
     plan_spans(s, d);
     int rc = plan_copies(s, d, one);

@@ -11,7 +11,7 @@
 
 #include "msocl.h"
 
-#define MSOCL__MAX_DEVICES 16
+#define MSOCL__MAX_DEVICES MSOCL_MAX_DEVICES
 #define MSOCL__MAX_COLLIDERS 16
 /* The paper's connectivity texture holds 16 springs per point. */
 #define MSOCL__IMAGE_SLOTS 16
@@ -71,8 +71,9 @@ struct msocl_model {
   struct msocl__collider col[MSOCL__MAX_COLLIDERS];
   /* Set by msocl_model_cloth_grid (nz 0) and msocl_model_lattice (nz >=
    * 2): the grid the GRID layout recomputes neighbours from; valid while
-   * no springs or points were added since (msocl__grid_intact). */
-  struct {
+   * no springs or points were added since (msocl__grid_intact); or by
+   * msocl__grid_detect for one built by hand. */
+  struct msocl__grid {
     int nx, ny, nz, ns;
     float k[4];    /* cloth: stretch, shear, bend; lattice: structural,
                       face shear, body shear, bend (0: absent) */
@@ -96,6 +97,15 @@ int msocl__adjacency_build(const msocl_model *m, struct msocl__adjacency *a);
 /* 1 when m is still the cloth grid or lattice its builder recorded (no
  * springs or points added since), so GRID can recompute its springs. */
 int msocl__grid_intact(const msocl_model *m);
+/* 1 when m, built by hand, is a cloth grid or lattice exactly as the
+ * builder would have made it for GRID (grid_detect.c): every spring of
+ * the builder's stencil between its points, numbered row by row, with one
+ * stiffness and rest length a kind and one dashpot, each point meeting its
+ * springs in GRID's slot order; g then receives the builder's record. */
+int msocl__grid_detect(const msocl_model *m, struct msocl__grid *g);
+/* A copy of m carrying the grid record g. */
+int msocl__model_with_grid(const msocl_model *m, const struct msocl__grid *g,
+                           msocl_model **out);
 void msocl__adjacency_free(struct msocl__adjacency *a);
 
 /* Point numbering (order.c), so that a model splits into contiguous index

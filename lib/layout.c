@@ -202,7 +202,7 @@ static int spring_classes(const msocl_model *m, int damped, cl_float4 *tab,
  * (16 with dashpots), and the same floats. */
 static int build_buffers(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *a, int damped,
-                         int classes, struct msocl__layout *l)
+                         msocl_choice classes, struct msocl__layout *l)
 {
   const size_t n = (size_t)m->n, S = (size_t)(l->slots > 0 ? l->slots : 1);
   int *spill = malloc((n + 1) * sizeof *spill);
@@ -216,11 +216,12 @@ static int build_buffers(struct msocl__device *dev, const msocl_model *m,
   const size_t total = S * n + (size_t)spill[n];
   /* auto: classes once the values outgrow half the cache, where memory
    * bandwidth, not arithmetic, bounds the step */
-  if (classes < 0)
-    classes = (double)total * (damped ? 16 : 12) >
-              0.5 * (double)dev->info.cache;
+  const int want = classes == MSOCL_AUTO
+                       ? (double)total * (damped ? 16 : 12) >
+                             0.5 * (double)dev->info.cache
+                       : classes == MSOCL_ON;
   cl_float4 tab[256];
-  unsigned char *sc = classes ? malloc(m->ns > 0 ? (size_t)m->ns : 1) : NULL;
+  unsigned char *sc = want ? malloc(m->ns > 0 ? (size_t)m->ns : 1) : NULL;
   l->classes = sc ? spring_classes(m, damped, tab, sc) : 0;
   const int values = l->classes == 0;
   int *nbr = malloc(total * sizeof *nbr);
@@ -335,8 +336,8 @@ int msocl__layout_fits(const msocl_model *m, msocl_layout kind)
 
 int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *adj,
-                         msocl_layout kind, int table_slots, int classes,
-                         struct msocl__layout *out)
+                         msocl_layout kind, int table_slots,
+                         msocl_choice classes, struct msocl__layout *out)
 {
   memset(out, 0, sizeof *out);
   out->kind =
@@ -362,7 +363,8 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          "the GRID layout needs a cloth from "
                          "msocl_model_cloth_grid or a lattice from "
                          "msocl_model_lattice, with no springs or points "
-                         "added since (use BUFFER)");
+                         "added since, or one built by hand with exactly "
+                         "their springs in their order (use BUFFER)");
     const int lattice = m->grid.nz > 0;
     out->slots = lattice ? 32 : 12;
     out->grid_nx = m->grid.nx;

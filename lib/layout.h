@@ -52,14 +52,14 @@ int msocl__layout_fits(const msocl_model *m, msocl_layout kind);
  * times every point. `want` > 0 chooses (capped at the largest degree). */
 int msocl__table_slots(const struct msocl__adjacency *adj, int want);
 
-/* classes (options.classes): BUFFER may number its springs' (rest, k,
+/* classes (tuning.classes): BUFFER may number its springs' (rest, k,
  * dashpot) classes when there are at most 256 (5 bytes a slot instead of
- * 12 or 16); 1: whenever they fit, 0: never, -1: when the values would
- * not fit in half the device's cache. */
+ * 12 or 16); ON: whenever they fit, OFF: never, AUTO: when the values
+ * would not fit in half the device's cache. */
 int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          const struct msocl__adjacency *adj,
-                         msocl_layout kind, int table_slots, int classes,
-                         struct msocl__layout *out);
+                         msocl_layout kind, int table_slots,
+                         msocl_choice classes, struct msocl__layout *out);
 void msocl__layout_release(struct msocl__layout *l);
 
 /* Sets the velocity kernel's first arguments (its connectivity); *next

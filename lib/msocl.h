@@ -84,7 +84,7 @@ typedef struct {
   char platform_name[128];
   char name[128];
   char version[128];
-  int type; /* msocl_device_type */
+  msocl_device_type type;
   unsigned compute_units;
   unsigned long long global_mem; /* bytes */
   int image_support;
@@ -301,19 +301,71 @@ typedef enum {
   MSOCL_STRAIN_VELOCITY /* Vassilev et al. 2001: stop stretching velocity */
 } msocl_strain;
 
+/* The most devices one runtime holds and one simulation is split over. */
+#define MSOCL_MAX_DEVICES 16
+/* tuning.ndevices: every device the runtime holds from tuning.device on. */
+#define MSOCL_ALL_DEVICES (-1)
+
+/* An engine choice. AUTO (0) lets the library decide; ON and OFF force. */
+typedef enum {
+  MSOCL_AUTO = 0,
+  MSOCL_ON = 1,
+  MSOCL_OFF = 2
+} msocl_choice;
+
+/* How and where the steps run, never what they compute: every choice
+ * gives bitwise the same result (EDGES and another device: the same to
+ * float rounding), only faster or slower. All zero - as
+ * msocl_sim_options_init leaves it - lets the library choose everything.
+ * fused or planes forced ON where it cannot apply is MSOCL_ERR_BAD_VALUE.
+ * Each field in full, and the measurements behind AUTO: docs/API.md. */
+typedef struct {
+  msocl_layout layout;
+  int device;   /* first device: index into the runtime's devices */
+  /* Split the model into contiguous ranges of points, one a device from
+   * `device` on: 0 or 1 device, or MSOCL_ALL_DEVICES. */
+  int ndevices;
+  float weights[MSOCL_MAX_DEVICES]; /* each device's share; all 0: equal */
+  /* > 0 and all weights 0: weigh the devices by their speed on this
+   * model, timed over this many steps on each device alone. */
+  int calibrate_steps;
+  /* Symplectic Euler's two passes as one kernel: one launch and one read
+   * of the state a step instead of two (gather layouts, no velocity
+   * strain limiting). AUTO: off, as it is not faster everywhere. */
+  msocl_choice fused;
+  /* Number the points by reverse Cuthill-McKee, so that neighbours are
+   * close in memory and split halos narrow; reads and writes keep the
+   * model's numbering. AUTO and ON: where it narrows the springs' reach,
+   * but not for a cloth grid or lattice, numbered best as built. */
+  msocl_choice renumber;
+  /* BUFFER: slots a point in the slot table, the rest of a point's
+   * springs in a list after it. 0: every spring in the table unless a few
+   * points (a solid's centre) have far more than the rest. */
+  int buffer_slots;
+  /* Split: each phase runs first on the points other devices read, so
+   * that their copies overlap the kernels on the rest. AUTO: on. */
+  msocl_choice overlap;
+  /* BUFFER: a slot holds its spring's (rest, k, dashpot) class as a byte
+   * when there are at most 256 classes (ON: whenever they fit), 5 bytes
+   * instead of 12 or 16. AUTO: when the table of values would not fit in
+   * half the device's cache, where the step is bound by memory bandwidth. */
+  msocl_choice classes;
+  /* GRID with the state as x, y, z planes of padded rows, which a CPU
+   * runs many points to an instruction; one device, 3 P < 2^31. Device
+   * memory: 4 P F bytes, P = (ceil(nx / w) w + 4) (ny + 4) (nz + 4) padded
+   * points (a cloth: nz + 4 -> 1), w = 64 halved down to 8 while
+   * nx <= w / 2; F = 14 floats, Verlet +3, RK4 and implicit Euler +18, a
+   * strain limit +3, Provot's +3. AUTO: where it applies on a CPU device,
+   * unless P is over 4 points a point and the planes over 64 MiB. */
+  msocl_choice planes;
+} msocl_tuning;
+
+/* What the simulation computes. msocl_sim_options_init gives each field
+ * its default (the tuning all AUTO); then set dt. */
 typedef struct {
   float dt;           /* seconds, > 0 */
-  msocl_layout layout;
+  /* RELAXED trades accuracy for speed, so it is never chosen for you. */
   msocl_math math;
-  int device;         /* index into the runtime's devices */
-  /* Several devices: the model is split into contiguous ranges of points,
-   * one a device, from `device` on (-1: all the runtime holds; 0 or 1:
-   * one), sized by `weights` (all 0: equal shares). */
-  int ndevices;
-  float weights[16];
-  /* > 0 and all weights 0: weigh the devices by their speed on this model,
-   * from a calibration run of this many steps on each device alone. */
-  int calibrate_steps;
   msocl_integrator integrator;
   msocl_strain strain;
   float strain_limit;    /* allowed elongation over rest length (0.1 = 10%) */
@@ -321,62 +373,13 @@ typedef struct {
   float cg_tolerance;    /* implicit Euler: relative residual to reach */
   int cg_max_iterations;
   /* Blow-up check every check_every steps (0: off, for benchmarks),
-   * counted across calls and writes (a write's work is no blow-up, and a
-   * written state within the bound is the last good one): a non-finite
-   * state, or total energy above its start by more than energy_factor
-   * times the scene's energy scale, returns MSOCL_ERR_UNSTABLE from the
-   * call that completes the steps, with the last good state restored. */
+   * counted across calls: a non-finite state, or total energy above its
+   * start by more than energy_factor times the scene's energy scale,
+   * returns MSOCL_ERR_UNSTABLE with the last good state restored
+   * (docs/API.md). */
   int check_every;
   float energy_factor;
-  /* Symplectic Euler's two passes as one kernel (bitwise the same result;
-   * gather layouts, no velocity strain limiting): one launch and one read
-   * of the state a step instead of two. */
-  int fused;
-  /* 1 (default): number the points by reverse Cuthill-McKee when that
-   * narrows the springs' reach - neighbours close in memory, and narrow
-   * halos when split - unless the model is a cloth grid, which is best
-   * numbered as it is; 0: keep the model's numbering. Either way, reads
-   * and writes of the state use the model's numbering. */
-  int renumber;
-  /* BUFFER: slots a point in the slot table; a point's springs past them
-   * go in a list of its own after the table (bitwise the same sums).
-   * 0 (default): every spring in the table unless a few points (a
-   * solid's centre) have far more than the rest. */
-  int buffer_slots;
-  /* Split over several devices, 1 (default): each step's phases run first
-   * on the points other devices read, whose copies to and from host
-   * memory then overlap the kernels on the rest (bitwise the same
-   * result); 0: all the kernels, then the copies. */
-  int overlap;
-  /* BUFFER's spring classes. When the model's springs come in at most 256
-   * classes of (rest length, stiffness, dashpot) - a cloth, a lattice, a
-   * solid - a slot may hold its class's one-byte number instead of the
-   * values: 5 bytes a slot instead of 12 (16 with dashpots), the same
-   * floats, bitwise the same result, one more (cached) lookup. 1: classes
-   * whenever they fit; 0: values in every slot; -1 (default): classes when
-   * the table of values would not fit in half the device's cache - there
-   * the step is bound by memory bandwidth, and fewer bytes are faster
-   * (docs/PERFORMANCE.md: 17% at 512x512 on PoCL, 3-14% slower at
-   * 96x96-128x128, whose table stays in cache). */
-  int classes;
-  /* GRID in planes: every integrator on a cloth grid or lattice with the state held as separate x, y, z planes of rows padded
-   * at the edges, which a CPU device runs many points to an instruction
-   * (docs/PERFORMANCE.md). Bitwise the same result; more device memory:
-   * 4 P F bytes, P = (ceil(nx / w) w + 4) (ny + 4) (nz + 4) padded points
-   * for an nx x ny x nz lattice (a cloth: nz + 4 -> 1), w = 64, halved
-   * (down to 8) while nx <= w / 2; F = 14 floats (two copies of x, y, z
-   * of position and velocity, inverse mass and pin), Verlet 3 more, RK4
-   * and implicit Euler 18 more, a strain limit 3 more, Provot's 3 more.
-   * A 96 x 96 cloth: P = 1.43 points, 80 bytes a point; a 2 x 2 x n
-   * lattice: P = 18 points, 1008 bytes a point. The kernels index the
-   * planes with an int: 3 P must stay below 2^31. The state stays in the
-   * planes between calls; a read copies it back, a write has it copied
-   * in again at the next step. 1: whenever it applies (GRID, any
-   * integrator, either strain limit or none, one device, 3 P < 2^31;
-   * MSOCL_ERR_BAD_VALUE before anything is allocated otherwise); 0:
-   * never; -1 (default): where it applies on a CPU device, unless P is
-   * over 4 points a point and the planes over 64 MiB. */
-  int planes;
+  msocl_tuning tuning;
 } msocl_sim_options;
 
 MSOCL_EXTERN void msocl_sim_options_init(msocl_sim_options *o);
@@ -404,7 +407,7 @@ MSOCL_EXTERN int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout);
  * spring classes (0: the values in every slot). Either may be NULL. */
 MSOCL_EXTERN int msocl_sim_connectivity(const msocl_sim *s, int *slots,
                                         int *classes);
-/* Whether the simulation's steps run in planes (options.planes): 1 or 0. */
+/* Whether the simulation's steps run in planes (tuning.planes): 1 or 0. */
 MSOCL_EXTERN int msocl_sim_planes(const msocl_sim *s, int *planes);
 MSOCL_EXTERN int msocl_sim_device_info(const msocl_sim *s,
                                        msocl_device_info *info);
@@ -433,26 +436,28 @@ MSOCL_EXTERN int msocl_sim_step_count(const msocl_sim *s, long long *steps);
 
 /* How a simulation is split over devices, and what the split costs. */
 typedef struct {
-  int parts;                   /* devices the model runs on */
-  int device[16];              /* each part's index in the runtime */
-  int first[16], count[16];    /* the points each part advances */
-  float weight[16];            /* its share (given or calibrated) */
-  double halo_points[16];      /* points each part receives a step */
-  double bytes_per_step;       /* exchanged through the host, each way */
+  int parts;                             /* devices the model runs on */
+  int device[MSOCL_MAX_DEVICES];         /* each part's index in the runtime */
+  int first[MSOCL_MAX_DEVICES];          /* the points each part advances */
+  int count[MSOCL_MAX_DEVICES];
+  float weight[MSOCL_MAX_DEVICES];       /* its share (given or calibrated) */
+  double halo_points[MSOCL_MAX_DEVICES]; /* points each part receives a step */
+  double bytes_per_step; /* exchanged through the host, each way */
   /* Each part has a host thread of its own; per part: host time reading
    * the slices others read and queuing writes into its halo, host time
    * waiting for its device, and from event profiling its device's time
    * in those copies and in the kernels of its steps. */
-  double part_exchange_seconds[16], part_wait_seconds[16];
-  double copy_seconds[16], compute_seconds[16];
-  /* Boundary first (options.overlap): the points of each part that others
+  double part_exchange_seconds[MSOCL_MAX_DEVICES];
+  double part_wait_seconds[MSOCL_MAX_DEVICES];
+  double copy_seconds[MSOCL_MAX_DEVICES], compute_seconds[MSOCL_MAX_DEVICES];
+  /* Boundary first (tuning.overlap): the points of each part that others
    * read, which its phases run on before the rest; 0 when off. */
   int overlap;
-  double boundary_points[16];
+  double boundary_points[MSOCL_MAX_DEVICES];
   /* of each part's copy time, the device time of its copies (reads of
    * its boundary, writes of its halo) that ran while its interior's
    * kernels still did (from the same stamps) */
-  double hidden_copy_seconds[16];
+  double hidden_copy_seconds[MSOCL_MAX_DEVICES];
   double exchange_seconds;     /* the largest part_exchange_seconds */
   double wait_seconds;         /* the largest part_wait_seconds */
   long long steps;
@@ -493,9 +498,9 @@ MSOCL_EXTERN int msocl_safe_dt(const msocl_model *m,
  * share while the others work through theirs. */
 typedef struct msocl_batch msocl_batch;
 
-/* count models, each with options o (dt, layout, integrator, ...; o's
- * device and ndevices are ignored: simulation i goes to device
- * i mod devices). */
+/* count models, each with options o (dt, integrator, tuning.layout, ...;
+ * o's tuning.device and tuning.ndevices are ignored: simulation i goes to
+ * device i mod devices). */
 MSOCL_EXTERN int msocl_batch_create(msocl_batch **b, msocl_runtime *rt,
                                     int count,
                                     const msocl_model *const *models,

@@ -1,4 +1,4 @@
-/* GRID in planes (options.planes, kernels/planes.cl): a cloth grid's or
+/* GRID in planes (tuning.planes, kernels/planes.cl): a cloth grid's or
  * a lattice's steps, every integrator's (implicit Euler's CG:
  * planes_implicit.c), over x, y, z planes of padded rows, which PoCL's
  * CPU device runs eight points to an instruction. The state is copied
@@ -8,6 +8,7 @@
  * whatever writes them msocl__planes_written. */
 #include "config.h"
 #include "planes.h"
+#include "schedule.h"
 
 #include <limits.h>
 
@@ -108,8 +109,9 @@ static int lavish(const msocl_model *m, const msocl_sim_options *o)
 static int chosen(const struct msocl__device *dev, const msocl_sim_options *o,
                   const msocl_model *m, const char *why)
 {
-  return !why && (o->planes == 1 ||
-                  (o->planes == -1 && dev->info.type == MSOCL_DEVICE_CPU &&
+  const msocl_choice c = o->tuning.planes;
+  return !why && (c == MSOCL_ON ||
+                  (c == MSOCL_AUTO && dev->info.type == MSOCL_DEVICE_CPU &&
                    !lavish(m, o)));
 }
 
@@ -123,7 +125,7 @@ int msocl__planes_would(const struct msocl__device *dev,
 int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
                           int lo, int hi)
 {
-  const char *why = o->planes == 1 ? unfit(m, lo, hi) : NULL;
+  const char *why = o->tuning.planes == MSOCL_ON ? unfit(m, lo, hi) : NULL;
   if (why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "planes %s: a %d x %d x %d grid pads to %zu floats a "
@@ -137,7 +139,7 @@ int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
   const char *why = s->lay.kind != MSOCL_LAYOUT_GRID
                         ? "needs the GRID layout"
                         : unfit(m, s->lo, s->hi);
-  if (s->o.planes == 1 && why)
+  if (s->o.tuning.planes == MSOCL_ON && why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "planes %s", why);
   s->planes = chosen(s->dev, &s->o, m, why);
   return MSOCL_OK;
@@ -230,8 +232,6 @@ static int fixed_args(msocl__engine *s)
   TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
   TRY(arg(k, c + 8, sizeof(float), &s->o.dt));
   TRY(arg(k, c + 9, sizeof s->pl_col, &s->pl_col));
-  if (s->o.integrator == MSOCL_IMPLICIT_EULER)
-    return msocl__pl_implicit_args(s);
   /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col), and the
    * acceleration in and out (src, dst, shape, n) */
   if (s->o.integrator != MSOCL_VERLET)
@@ -330,7 +330,7 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
 }
 
 /* A pass over the padded grid; CPU devices in work-groups of a row's
- * pl_group points (integrate.c's reason). */
+ * pl_group points (launch.c's reason). */
 int msocl__pl_launch(msocl__engine *s, int k)
 {
   const size_t local[3] = {s->pl_group, 1, 1};
@@ -423,61 +423,59 @@ static int strain_velocity(msocl__engine *s, cl_mem p, cl_mem v)
   return MSOCL_OK;
 }
 
-static int integrator_step(msocl__engine *s, int r, int w);
-
-/* One step from plane set r to set w, Provot's correction after it
- * (Verlet's comes between its drift and kick, as in integrate.c). */
-static int step(msocl__engine *s, int r, int w)
+/* Pass p (schedule.h) from plane set r = pl_set into set w. */
+int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
 {
-  TRY(integrator_step(s, r, w));
-  return s->o.strain == MSOCL_STRAIN_PROVOT &&
-                 s->o.integrator != MSOCL_VERLET
-             ? provot(s, s->pl_p[w], s->pl_v[w])
-             : MSOCL_OK;
-}
-
-static int integrator_step(msocl__engine *s, int r, int w)
-{
+  const int r = s->pl_set, w = 1 - r;
   const cl_mem *p = s->pl_p, *v = s->pl_v;
-  if (s->pl_rows)
+  /* symplectic Euler's two passes, or fused, in one sweep (planes_rows.c) */
+  if (s->pl_rows && (pass == MSOCL__P_VELOCITY || pass == MSOCL__P_FUSED))
     return msocl__pl_rows_step(s, r, w);
-  if (s->o.integrator == MSOCL_RK4) {
-    for (int q = 0; q < 4; q++)
-      TRY(rk4_stage(s, q, r, w));
+  if (s->pl_rows && pass == MSOCL__P_POSITION)
     return MSOCL_OK;
+  switch (pass) {
+  case MSOCL__P_VELOCITY: {
+    const cl_mem vel[3] = {p[r], v[r], v[w]};
+    TRY(gather_args(s, PL_VELOCITY, 3, vel));
+    return launch(s, PL_VELOCITY);
   }
-  if (s->o.integrator == MSOCL_VERLET) {
-    cl_kernel kd = s->pl_k[PL_DRIFT];
-    TRY(arg(kd, 0, sizeof p[r], &p[r]));
-    TRY(arg(kd, 1, sizeof v[r], &v[r]));
-    TRY(arg(kd, 3, sizeof p[w], &p[w]));
-    TRY(launch(s, PL_DRIFT));
-    if (s->o.strain == MSOCL_STRAIN_PROVOT)
-      TRY(provot(s, p[w], v[r]));
-    const cl_mem kick[4] = {p[w], v[r], v[w], s->pl_a};
-    TRY(gather_args(s, PL_KICK, 4, kick));
-    return launch(s, PL_KICK);
+  case MSOCL__P_STRAIN_VEL: return strain_velocity(s, p[r], v[w]);
+  case MSOCL__P_POSITION: {
+    cl_kernel kp = s->pl_k[PL_POSITION];
+    TRY(arg(kp, 0, sizeof p[r], &p[r]));
+    TRY(arg(kp, 1, sizeof v[w], &v[w]));
+    TRY(arg(kp, 2, sizeof p[w], &p[w]));
+    return launch(s, PL_POSITION);
   }
-  if (s->o.fused || s->o.integrator == MSOCL_EXPLICIT_EULER) {
-    const int k = s->o.fused ? PL_FUSED : PL_EULER; /* both in one pass */
+  case MSOCL__P_FUSED:
+  case MSOCL__P_EULER: {
+    const int k = pass == MSOCL__P_FUSED ? PL_FUSED : PL_EULER;
     const cl_mem both[4] = {p[r], v[r], v[w], p[w]};
     TRY(gather_args(s, k, 4, both));
     return launch(s, k);
   }
-  if (s->o.integrator == MSOCL_IMPLICIT_EULER) {
-    TRY(msocl__pl_implicit_velocity(s, r, w));
-  } else {
-    const cl_mem vel[3] = {p[r], v[r], v[w]};
-    TRY(gather_args(s, PL_VELOCITY, 3, vel));
-    TRY(launch(s, PL_VELOCITY));
+  case MSOCL__P_DRIFT: {
+    cl_kernel kd = s->pl_k[PL_DRIFT];
+    TRY(arg(kd, 0, sizeof p[r], &p[r]));
+    TRY(arg(kd, 1, sizeof v[r], &v[r]));
+    TRY(arg(kd, 3, sizeof p[w], &p[w]));
+    return launch(s, PL_DRIFT);
   }
-  if (s->o.strain == MSOCL_STRAIN_VELOCITY)
-    TRY(strain_velocity(s, p[r], v[w]));
-  cl_kernel kp = s->pl_k[PL_POSITION];
-  TRY(arg(kp, 0, sizeof p[r], &p[r]));
-  TRY(arg(kp, 1, sizeof v[w], &v[w]));
-  TRY(arg(kp, 2, sizeof p[w], &p[w]));
-  return launch(s, PL_POSITION);
+  case MSOCL__P_KICK: {
+    const cl_mem kick[4] = {p[w], v[r], v[w], s->pl_a};
+    TRY(gather_args(s, PL_KICK, 4, kick));
+    return launch(s, PL_KICK);
+  }
+  case MSOCL__P_RK4_0:
+  case MSOCL__P_RK4_1:
+  case MSOCL__P_RK4_2:
+  case MSOCL__P_RK4_3:
+    return rk4_stage(s, (int)(pass - MSOCL__P_RK4_0), r, w);
+  case MSOCL__P_PROVOT: return provot(s, p[w], v[w]);
+  case MSOCL__P_PROVOT_HALF: return provot(s, p[w], v[r]);
+  case MSOCL__P_CG: break;
+  }
+  return msocl__fail(MSOCL_ERR_INVALID_ARG, "no planes pass %d", (int)pass);
 }
 
 /* Verlet's acceleration into its planes (in) or back (out). */
@@ -490,29 +488,25 @@ static int acceleration(msocl__engine *s, int in)
  * buffers were written (or created), and stays there: a frame loop that
  * steps once a call pays for no copies unless it reads the state, and
  * then for one copy back. */
-int msocl__planes_steps(msocl__engine *s, int n)
+int msocl__planes_enter(msocl__engine *s)
 {
-  if (n <= 0)
+  if (s->pl_valid)
     return MSOCL_OK;
   const int verlet = s->o.integrator == MSOCL_VERLET;
-  if (!s->pl_valid) {
-    if (verlet) /* the float4 kernel's, when the state is new */
-      TRY(msocl__verlet_accel(s));
-    TRY(copy(s, 0, 1));
-    if (verlet)
-      TRY(acceleration(s, 1));
-    s->pl_set = 0;
-    s->pl_valid = 1;
-  }
-  int r = s->pl_set;
-  for (int q = 0; q < n; q++, r = 1 - r) {
-    TRY(step(s, r, 1 - r));
-    if ((q + 1) % 64 == 0)
-      MSOCL__CL(clFlush(s->dev->queue));
-  }
-  s->pl_set = r;
-  s->pl_ahead = 1;
+  if (verlet) /* the float4 kernel's, when the state is new */
+    TRY(msocl__verlet_accel(s));
+  TRY(copy(s, 0, 1));
+  if (verlet)
+    TRY(acceleration(s, 1));
+  s->pl_set = 0;
+  s->pl_valid = 1;
   return MSOCL_OK;
+}
+
+void msocl__planes_step_done(msocl__engine *s)
+{
+  s->pl_set = 1 - s->pl_set;
+  s->pl_ahead = 1;
 }
 
 int msocl__planes_current(msocl__engine *s)

@@ -18,10 +18,9 @@ int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx);
 /* Kernel k over the padded grid. */
 int msocl__pl_launch(msocl__engine *s, int k);
 
-/* planes_implicit.c: its kernels' fixed arguments, and implicit Euler's
- * new velocities from plane set r into v[w]. */
+/* planes_implicit.c: its kernels' fixed arguments (its CG operations:
+ * schedule.h). */
 int msocl__pl_implicit_args(msocl__engine *s);
-int msocl__pl_implicit_velocity(msocl__engine *s, int r, int w);
 
 /* planes_rows.c: symplectic Euler in one sweep a step with each spring
  * computed once, where it applies (s->pl_rows then set), and its step

@@ -1,14 +1,13 @@
 /* Implicit Euler in planes (kernels/planes_implicit.cl): the right-hand
- * side, the conjugate gradients and the new velocities over the planes,
- * the CG as integrate_implicit.c runs it. Every dot product is summed by
+ * side, the conjugate gradients' products and the new velocities over
+ * the planes, for the host's CG (cg.c). Every dot product is summed by
  * msocl_sum_points from the points' terms in float4 order, so the partials
  * the host adds, and the step, are bitwise float4's. The search state:
  * x, r in RK4's stage positions, d, Ad in its stage velocities, the
  * points' terms in its first sum. */
 #include "config.h"
 #include "planes.h"
-
-#include <math.h>
+#include "schedule.h"
 
 #define TRY MSOCL__TRY
 
@@ -67,15 +66,14 @@ int msocl__pl_implicit_args(msocl__engine *s)
 }
 
 /* Kernel k over the planes, then the points' terms summed as float4's
- * work-groups of 64 would: into *sum. */
-static int reduce(msocl__engine *s, int k, double *sum)
+ * work-groups of 64 would, for the CG to collect. */
+static int reduce(msocl__engine *s, int k)
 {
   TRY(msocl__pl_launch(s, k));
   const size_t group = 64, global = 64 * s->groups;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[PL_SUM], 1, NULL,
                                    &global, &group, 0, NULL, NULL));
-  *sum = 0.0;
-  return msocl__implicit_collect(s, sum);
+  return MSOCL_OK;
 }
 
 static int set_float(msocl__engine *s, int k, cl_uint i, float v)
@@ -83,37 +81,45 @@ static int set_float(msocl__engine *s, int k, cl_uint i, float v)
   return msocl__pl_arg(s->pl_k[k], i, sizeof v, &v);
 }
 
-int msocl__pl_implicit_velocity(msocl__engine *s, int r, int w)
+/* The CG's operations (schedule.h) from plane set r = pl_set into v[w]. */
+static int rhs(msocl__engine *s)
 {
   const cl_uint c = s->pl_conn;
+  const int r = s->pl_set;
   TRY(msocl__pl_arg(s->pl_k[PL_IE_RHS], c, sizeof s->pl_p[r], &s->pl_p[r]));
   TRY(msocl__pl_arg(s->pl_k[PL_IE_RHS], c + 1, sizeof s->pl_v[r],
                     &s->pl_v[r]));
   TRY(msocl__pl_arg(s->pl_k[PL_IE_APPLY], c, sizeof s->pl_p[r],
                     &s->pl_p[r]));
-  double bb, rr, pap, rr_new;
-  TRY(reduce(s, PL_IE_RHS, &bb));
-  rr = bb;
-  const double goal =
-      (double)s->o.cg_tolerance * (double)s->o.cg_tolerance * bb;
-  int it = 0;
-  while (rr > goal && it < s->o.cg_max_iterations) {
-    TRY(reduce(s, PL_IE_APPLY, &pap));
-    if (!(pap > 0.0))
-      break; /* as integrate_implicit.c */
-    TRY(set_float(s, PL_CG_STEP, 9, (float)(rr / pap)));
-    TRY(reduce(s, PL_CG_STEP, &rr_new));
-    TRY(set_float(s, PL_CG_DIR, 6, (float)(rr_new / rr)));
-    TRY(msocl__pl_launch(s, PL_CG_DIR));
-    rr = rr_new;
-    it++;
-  }
-  s->cg_iterations = it;
-  s->cg_residual = bb > 0.0 ? sqrt(rr / bb) : 0.0;
-  msocl__cg_note(s, rr <= goal);
+  return reduce(s, PL_IE_RHS);
+}
+
+static int apply(msocl__engine *s)
+{
+  return reduce(s, PL_IE_APPLY);
+}
+
+static int step(msocl__engine *s, float alpha)
+{
+  TRY(set_float(s, PL_CG_STEP, 9, alpha));
+  return reduce(s, PL_CG_STEP);
+}
+
+static int direction(msocl__engine *s, float beta)
+{
+  TRY(set_float(s, PL_CG_DIR, 6, beta));
+  return msocl__pl_launch(s, PL_CG_DIR);
+}
+
+static int finish(msocl__engine *s)
+{
+  const int r = s->pl_set, w = 1 - r;
   cl_kernel k = s->pl_k[PL_IE_FINISH];
   TRY(msocl__pl_arg(k, 0, sizeof s->pl_p[r], &s->pl_p[r]));
   TRY(msocl__pl_arg(k, 1, sizeof s->pl_v[r], &s->pl_v[r]));
   TRY(msocl__pl_arg(k, 3, sizeof s->pl_v[w], &s->pl_v[w]));
   return msocl__pl_launch(s, PL_IE_FINISH);
 }
+
+const struct msocl__cg_ops msocl__planes_cg = {
+    rhs, apply, step, direction, msocl__implicit_collect, finish};

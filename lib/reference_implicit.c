@@ -1,7 +1,7 @@
 /* Backward Euler on the host in double: the same linearised system and
  * matrix-free conjugate gradients as kernels/implicit.cl. */
 #include "config.h"
-#include "reference.h"
+#include "reference_state.h"
 
 #include <math.h>
 #include <string.h>

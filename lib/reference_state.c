@@ -1,6 +1,6 @@
 /* Creating the host reference from a model, and reading its state. */
 #include "config.h"
-#include "reference.h"
+#include "reference_state.h"
 
 #include <math.h>
 #include <stdlib.h>

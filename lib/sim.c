@@ -1,7 +1,7 @@
 /* A model on one device: state buffers, the two passes per step with
  * ping-pong buffers, and reading and writing of the state. */
 #include "config.h"
-#include "sim.h"
+#include "planes.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -13,11 +13,9 @@ void msocl_sim_options_init(msocl_sim_options *o)
 {
   if (!o)
     return;
-  memset(o, 0, sizeof *o);
+  memset(o, 0, sizeof *o); /* the tuning: all MSOCL_AUTO */
   o->dt = 1e-3f;
-  o->layout = MSOCL_LAYOUT_AUTO;
   o->math = MSOCL_MATH_PRECISE;
-  o->device = 0;
   o->integrator = MSOCL_SYMPLECTIC_EULER;
   o->strain = MSOCL_STRAIN_NONE;
   o->strain_limit = 0.1f;
@@ -25,10 +23,6 @@ void msocl_sim_options_init(msocl_sim_options *o)
   o->cg_tolerance = 1e-5f;
   o->cg_max_iterations = 200;
   o->check_every = 100;
-  o->renumber = 1;
-  o->overlap = 1;
-  o->classes = -1;
-  o->planes = -1;
   /* Near its stability limit a symplectic method's energy swings by up to
    * 1 / (1 - h w / 2) (10x at 0.9 of the limit) without being unstable;
    * a blow-up grows exponentially and passes 100x within a few checks. */
@@ -246,7 +240,7 @@ static int make_kernels(msocl__engine *s, cl_program prog)
     if (s->lay.kind == MSOCL_LAYOUT_EDGES) {
       want[MSOCL__K_EDGES_FORCE] = want[MSOCL__K_EDGES_VEL] = 1;
       want[MSOCL__K_EDGES_ENERGY] = 1;
-    } else if (s->o.fused) {
+    } else if (s->o.tuning.fused == MSOCL_ON) {
       want[MSOCL__K_FUSED] = 1;
     } else {
       want[MSOCL__K_VELOCITY] = 1;
@@ -339,13 +333,13 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
   }
   rc = msocl__adjacency_build(m, &adj);
   /* AUTO takes GRID for a lattice only where it would run in planes */
-  msocl_layout kind = o->layout;
+  msocl_layout kind = o->tuning.layout;
   if (kind == MSOCL_LAYOUT_AUTO)
     kind = msocl__layout_auto(&dev->info, m,
                               msocl__planes_would(dev, o, m, lo, hi));
   if (rc == MSOCL_OK)
-    rc = msocl__layout_create(s->dev, m, &adj, kind, o->buffer_slots,
-                              o->classes, &s->lay);
+    rc = msocl__layout_create(s->dev, m, &adj, kind, o->tuning.buffer_slots,
+                              o->tuning.classes, &s->lay);
   if (rc == MSOCL_OK)
     rc = make_buffers(s, m);
   if (rc == MSOCL_OK)
@@ -360,6 +354,8 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     rc = make_kernels(s, prog);
   if (rc == MSOCL_OK)
     rc = msocl__planes_create(s, prog);
+  if (rc == MSOCL_OK && s->planes && s->o.integrator == MSOCL_IMPLICIT_EULER)
+    rc = msocl__pl_implicit_args(s); /* planes_implicit.c's kernels */
   if (rc == MSOCL_OK)
     rc = msocl__integrate_setup(s);
   if (rc == MSOCL_OK) {

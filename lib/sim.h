@@ -1,9 +1,9 @@
 /* A simulation is one or more engines - a whole copy of the model on one
  * device, advancing the points of its own range - and, with several, the
  * plan for exchanging what their neighbours read. Shared by the files that
- * set engines up (sim.c), step them (integrate*.c, strain.c), measure them
- * (energy.c), and join them into the public simulation (sim_step.c,
- * sim_io.c). */
+ * set engines up (sim.c), step them (schedule.c, integrate*.c, strain.c,
+ * planes*.c, cg.c), measure them (energy.c), and join them into the public
+ * simulation (sim_step.c, sim_io.c). */
 #ifndef MSOCL_SIM_H
 #define MSOCL_SIM_H
 
@@ -140,7 +140,7 @@ struct msocl__exchange {
   cl_event wev[MSOCL__MAX_PARTS][MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
   int nwev[MSOCL__MAX_PARTS];    /* writes queued, not yet settled */
   struct msocl__xstat stat[MSOCL__MAX_PARTS];
-  /* Boundary first (options.overlap): an engine's range as spans, those
+  /* Boundary first (tuning.overlap): an engine's range as spans, those
    * other engines read (nbound) first, then the interior; the slices
    * leave through `send` and arrive through `recv` (buffers of `packed`
    * points, at the slices' area offsets), copied on a second queue `xq`
@@ -227,24 +227,25 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
 void msocl__engine_destroy(msocl__engine *e);
 /* Sets the kernels' fixed arguments, once. */
 int msocl__integrate_setup(msocl__engine *s);
-/* A step is a few phases; after each, the buffers in the returned mask
- * must reach the other engines before the next phase reads them. */
+/* A step is a few phases (schedule.c's table); after each, the buffers in
+ * the returned mask must reach the other engines before the next phase
+ * reads them. */
 int msocl__phase_count(const msocl__engine *s);
 int msocl__phase(msocl__engine *s, int phase, unsigned *exchange);
 /* That mask, without queuing anything. */
 unsigned msocl__phase_mask(const msocl__engine *s, int phase);
 /* GRID in planes (planes.c). would: whether model m's GRID on dev, over
  * points [lo, hi), would run in planes (what AUTO weighs for a lattice);
- * choose: whether this engine runs in planes (options.planes;
+ * choose: whether this engine runs in planes (tuning.planes;
  * MSOCL_ERR_BAD_VALUE when forced where it cannot); create: its buffers
- * and kernels, from the program built with -DMSOCL_PLANES; steps: n steps
- * (symplectic Euler, Verlet or RK4) in the planes; release: frees them. */
+ * and kernels, from the program built with -DMSOCL_PLANES; release: frees
+ * them. Its passes: schedule.h. */
 int msocl__planes_would(const struct msocl__device *dev,
                         const msocl_sim_options *o, const msocl_model *m,
                         int lo, int hi);
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m);
 /* MSOCL_ERR_BAD_VALUE, before anything is allocated, where planes are
- * forced (o->planes 1) on a grid the kernels' int indices cannot address
+ * forced (tuning.planes ON) on a grid the kernels' int indices cannot address
  * or on a split; else MSOCL_OK. */
 int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
                           int lo, int hi);
@@ -252,7 +253,10 @@ int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
  * (msocl.h's formula). */
 size_t msocl__planes_bytes(const msocl_model *m, const msocl_sim_options *o);
 int msocl__planes_create(msocl__engine *s, cl_program prog);
-int msocl__planes_steps(msocl__engine *s, int n);
+/* enter: before a run of steps, the state into the planes unless they
+ * hold it; step_done: ends a step, from one plane set into the other. */
+int msocl__planes_enter(msocl__engine *s);
+void msocl__planes_step_done(msocl__engine *s);
 /* The state stays in the planes between calls. current: brings the
  * engine's float4 buffers up to date before anything reads them (a copy
  * back only when the planes are ahead); written: after anything writes
@@ -264,11 +268,12 @@ void msocl__planes_release(msocl__engine *s);
 /* Verlet: the acceleration at the current state into acc, over the whole
  * range, unless acc already holds it. */
 int msocl__verlet_accel(msocl__engine *s);
-/* Ends a step: swaps the ping-pong buffers. */
+/* Ends a step: swaps the ping-pong buffers (or plane sets). */
 void msocl__step_done(msocl__engine *s);
 /* The buffer an exchange bit names, at this point of the step. */
 cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit);
-/* Enqueues `n` whole steps on one engine (no wait, no exchange). */
+/* Enqueues `n` whole steps on one engine (no wait, no exchange), float4
+ * or planes. */
 int msocl__integrate(msocl__engine *s, int n);
 /* Energy of the engine's points (waits for the device); of the whole
  * simulation. */
@@ -287,37 +292,43 @@ int msocl__batch_end(msocl_sim *s);
 int msocl__check_write(msocl_sim *s);
 int msocl__sim_steps(msocl_sim *s, int n);
 int msocl__sim_finish(msocl_sim *s);
-/* Sets argument i of kernel k to a buffer, a float, an int. */
+/* Sets argument i of kernel k to a buffer, a float, an int (launch.c). */
 int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m);
 int msocl__arg_float(cl_kernel k, cl_uint i, float f);
 int msocl__arg_int(cl_kernel k, cl_uint i, int v);
-/* Implicit Euler (integrate_implicit.c): fixed arguments; the new
- * velocity into vel[1 - r]. */
-int msocl__implicit_setup(msocl__engine *s);
-int msocl__implicit_velocity(msocl__engine *s);
-/* The same over several engines; exchange(ctx) spreads the CG direction's
- * halo between products. */
+/* Sets the argument of the engine's float4 kernel k (MSOCL__K_*) that
+ * kernels/ names `name` (kernel_args.c): to size bytes at v, a buffer, a
+ * float, an int. */
+int msocl__set(msocl__engine *s, int k, const char *name, size_t size,
+               const void *v);
+int msocl__set_mem(msocl__engine *s, int k, const char *name, cl_mem m);
+int msocl__set_float(msocl__engine *s, int k, const char *name, float f);
+int msocl__set_int(msocl__engine *s, int k, const char *name, int v);
+/* Sets every argument of the float4 kernels that holds a value fixed for
+ * the engine's life (inv_mass, dt, n, ...), by name. */
+int msocl__set_fixed(msocl__engine *s);
+/* Implicit Euler: the new velocities of one step's CG (cg.c) over
+ * `parts` engines, into vel[1 - r] (planes: the other plane set), where
+ * exchange(ctx) spreads the CG direction's halo between products. */
 int msocl__implicit_cg(msocl__engine *const *e, int parts,
                        int (*exchange)(void *ctx), void *ctx);
-/* Records the last CG's outcome (cg_iterations, cg_residual) when it
- * stopped above the tolerance (planes_implicit.c uses it too). */
-void msocl__cg_note(msocl__engine *s, int converged);
 /* Ends a stepping call of n steps that returns rc: MSOCL_ERR_NO_CONVERGENCE
  * with its message if rc is MSOCL_OK and a step's CG missed the tolerance;
  * clears the record either way. */
 int msocl__cg_report(msocl_sim *s, int rc, int n);
 /* Adds the engine's reduction partials (s->partial), in group order, to
- * *sum. */
+ * *sum (launch.c). */
 int msocl__implicit_collect(msocl__engine *s, double *sum);
-/* Strain limiting (strain.c): fixed arguments; the velocity correction on
- * vel[1 - r]; Provot's position correction on pos[1 - r], taken up by the
- * velocities vel. */
-int msocl__strain_setup(msocl__engine *s);
+/* Strain limiting (strain.c): the velocity correction on vel[1 - r];
+ * Provot's position correction on pos[1 - r], taken up by the velocities
+ * vel. */
 int msocl__strain_velocity(msocl__engine *s);
 int msocl__strain_position(msocl__engine *s, cl_mem vel);
-/* Enqueues kernel k over the engine's current span (run_offset,
- * run_global); _all: over every point. */
+/* Enqueues kernel k (launch.c) over the engine's current span
+ * (run_offset, run_global); _range: over its whole range (offset, global);
+ * _all: over every point. */
 int msocl__launch(msocl__engine *s, int k);
+int msocl__launch_range(msocl__engine *s, int k);
 int msocl__launch_all(msocl__engine *s, int k);
 
 #endif

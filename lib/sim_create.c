@@ -9,35 +9,46 @@
 #include <string.h>
 #include <time.h>
 
+/* An msocl_choice field: AUTO, ON or OFF. */
+static int check_choice(msocl_choice c, const char *name)
+{
+  if (c != MSOCL_AUTO && c != MSOCL_ON && c != MSOCL_OFF)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "tuning.%s is %d: MSOCL_AUTO, MSOCL_ON or MSOCL_OFF",
+                       name, (int)c);
+  return MSOCL_OK;
+}
+
 static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
 {
+  const msocl_tuning *t = &o->tuning;
   if (!isfinite(o->dt))
     return msocl__fail(MSOCL_ERR_NOT_FINITE, "time step dt is %g", o->dt);
   if (!(o->dt > 0.0f))
     return msocl__fail(MSOCL_ERR_BAD_DT, "time step dt = %g must be > 0",
                        o->dt);
-  if (o->layout < MSOCL_LAYOUT_AUTO || o->layout > MSOCL_LAYOUT_GRID)
+  if (t->layout < MSOCL_LAYOUT_AUTO || t->layout > MSOCL_LAYOUT_GRID)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d",
-                       (int)o->layout);
+                       (int)t->layout);
   if (o->math != MSOCL_MATH_PRECISE && o->math != MSOCL_MATH_RELAXED)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown math mode %d",
                        (int)o->math);
-  if (o->device < 0 || o->device >= rt->ndev)
+  if (t->device < 0 || t->device >= rt->ndev)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
                        "device %d out of range: the runtime holds %d",
-                       o->device, rt->ndev);
-  int parts = o->ndevices < 0 ? rt->ndev - o->device
-                              : o->ndevices == 0 ? 1 : o->ndevices;
-  if (o->device + parts > rt->ndev || parts > 16)
+                       t->device, rt->ndev);
+  int parts = t->ndevices < 0 ? rt->ndev - t->device
+                              : t->ndevices == 0 ? 1 : t->ndevices;
+  if (t->device + parts > rt->ndev || parts > MSOCL_MAX_DEVICES)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
                        "devices %d to %d asked for: the runtime holds %d",
-                       o->device, o->device + parts - 1, rt->ndev);
-  for (int d = 0; d < parts && d < 16; d++)
-    if (!(o->weights[d] >= 0.0f) || !isfinite(o->weights[d]))
+                       t->device, t->device + parts - 1, rt->ndev);
+  for (int d = 0; d < parts && d < MSOCL_MAX_DEVICES; d++)
+    if (!(t->weights[d] >= 0.0f) || !isfinite(t->weights[d]))
       return msocl__fail(MSOCL_ERR_BAD_VALUE,
                          "weight %d is %g: weights must be finite and >= 0",
-                         d, o->weights[d]);
-  if (parts > 1 && (o->layout == MSOCL_LAYOUT_EDGES ||
+                         d, t->weights[d]);
+  if (parts > 1 && (t->layout == MSOCL_LAYOUT_EDGES ||
                     o->strain != MSOCL_STRAIN_NONE))
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "a model split over %d devices runs the gather layouts "
@@ -69,40 +80,37 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
                        "velocity strain limiting needs an integrator whose "
                        "position update uses the new velocity (symplectic "
                        "or implicit Euler)");
-  if (o->layout == MSOCL_LAYOUT_EDGES &&
+  if (t->layout == MSOCL_LAYOUT_EDGES &&
       (o->integrator != MSOCL_SYMPLECTIC_EULER ||
        o->strain != MSOCL_STRAIN_NONE))
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "the EDGES layout runs symplectic Euler without strain "
                        "limiting (its per-spring pass feeds one velocity "
                        "update); use BUFFER for other methods");
-  if (o->fused != 0 && o->fused != 1)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "fused is %d: 0 or 1", o->fused);
-  if (o->overlap != 0 && o->overlap != 1)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "overlap is %d: 0 or 1",
-                       o->overlap);
-  if (o->fused && (o->integrator != MSOCL_SYMPLECTIC_EULER ||
-                   o->layout == MSOCL_LAYOUT_EDGES ||
-                   o->strain == MSOCL_STRAIN_VELOCITY))
+  int rc = check_choice(t->fused, "fused");
+  if (rc == MSOCL_OK)
+    rc = check_choice(t->overlap, "overlap");
+  if (rc == MSOCL_OK)
+    rc = check_choice(t->classes, "classes");
+  if (rc == MSOCL_OK)
+    rc = check_choice(t->planes, "planes");
+  if (rc == MSOCL_OK)
+    rc = check_choice(t->renumber, "renumber");
+  if (rc != MSOCL_OK)
+    return rc;
+  if (t->fused == MSOCL_ON && (o->integrator != MSOCL_SYMPLECTIC_EULER ||
+                               t->layout == MSOCL_LAYOUT_EDGES ||
+                               o->strain == MSOCL_STRAIN_VELOCITY))
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "fused runs symplectic Euler's two passes on a gather "
                        "layout, without velocity strain limiting (which "
                        "works between the passes)");
-  if (o->classes < -1 || o->classes > 1)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "classes is %d: -1 (auto), 0 or 1", o->classes);
-  if (o->planes < -1 || o->planes > 1)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "planes is %d: -1 (auto), 0 or 1", o->planes);
-  if (o->buffer_slots < 0)
+  if (t->buffer_slots < 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "buffer_slots is %d: >= 0",
-                       o->buffer_slots);
-  if (o->renumber != 0 && o->renumber != 1)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "renumber is %d: 0 or 1",
-                       o->renumber);
-  if (o->calibrate_steps < 0)
+                       t->buffer_slots);
+  if (t->calibrate_steps < 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "calibrate_steps %d is negative",
-                       o->calibrate_steps);
+                       t->calibrate_steps);
   if (o->check_every < 0 || !(o->energy_factor > 0.0f) ||
       !isfinite(o->energy_factor))
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
@@ -150,25 +158,25 @@ static int calibrate(msocl_sim *s, msocl_runtime *rt, const msocl_model *m)
 {
   msocl_sim_options o = s->o;
   o.check_every = 0;
-  o.planes = 0; /* as the split's engines will run */
+  o.tuning.planes = MSOCL_OFF; /* as the split's engines will run */
   for (int d = 0; d < s->nparts; d++) {
     msocl__engine *e = NULL;
-    int rc = msocl__engine_create(&e, (struct msocl__device *)&rt->dev[o.device + d],
-                                  m, &o, 0, m->n);
+    struct msocl__device *dev = &rt->dev[o.tuning.device + d];
+    int rc = msocl__engine_create(&e, dev, m, &o, 0, m->n);
     if (rc == MSOCL_OK)
       rc = msocl__integrate(e, 1);
     if (rc == MSOCL_OK && clFinish(e->dev->queue) != CL_SUCCESS)
       rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "calibration failed");
     double t0 = now();
     if (rc == MSOCL_OK)
-      rc = msocl__integrate(e, o.calibrate_steps);
+      rc = msocl__integrate(e, o.tuning.calibrate_steps);
     if (rc == MSOCL_OK && clFinish(e->dev->queue) != CL_SUCCESS)
       rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "calibration failed");
     double t = now() - t0;
     msocl__engine_destroy(e);
     if (rc != MSOCL_OK)
       return rc;
-    s->o.weights[d] = (float)(1.0 / (t > 1e-9 ? t : 1e-9));
+    s->o.tuning.weights[d] = (float)(1.0 / (t > 1e-9 ? t : 1e-9));
   }
   return MSOCL_OK;
 }
@@ -178,7 +186,7 @@ static int partition(msocl_sim *s, const msocl_model *m)
 {
   double w[MSOCL__MAX_PARTS], total = 0.0;
   for (int d = 0; d < s->nparts; d++)
-    total += (w[d] = s->o.weights[d]);
+    total += (w[d] = s->o.tuning.weights[d]);
   if (!(total > 0.0))
     for (int d = 0; d < s->nparts; d++)
       total += (w[d] = 1.0);
@@ -259,12 +267,20 @@ static double mean_reach(const msocl_model *m, const int *num)
  * Cuthill-McKee where that brings spring neighbours closer (s->perm
  * records how). A cloth grid or lattice keeps its numbering: row by row
  * (layer by layer) it is banded already, and the GRID layout derives
- * neighbours from it. */
+ * neighbours from it; one built by hand runs as a copy carrying the
+ * builder's record. */
 static int number_points(msocl_sim *s, const msocl_model *m,
                          msocl_model **renumbered)
 {
   *renumbered = NULL;
-  if (!s->o.renumber || m->n < 3 || msocl__grid_intact(m))
+  if (msocl__grid_intact(m))
+    return MSOCL_OK;
+  /* a grid built by hand, for AUTO or GRID: run as the builder's */
+  struct msocl__grid g;
+  if ((s->o.tuning.layout == MSOCL_LAYOUT_AUTO || s->o.tuning.layout == MSOCL_LAYOUT_GRID) &&
+      msocl__grid_detect(m, &g))
+    return msocl__model_with_grid(m, &g, renumbered);
+  if (s->o.tuning.renumber == MSOCL_OFF || m->n < 3)
     return MSOCL_OK;
   int *perm = malloc((size_t)m->n * sizeof *perm),
       *num = malloc((size_t)m->n * sizeof *num);
@@ -303,7 +319,7 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
     rc = msocl_model_validate(model);
   /* before renumbering, so an error names the caller's point */
   if (rc == MSOCL_OK)
-    rc = msocl__layout_fits(model, o.layout);
+    rc = msocl__layout_fits(model, o.tuning.layout);
   if (rc != MSOCL_OK)
     return rc;
   msocl_sim *s = calloc(1, sizeof *s);
@@ -317,8 +333,9 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
   }
   const msocl_model *m = renumbered ? renumbered : model;
   s->n = m->n;
-  s->nparts = o.ndevices < 0 ? rt->ndev - o.device
-                             : o.ndevices == 0 ? 1 : o.ndevices;
+  const msocl_tuning *t = &o.tuning;
+  s->nparts = t->ndevices < 0 ? rt->ndev - t->device
+                              : t->ndevices == 0 ? 1 : t->ndevices;
   scene_scale(s, m);
   s->stage = malloc(4 * (size_t)m->n * sizeof(float));
   s->pinned = malloc((size_t)m->n);
@@ -330,8 +347,8 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
   memcpy(s->pinned, m->pinned, (size_t)m->n);
   int weighed = 0;
   for (int d = 0; d < s->nparts; d++)
-    weighed |= o.weights[d] > 0.0f;
-  if (s->nparts > 1 && !weighed && o.calibrate_steps > 0)
+    weighed |= t->weights[d] > 0.0f;
+  if (s->nparts > 1 && !weighed && t->calibrate_steps > 0)
     rc = calibrate(s, rt, m);
   if (rc == MSOCL_OK)
     rc = partition(s, m);
@@ -339,7 +356,7 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
     plan_halos(s, m);
   for (int d = 0; rc == MSOCL_OK && d < s->nparts; d++)
     rc = msocl__engine_create(&s->part[d],
-                              (struct msocl__device *)&rt->dev[o.device + d],
+                              (struct msocl__device *)&rt->dev[t->device + d],
                               m, &o, s->halo[d][d][0], s->halo[d][d][1]);
   if (rc == MSOCL_OK && s->nparts > 1)
     rc = msocl__exchange_plan(s);

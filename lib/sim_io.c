@@ -202,10 +202,10 @@ int msocl_sim_split_info(const msocl_sim *s, msocl_split_info *info)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
   memset(info, 0, sizeof *info);
   info->parts = s->nparts;
-  for (int d = 0; d < s->nparts && d < 16; d++)
-    info->weight[d] = s->o.weights[d];
+  for (int d = 0; d < s->nparts && d < MSOCL_MAX_DEVICES; d++)
+    info->weight[d] = s->o.tuning.weights[d];
   for (int d = 0; d < s->nparts; d++) {
-    info->device[d] = s->o.device + d;
+    info->device[d] = s->o.tuning.device + d;
     info->first[d] = s->part[d]->lo;
     info->count[d] = s->part[d]->hi - s->part[d]->lo;
     for (int e = 0; e < s->nparts; e++)

@@ -3,7 +3,7 @@
  * memory; every check_every steps (counted across calls) the blow-up
  * check. */
 #include "config.h"
-#include "sim.h"
+#include "schedule.h"
 
 #include <math.h>
 #include <string.h>
@@ -184,19 +184,20 @@ static int job(void *ctx, int d)
 /* `n` whole steps of a split simulation, each engine on its own thread. */
 static int split_steps(msocl_sim *s, int n)
 {
-  const int phases = msocl__phase_count(s->part[0]);
+  const struct msocl__schedule *t = msocl__schedule_of(&s->part[0]->o);
   struct job j = {s, 0, 0, 0};
   for (int q = 0; q < n; q++) {
-    for (int ph = 0; ph < phases;) {
-      if (ph == 0 && s->o.integrator == MSOCL_IMPLICIT_EULER) {
-        /* one CG over every engine, driven from this thread */
+    for (int ph = 0; ph < t->nphases;) {
+      if (t->phase[ph].pass[0] == MSOCL__P_CG) {
+        /* one CG over every engine, driven from this thread (a split
+         * runs no strain sweeps: the CG is the whole phase) */
         j.ph = -1;
         int rc = msocl__workers_run(s->workers, job, &j);
         if (rc == MSOCL_OK)
           rc = msocl__implicit_cg(s->part, s->nparts, exchange_cg, s);
         if (rc != MSOCL_OK)
           return rc;
-        ph = 1;
+        ph++;
         continue;
       }
       j.ph = ph;

@@ -19,7 +19,7 @@ static double device_vs_reference(const msocl_model *m, float dt, int steps,
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = dt;
-  o.layout = layout;
+  o.tuning.layout = layout;
   o.math = math;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, &o);

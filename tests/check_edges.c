@@ -24,7 +24,7 @@ static double edges_vs_buffer(const msocl_model *m, float dt, int steps)
     msocl_sim_options o;
     msocl_sim_options_init(&o);
     o.dt = dt;
-    o.layout = lay[q];
+    o.tuning.layout = lay[q];
     msocl_sim *s = NULL;
     int rc = msocl_sim_create(&s, rt, m, &o);
     ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
@@ -94,7 +94,7 @@ START_TEST(only_symplectic)
   msocl_model *m = scene_hanging(4);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.layout = MSOCL_LAYOUT_EDGES;
+  o.tuning.layout = MSOCL_LAYOUT_EDGES;
   msocl_sim *s = NULL;
   for (int in = MSOCL_EXPLICIT_EULER; in <= MSOCL_IMPLICIT_EULER; in++) {
     o.integrator = (msocl_integrator)in;

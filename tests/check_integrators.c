@@ -181,8 +181,8 @@ static msocl_sim *capped(const msocl_model *m, msocl_sim_options *o,
   msocl_sim_options_init(o);
   o->dt = 1e-2f;
   o->integrator = MSOCL_IMPLICIT_EULER;
-  o->layout = MSOCL_LAYOUT_GRID;
-  o->planes = planes;
+  o->tuning.layout = MSOCL_LAYOUT_GRID;
+  o->tuning.planes = planes ? MSOCL_ON : MSOCL_OFF;
   o->cg_max_iterations = cap;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, o);

@@ -70,18 +70,18 @@ struct state {
  * compares. */
 static struct state run(msocl_runtime *r, const msocl_model *m,
                         msocl_layout lay, msocl_integrator in,
-                        msocl_strain strain, int fused, int planes,
+                        msocl_strain strain, int fused, msocl_choice planes,
                         int parts, int steps)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = 5e-5f;
-  o.layout = lay;
+  o.tuning.layout = lay;
   o.integrator = in;
   o.strain = strain;
-  o.fused = fused;
-  o.planes = planes;
-  o.ndevices = parts;
+  o.tuning.fused = fused ? MSOCL_ON : MSOCL_OFF;
+  o.tuning.planes = planes;
+  o.tuning.ndevices = parts;
   o.check_every = 0;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, r, m, &o);
@@ -166,15 +166,15 @@ START_TEST(grid_is_buffer)
       continue;
     /* GRID in float4: forced where planes apply, else by default */
     struct state g = run(rt, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                         methods[q].strain, methods[q].fused, pl ? 0 : -1, 1,
-                         100);
+                         methods[q].strain, methods[q].fused,
+                         pl ? MSOCL_OFF : MSOCL_AUTO, 1, 100);
     ck_assert_msg(!g.planes, "%s: planes where they cannot be", what);
     /* BUFFER: every method on the first lattice, symplectic Euler on the
      * others (where float4 GRID, proved BUFFER's, stands in for it) */
     struct state b = g;
     if (_i == 0 || q == 0) {
       b = run(rt, m, MSOCL_LAYOUT_BUFFER, methods[q].in, methods[q].strain,
-              methods[q].fused, -1, 1, 100);
+              methods[q].fused, MSOCL_AUTO, 1, 100);
       same(b, g, 1, what);
     }
     /* it must have moved, or equality proves nothing */
@@ -182,14 +182,16 @@ START_TEST(grid_is_buffer)
                   what);
     if (pl) { /* GRID in planes, by default on this CPU device */
       struct state a = run(rt, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                           methods[q].strain, methods[q].fused, -1, 1, 100);
+                           methods[q].strain, methods[q].fused, MSOCL_AUTO, 1,
+                           100);
       ck_assert_msg(a.planes, "%s: not in planes", what);
       same(b, a, 1, what);
       state_free(&a);
     }
     if (_i == 0) { /* AUTO: GRID exactly where it runs in planes */
       struct state c = run(rt, m, MSOCL_LAYOUT_AUTO, methods[q].in,
-                           methods[q].strain, methods[q].fused, -1, 1, 0);
+                           methods[q].strain, methods[q].fused, MSOCL_AUTO, 1,
+                           0);
       ck_assert_msg(c.layout == (pl ? MSOCL_LAYOUT_GRID
                                     : MSOCL_LAYOUT_BUFFER) &&
                         c.planes == pl,
@@ -227,13 +229,13 @@ START_TEST(split_is_one_device)
   for (int u = 0; u < 2; u++) {
     const int q = split_methods[u];
     struct state one = run(many, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                           MSOCL_STRAIN_NONE, 0, -1, 1, 100);
+                           MSOCL_STRAIN_NONE, 0, MSOCL_AUTO, 1, 100);
     for (int parts = 2; parts <= ndev; parts++) {
       char what[160];
       snprintf(what, sizeof what, "%s on %d devices", methods[q].name,
                parts);
       struct state split = run(many, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                               MSOCL_STRAIN_NONE, 0, -1, parts, 100);
+                               MSOCL_STRAIN_NONE, 0, MSOCL_AUTO, parts, 100);
       same(one, split, 0, what);
       state_free(&split);
     }
@@ -241,7 +243,7 @@ START_TEST(split_is_one_device)
   }
   /* a split runs in float4, so AUTO keeps BUFFER there */
   struct state a = run(many, m, MSOCL_LAYOUT_AUTO, MSOCL_SYMPLECTIC_EULER,
-                       MSOCL_STRAIN_NONE, 0, -1, 2, 0);
+                       MSOCL_STRAIN_NONE, 0, MSOCL_AUTO, 2, 0);
   ck_assert_int_eq(a.layout, MSOCL_LAYOUT_BUFFER);
   state_free(&a);
   msocl_model_destroy(m);
@@ -258,7 +260,7 @@ START_TEST(changed_lattice_refused)
   msocl_model *m = busy_lattice(size, SETS_DEFAULT);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.layout = MSOCL_LAYOUT_GRID;
+  o.tuning.layout = MSOCL_LAYOUT_GRID;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   msocl_sim_destroy(s);
@@ -277,7 +279,7 @@ START_TEST(changed_lattice_refused)
   ck_assert_msg(strstr(msocl_last_error(), "lattice") &&
                     strstr(msocl_last_error(), _i ? "points" : "springs"),
                 "unclear error: %s", msocl_last_error());
-  o.layout = MSOCL_LAYOUT_AUTO;
+  o.tuning.layout = MSOCL_LAYOUT_AUTO;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   msocl_layout got;
   ck_assert_int_eq(msocl_sim_layout(s, &got), MSOCL_OK);

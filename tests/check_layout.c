@@ -17,7 +17,7 @@ static void run(const msocl_model *m, msocl_layout layout, float dt,
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = dt;
-  o.layout = layout;
+  o.tuning.layout = layout;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, &o);
   ck_assert_msg(rc == MSOCL_OK, "sim_create: %s", msocl_last_error());
@@ -117,12 +117,12 @@ START_TEST(degree_limit)
                    MSOCL_OK);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.layout = MSOCL_LAYOUT_IMAGE2D;
+  o.tuning.layout = MSOCL_LAYOUT_IMAGE2D;
   msocl_sim *s = (msocl_sim *)&o; /* must be reset to NULL on failure */
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_DEGREE);
   ck_assert_ptr_null(s);
   ck_assert_ptr_nonnull(strstr(msocl_last_error(), "point 0 has 17"));
-  o.layout = MSOCL_LAYOUT_BUFFER;
+  o.tuning.layout = MSOCL_LAYOUT_BUFFER;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_step(s, 10), MSOCL_OK);
   msocl_sim_destroy(s);
@@ -137,7 +137,7 @@ START_TEST(grid_needs_a_cloth_grid)
   msocl_model *m = scene_tablecloth(8);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.layout = MSOCL_LAYOUT_GRID;
+  o.tuning.layout = MSOCL_LAYOUT_GRID;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   msocl_layout l;
@@ -158,7 +158,7 @@ START_TEST(grid_needs_a_cloth_grid)
   ck_assert_int_eq(msocl_model_add_points(m, 1, xyz, &mass, NULL), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
   ck_assert_ptr_nonnull(strstr(msocl_last_error(), "points"));
-  o.layout = MSOCL_LAYOUT_AUTO;
+  o.tuning.layout = MSOCL_LAYOUT_AUTO;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   msocl_layout got;
   msocl_sim_layout(s, &got);
@@ -180,7 +180,7 @@ START_TEST(grid_every_integrator)
       msocl_sim_options_init(&o);
       o.dt = 1e-4f;
       o.integrator = (msocl_integrator)in;
-      o.layout = q ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
+      o.tuning.layout = q ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
       msocl_sim *s = NULL;
       ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
       ck_assert_int_eq(msocl_sim_step(s, 200), MSOCL_OK);
@@ -237,8 +237,8 @@ START_TEST(fused_equals_two_passes)
     msocl_sim_options o;
     msocl_sim_options_init(&o);
     o.dt = scene_tablecloth_dt(24);
-    o.fused = q > 0;
-    o.ndevices = q == 2 ? parts : 1;
+    o.tuning.fused = q > 0 ? MSOCL_ON : MSOCL_OFF;
+    o.tuning.ndevices = q == 2 ? parts : 1;
     msocl_sim *s = NULL;
     ck_assert_int_eq(msocl_sim_create(&s, q == 2 && two ? two : rt, m, &o),
                      MSOCL_OK);
@@ -254,7 +254,7 @@ START_TEST(fused_equals_two_passes)
   msocl_runtime_destroy(two);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.fused = 1;
+  o.tuning.fused = MSOCL_ON;
   o.integrator = MSOCL_RK4;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);

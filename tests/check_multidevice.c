@@ -14,7 +14,7 @@
 static msocl_runtime *rt;
 static int ndev;
 static char spec[256];
-static int overlap = 1; /* options.overlap of the split runs */
+static msocl_choice overlap = MSOCL_AUTO; /* tuning.overlap of the splits */
 
 static void setup(void)
 {
@@ -40,12 +40,12 @@ static void run(const msocl_model *m, msocl_integrator in, msocl_layout lay,
   msocl_sim_options_init(&o);
   o.dt = dt;
   o.integrator = in;
-  o.layout = lay;
-  o.ndevices = parts;
+  o.tuning.layout = lay;
+  o.tuning.ndevices = parts;
   o.check_every = 0;
-  o.overlap = overlap;
+  o.tuning.overlap = overlap;
   for (int d = 0; weights && d < parts; d++)
-    o.weights[d] = weights[d];
+    o.tuning.weights[d] = weights[d];
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, &o);
   ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
@@ -129,7 +129,7 @@ START_TEST(implicit_split)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.integrator = MSOCL_IMPLICIT_EULER;
-  o.ndevices = 2;
+  o.tuning.ndevices = 2;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
   ck_assert_ptr_nonnull(strstr(msocl_last_error(), "work-groups of 64"));
@@ -137,21 +137,21 @@ START_TEST(implicit_split)
 }
 END_TEST
 
-/* options.overlap = 0: every kernel, then every copy - bitwise the same
+/* tuning.overlap = MSOCL_OFF: every kernel, then every copy - bitwise the same
  * as boundary first, and reported as off. _i: the integrator. */
 START_TEST(kernels_then_copies)
 {
   msocl_integrator in = (msocl_integrator)_i;
   msocl_model *m = scene_hanging(in == MSOCL_IMPLICIT_EULER ? 24 : 16);
   float dt = in == MSOCL_EXPLICIT_EULER ? 1e-4f : 1e-3f;
-  overlap = 0;
+  overlap = MSOCL_OFF;
   same_bits(m, in, MSOCL_LAYOUT_BUFFER, dt, 200, ndev < 3 ? ndev : 3, NULL,
             "kernels then copies, damped hanging cloth");
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = dt;
-  o.ndevices = 2;
-  o.overlap = 0;
+  o.tuning.ndevices = 2;
+  o.tuning.overlap = MSOCL_OFF;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_step(s, 10), MSOCL_OK);
@@ -163,7 +163,7 @@ START_TEST(kernels_then_copies)
   ck_assert_double_gt(info.compute_seconds[0], 0.0);
   msocl_sim_destroy(s);
   msocl_model_destroy(m);
-  overlap = 1;
+  overlap = MSOCL_AUTO;
 }
 END_TEST
 
@@ -223,10 +223,10 @@ START_TEST(split_report_and_normals)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = scene_tablecloth_dt(24);
-  o.ndevices = -1;
+  o.tuning.ndevices = -1;
   msocl_sim *s = NULL, *one = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-  o.ndevices = 1;
+  o.tuning.ndevices = 1;
   ck_assert_int_eq(msocl_sim_create(&one, rt, m, &o), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_step(one, 100), MSOCL_OK);
@@ -296,21 +296,21 @@ START_TEST(refused)
   msocl_model *m = scene_tablecloth(8);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.ndevices = 2;
+  o.tuning.ndevices = 2;
   msocl_sim *s = NULL;
-  o.layout = MSOCL_LAYOUT_EDGES;
+  o.tuning.layout = MSOCL_LAYOUT_EDGES;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
-  o.layout = MSOCL_LAYOUT_BUFFER;
+  o.tuning.layout = MSOCL_LAYOUT_BUFFER;
   o.strain = MSOCL_STRAIN_PROVOT;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
   o.strain = MSOCL_STRAIN_NONE;
-  o.ndevices = ndev + 1;
+  o.tuning.ndevices = ndev + 1;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_INDEX);
-  o.ndevices = 2;
-  o.weights[0] = -1.0f;
+  o.tuning.ndevices = 2;
+  o.tuning.weights[0] = -1.0f;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
-  o.weights[0] = 1e6f;
-  o.weights[1] = 1.0f; /* 64 points: the second device would get none */
+  o.tuning.weights[0] = 1e6f;
+  o.tuning.weights[1] = 1.0f; /* 64 points: the second device would get none */
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
   ck_assert_ptr_null(s);
   msocl_runtime *twice = NULL;
@@ -333,14 +333,14 @@ START_TEST(device_without_images)
   msocl_model *m = scene_tablecloth(8);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.layout = MSOCL_LAYOUT_IMAGE2D;
-  o.ndevices = 2;
+  o.tuning.layout = MSOCL_LAYOUT_IMAGE2D;
+  o.tuning.ndevices = 2;
   rt->dev[1].info.image_support = 0;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_NO_IMAGES);
   ck_assert_ptr_null(s);
   ck_assert_ptr_nonnull(strstr(msocl_last_error(), rt->dev[1].info.name));
-  o.layout = MSOCL_LAYOUT_BUFFER; /* needs no images */
+  o.tuning.layout = MSOCL_LAYOUT_BUFFER; /* needs no images */
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   msocl_sim_destroy(s);
   msocl_model_destroy(m);
@@ -355,8 +355,8 @@ START_TEST(calibrated_weights)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = scene_tablecloth_dt(24);
-  o.ndevices = 2;
-  o.calibrate_steps = 20;
+  o.tuning.ndevices = 2;
+  o.tuning.calibrate_steps = 20;
   o.check_every = 0;
   msocl_sim *s = NULL, *one = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
@@ -366,7 +366,7 @@ START_TEST(calibrated_weights)
          info.weight[0], info.weight[1], info.count[0], info.count[1]);
   ck_assert(info.weight[0] > 0.0f && info.weight[1] > 0.0f);
   ck_assert_int_eq(info.count[0] + info.count[1], 576);
-  o.ndevices = 1;
+  o.tuning.ndevices = 1;
   ck_assert_int_eq(msocl_sim_create(&one, rt, m, &o), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_step(s, 200), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_step(one, 200), MSOCL_OK);
@@ -376,7 +376,7 @@ START_TEST(calibrated_weights)
   ck_assert(memcmp(a, b, sizeof a) == 0);
   msocl_sim_destroy(s);
   msocl_sim_destroy(one);
-  o.calibrate_steps = -1;
+  o.tuning.calibrate_steps = -1;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
   msocl_model_destroy(m);
 }
@@ -392,7 +392,7 @@ START_TEST(unstable_rolls_back)
   float limit;
   msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
   o.dt = 3.0f * limit;
-  o.ndevices = 2;
+  o.tuning.ndevices = 2;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   float p[3 * 256], q[3 * 256];

@@ -182,12 +182,12 @@ START_TEST(bad_input)
   o.dt = NAN;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_NOT_FINITE);
   o.dt = 1e-3f;
-  o.device = 7;
+  o.tuning.device = 7;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_INDEX);
-  o.device = 0;
-  o.layout = (msocl_layout)42;
+  o.tuning.device = 0;
+  o.tuning.layout = (msocl_layout)42;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
-  o.layout = MSOCL_LAYOUT_AUTO;
+  o.tuning.layout = MSOCL_LAYOUT_AUTO;
   ck_assert_ptr_null(s);
   msocl_model *empty = NULL;
   msocl_model_create(&empty);

@@ -1,4 +1,4 @@
-/* GRID in planes (options.planes): a cloth grid's symplectic Euler steps
+/* GRID in planes (tuning.planes): a cloth grid's symplectic Euler steps
  * (two passes or fused), Verlet and RK4 steps over x, y, z planes must be
  * bitwise the float4 kernels' steps - with
  * every feature the planes kernel compiles in (colliders of each kind,
@@ -61,9 +61,9 @@ static void state_free(struct state *st)
   free(st->vel);
 }
 
-/* planes: options.planes, and 2: planes with the fused kernel; 3: Verlet
- * in planes, -3 Verlet in float4; 4 and -4 RK4; 5 and -5 implicit Euler;
- * 6 and -6 explicit Euler (otherwise symplectic Euler) */
+/* planes: tuning.planes ON (1) or OFF (0), and 2: planes with the fused
+ * kernel; 3: Verlet in planes, -3 Verlet in float4; 4 and -4 RK4; 5 and
+ * -5 implicit Euler; 6 and -6 explicit Euler (otherwise symplectic Euler) */
 static msocl_sim *make_strained(const msocl_model *m, int planes,
                                 msocl_math math, float dt,
                                 msocl_strain strain)
@@ -78,9 +78,9 @@ static msocl_sim *make_strained(const msocl_model *m, int planes,
     o.integrator = in[abs(planes) - 3];
     planes = planes > 0;
   }
-  o.layout = MSOCL_LAYOUT_GRID;
-  o.planes = planes > 0;
-  o.fused = planes == 2;
+  o.tuning.layout = MSOCL_LAYOUT_GRID;
+  o.tuning.planes = planes > 0 ? MSOCL_ON : MSOCL_OFF;
+  o.tuning.fused = planes == 2 ? MSOCL_ON : MSOCL_OFF;
   o.math = math;
   o.dt = dt;
   msocl_sim *s = NULL;
@@ -476,7 +476,7 @@ START_TEST(auto_and_errors)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = scene_tablecloth_dt(16);
-  o.layout = MSOCL_LAYOUT_GRID;
+  o.tuning.layout = MSOCL_LAYOUT_GRID;
   msocl_sim *s = NULL;
   int on = -1;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
@@ -508,16 +508,16 @@ START_TEST(auto_and_errors)
        "GRID"},
   };
   for (size_t q = 0; q < sizeof no / sizeof no[0]; q++) {
-    o.layout = no[q].layout;
+    o.tuning.layout = no[q].layout;
     o.integrator = no[q].in;
     o.strain = no[q].strain;
-    o.planes = -1;
+    o.tuning.planes = MSOCL_AUTO;
     ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
     ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
     ck_assert_msg(on == 0, "auto took planes where they do not apply (%s)",
                   no[q].words);
     msocl_sim_destroy(s);
-    o.planes = 1;
+    o.tuning.planes = MSOCL_ON;
     s = NULL;
     ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
     ck_assert_ptr_null(s);
@@ -527,7 +527,7 @@ START_TEST(auto_and_errors)
   }
   o = (msocl_sim_options){0};
   msocl_sim_options_init(&o);
-  o.planes = 2;
+  o.tuning.planes = (msocl_choice)3;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
   msocl_model_destroy(m);
 }
@@ -548,15 +548,15 @@ START_TEST(split_keeps_float4)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = scene_tablecloth_dt(16);
-  o.layout = MSOCL_LAYOUT_GRID;
-  o.ndevices = 2;
+  o.tuning.layout = MSOCL_LAYOUT_GRID;
+  o.tuning.ndevices = 2;
   msocl_sim *s = NULL;
   int on = -1;
   ck_assert_int_eq(msocl_sim_create(&s, two, m, &o), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
   ck_assert_int_eq(on, 0);
   msocl_sim_destroy(s);
-  o.planes = 1;
+  o.tuning.planes = MSOCL_ON;
   s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, two, m, &o), MSOCL_ERR_BAD_VALUE);
   ck_assert_msg(strstr(msocl_last_error(), "split"), "unclear error: %s",
@@ -582,7 +582,7 @@ START_TEST(skinny_lattice)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = 1e-4f;
-  o.layout = MSOCL_LAYOUT_GRID;
+  o.tuning.layout = MSOCL_LAYOUT_GRID;
   const size_t plane = (size_t)12 * 6 * (20000 + 4);
   ck_assert_uint_eq(msocl__planes_bytes(m, &o), plane * 14 * sizeof(float));
   o.integrator = MSOCL_RK4;
@@ -599,7 +599,7 @@ START_TEST(skinny_lattice)
                 msocl__planes_bytes(m, &o), 4 * 20000);
   ck_assert_int_eq(msocl_sim_step(s, 2), MSOCL_OK);
   msocl_sim_destroy(s);
-  o.planes = 1;
+  o.tuning.planes = MSOCL_ON;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
   ck_assert_int_eq(on, 1);
@@ -615,7 +615,7 @@ START_TEST(skinny_lattice)
   ck_assert_msg(strstr(msocl_last_error(), "2^31") &&
                     strstr(msocl_last_error(), "2 x 2 x 40000000"),
                 "unclear error: %s", msocl_last_error());
-  o.planes = -1;
+  o.tuning.planes = MSOCL_AUTO;
   ck_assert_int_eq(msocl__planes_refused(&o, &big, 0, big.n), MSOCL_OK);
   ck_assert_int_eq(msocl__planes_would(&rt->dev[0], &o, &big, 0, big.n), 0);
 }

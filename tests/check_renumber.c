@@ -63,10 +63,10 @@ static void run(const msocl_model *m, int renumber, int parts,
   msocl_sim_options_init(&o);
   /* forward Euler grows without damping: a shorter step keeps it finite */
   o.dt = scene_tablecloth_dt(N) / (in == MSOCL_EXPLICIT_EULER ? 20 : 1);
-  o.renumber = renumber;
-  o.ndevices = parts;
+  o.tuning.renumber = renumber ? MSOCL_ON : MSOCL_OFF;
+  o.tuning.ndevices = parts;
   o.integrator = in;
-  o.layout = MSOCL_LAYOUT_BUFFER;
+  o.tuning.layout = MSOCL_LAYOUT_BUFFER;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, &o);
   ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
@@ -190,9 +190,9 @@ START_TEST(grid_and_option)
   ck_assert(is_identity(given.order));
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  ck_assert_int_eq(o.renumber, 1);
+  ck_assert_int_eq(o.tuning.renumber, MSOCL_AUTO);
   o.dt = scene_tablecloth_dt(N);
-  o.renumber = 2;
+  o.tuning.renumber = (msocl_choice)3;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, grid, &o), MSOCL_ERR_BAD_VALUE);
   ck_assert_ptr_null(s);

@@ -26,7 +26,7 @@ static void list_teardown(void) {
   ndevs = 0;
 }
 
-static int find_type(int type) {
+static int find_type(msocl_device_type type) {
   int i;
   for (i = 0; i < ndevs; i++)
     if (devs[i].type == type) return i;
@@ -283,7 +283,8 @@ START_TEST(test_two_devices) {
 }
 END_TEST
 
-/* Every option is checked at sim creation, fused and overlap too: 0 or 1. */
+/* Every option is checked at sim creation, fused and overlap too: AUTO, ON
+ * or OFF. */
 START_TEST(test_bad_switches) {
   static const float xyz[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0},
                      mass[4] = {1, 1, 1, 1};
@@ -292,10 +293,10 @@ START_TEST(test_bad_switches) {
   static const struct {
     int fused, overlap;
     const char *says;
-  } bad[] = {{7, 1, "fused is 7: 0 or 1"},
-             {-1, 1, "fused is -1: 0 or 1"},
-             {0, 12345, "overlap is 12345: 0 or 1"},
-             {0, -1, "overlap is -1: 0 or 1"}};
+  } bad[] = {{7, MSOCL_ON, "fused is 7: MSOCL_AUTO, MSOCL_ON or"},
+             {-1, MSOCL_ON, "fused is -1: MSOCL_AUTO, MSOCL_ON or"},
+             {MSOCL_AUTO, 12345, "overlap is 12345: MSOCL_AUTO, MSOCL_ON"},
+             {MSOCL_AUTO, -1, "overlap is -1: MSOCL_AUTO, MSOCL_ON or"}};
   msocl_runtime *rt = NULL;
   msocl_model *m = NULL;
   msocl_sim_options o;
@@ -309,8 +310,8 @@ START_TEST(test_bad_switches) {
   ck_assert_int_eq(msocl_model_add_springs(m, 4, ij, k, NULL, NULL), MSOCL_OK);
   for (q = 0; q < sizeof bad / sizeof bad[0]; q++) {
     msocl_sim_options_init(&o);
-    o.fused = bad[q].fused;
-    o.overlap = bad[q].overlap;
+    o.tuning.fused = (msocl_choice)bad[q].fused;
+    o.tuning.overlap = (msocl_choice)bad[q].overlap;
     s = (msocl_sim *)&s;
     rc = msocl_sim_create(&s, rt, m, &o);
     ck_assert_msg(rc == MSOCL_ERR_BAD_VALUE, "%s: got %s (%s)", bad[q].says,
@@ -319,13 +320,66 @@ START_TEST(test_bad_switches) {
     ck_assert_msg(strstr(msocl_last_error(), bad[q].says), "message: %s",
                   msocl_last_error());
   }
-  /* both values of each are still taken */
+  /* both forced values of each are still taken */
   msocl_sim_options_init(&o);
-  o.fused = 1;
-  o.overlap = 0;
+  o.tuning.fused = MSOCL_ON;
+  o.tuning.overlap = MSOCL_OFF;
   rc = msocl_sim_create(&s, rt, m, &o);
   ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
   msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+  msocl_runtime_destroy(rt);
+}
+END_TEST
+
+/* msocl_sim_options_init leaves the tuning all zero, which is every
+ * field's "choose for me"; each switch takes AUTO, ON and OFF, and
+ * nothing else; the public device limit is the library's own. */
+START_TEST(test_tuning_zero_is_auto) {
+  static const float xyz[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0},
+                     mass[4] = {1, 1, 1, 1};
+  static const int ij[8] = {0, 1, 1, 2, 2, 3, 3, 0};
+  static const float k[4] = {10, 10, 10, 10};
+  static const char *names[5] = {"fused", "renumber", "overlap", "classes",
+                                 "planes"};
+  const msocl_tuning zero = {0};
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  ck_assert(memcmp(&o.tuning, &zero, sizeof zero) == 0);
+  ck_assert_int_eq(o.tuning.layout, MSOCL_LAYOUT_AUTO);
+  ck_assert_int_eq(MSOCL_MAX_DEVICES, MSOCL__MAX_DEVICES);
+
+  msocl_runtime *rt = NULL;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_runtime_create(&rt, "cpu"), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_create(&m), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_points(m, 4, xyz, mass, NULL), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_springs(m, 4, ij, k, NULL, NULL), MSOCL_OK);
+  for (int f = 0; f < 5; f++) {
+    static const int values[5] = {MSOCL_AUTO, MSOCL_ON, MSOCL_OFF, 3, -1};
+    for (int q = 0; q < 5; q++) {
+      msocl_sim_options_init(&o);
+      msocl_choice *c[5] = {&o.tuning.fused, &o.tuning.renumber,
+                            &o.tuning.overlap, &o.tuning.classes,
+                            &o.tuning.planes};
+      *c[f] = (msocl_choice)values[q];
+      msocl_sim *s = NULL;
+      int rc = msocl_sim_create(&s, rt, m, &o);
+      /* planes ON needs GRID, which a ring of four points is not */
+      const int want = q > 2                ? MSOCL_ERR_BAD_VALUE
+                       : f == 4 && q == 1 ? MSOCL_ERR_BAD_VALUE
+                                          : MSOCL_OK;
+      ck_assert_msg(rc == want, "%s = %d: got %s (%s)", names[f], values[q],
+                    msocl_err_name(rc), msocl_last_error());
+      if (q > 2) {
+        char says[64];
+        snprintf(says, sizeof says, "tuning.%s is %d", names[f], values[q]);
+        ck_assert_msg(strstr(msocl_last_error(), says), "message: %s",
+                      msocl_last_error());
+      }
+      msocl_sim_destroy(s);
+    }
+  }
   msocl_model_destroy(m);
   msocl_runtime_destroy(rt);
 }
@@ -348,6 +402,7 @@ static Suite *runtime_suite(void) {
   tcase_add_test(tc, test_bad_index);
   tcase_add_test(tc, test_two_devices);
   tcase_add_test(tc, test_bad_switches);
+  tcase_add_test(tc, test_tuning_zero_is_auto);
   suite_add_tcase(s, tc);
   return s;
 }

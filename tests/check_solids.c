@@ -37,7 +37,7 @@ static int make_sim(msocl_sim **s, const msocl_model *m, msocl_layout layout)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = DT;
-  o.layout = layout;
+  o.tuning.layout = layout;
   *s = NULL;
   return msocl_sim_create(s, rt, m, &o);
 }

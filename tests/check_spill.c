@@ -51,16 +51,16 @@ struct state {
   float *pos, *vel;
 };
 
-/* table: options.buffer_slots; classes: options.classes */
+/* table: tuning.buffer_slots; classes: tuning.classes ON (1) or OFF (0) */
 static struct state run_classes(const msocl_model *m, msocl_integrator in,
                                 int table, int classes, int steps)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.layout = MSOCL_LAYOUT_BUFFER;
+  o.tuning.layout = MSOCL_LAYOUT_BUFFER;
   o.integrator = in;
-  o.buffer_slots = table;
-  o.classes = classes;
+  o.tuning.buffer_slots = table;
+  o.tuning.classes = classes ? MSOCL_ON : MSOCL_OFF;
   ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &o.dt),
                    MSOCL_OK);
   float edt;
@@ -224,7 +224,7 @@ START_TEST(classes_fit_a_byte)
 }
 END_TEST
 
-/* options.classes = -1 (the default) takes classes once the table of
+/* tuning.classes = MSOCL_AUTO (the default) takes classes once the table of
  * values (12 B a slot, undamped) outgrows half the device's reported
  * cache: a 16^2 cloth stays with values, a 512^2 one - 38 MB of values
  * on this machine's 36 MiB cache - gets classes. The expectation follows
@@ -236,8 +236,8 @@ START_TEST(classes_auto)
     msocl_model *m = scene_tablecloth(sizes[q]);
     msocl_sim_options o;
     msocl_sim_options_init(&o);
-    ck_assert_int_eq(o.classes, -1);
-    o.layout = MSOCL_LAYOUT_BUFFER;
+    ck_assert_int_eq(o.tuning.classes, MSOCL_AUTO);
+    o.tuning.layout = MSOCL_LAYOUT_BUFFER;
     o.dt = 1e-4f;
     msocl_sim *s = NULL;
     int rc = msocl_sim_create(&s, rt, m, &o);
@@ -261,7 +261,7 @@ START_TEST(classes_auto)
   msocl_model *m = scene_tablecloth(8);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.classes = 2;
+  o.tuning.classes = (msocl_choice)3;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
   ck_assert_ptr_null(s);
@@ -294,9 +294,9 @@ START_TEST(width_from_degrees)
 
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  ck_assert_int_eq(o.buffer_slots, 0);
+  ck_assert_int_eq(o.tuning.buffer_slots, 0);
   o.dt = 1e-4f;
-  o.buffer_slots = -1;
+  o.tuning.buffer_slots = -1;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
   ck_assert_ptr_null(s);
@@ -324,8 +324,8 @@ START_TEST(split_ball_bitwise)
   for (int parts = 1; parts <= 2; parts++) {
     msocl_sim_options o;
     msocl_sim_options_init(&o);
-    o.layout = MSOCL_LAYOUT_BUFFER;
-    o.ndevices = parts;
+    o.tuning.layout = MSOCL_LAYOUT_BUFFER;
+    o.tuning.ndevices = parts;
     ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &o.dt),
                      MSOCL_OK);
     o.dt *= 0.5f;

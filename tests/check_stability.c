@@ -352,7 +352,7 @@ START_TEST(pinned_cloth_safe_step)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = 0.9f * safe;
-  o.layout = layouts[_i];
+  o.tuning.layout = layouts[_i];
   o.check_every = 100;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
@@ -572,15 +572,16 @@ static const char *const rest_kinds[] = {"free", "on a plane",
 struct rest_run {
   const char *what;
   msocl_integrator in;
-  int planes, ndevices;
+  msocl_choice planes;
+  int ndevices;
 };
 static const struct rest_run rest_runs[] = {
-    {"symplectic Euler", MSOCL_SYMPLECTIC_EULER, -1, 1},
-    {"symplectic Euler, float4", MSOCL_SYMPLECTIC_EULER, 0, 1},
-    {"Verlet", MSOCL_VERLET, -1, 1},
-    {"RK4", MSOCL_RK4, -1, 1},
-    {"implicit Euler", MSOCL_IMPLICIT_EULER, -1, 1},
-    {"symplectic Euler, two devices", MSOCL_SYMPLECTIC_EULER, 0, 2},
+    {"symplectic Euler", MSOCL_SYMPLECTIC_EULER, MSOCL_AUTO, 1},
+    {"symplectic Euler, float4", MSOCL_SYMPLECTIC_EULER, MSOCL_OFF, 1},
+    {"Verlet", MSOCL_VERLET, MSOCL_AUTO, 1},
+    {"RK4", MSOCL_RK4, MSOCL_AUTO, 1},
+    {"implicit Euler", MSOCL_IMPLICIT_EULER, MSOCL_AUTO, 1},
+    {"symplectic Euler, two devices", MSOCL_SYMPLECTIC_EULER, MSOCL_OFF, 2},
 };
 #define REST_RUNS (int)(sizeof rest_runs / sizeof rest_runs[0])
 
@@ -618,8 +619,8 @@ START_TEST(at_rest_no_false_alarm)
   msocl_sim_options_init(&o);
   o.dt = 0.5f * limit;
   o.integrator = r->in;
-  o.planes = r->planes;
-  o.ndevices = r->ndevices;
+  o.tuning.planes = r->planes;
+  o.tuning.ndevices = r->ndevices;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, &o);
   ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
@@ -689,7 +690,7 @@ static msocl_sim *perturbed_split(const msocl_model *m, float dt, int parts)
   msocl_sim_options_init(&o);
   o.dt = dt;
   o.check_every = 50;
-  o.ndevices = parts;
+  o.tuning.ndevices = parts;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, &o);
   ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
@@ -792,7 +793,7 @@ START_TEST(writes_do_work)
   msocl_sim_options_init(&o);
   msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &o.dt);
   o.dt *= 0.5f;
-  o.ndevices = _i + 1;
+  o.tuning.ndevices = _i + 1;
   msocl_sim *s = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   float p[3 * 144], v[3 * 144];

@@ -161,8 +161,8 @@ START_TEST(verlet_rk4_match_reference)
   o.integrator = _i & 1 ? MSOCL_RK4 : MSOCL_VERLET;
   o.strain = MSOCL_STRAIN_PROVOT;
   o.strain_iterations = 3;
-  o.layout = MSOCL_LAYOUT_GRID;
-  o.planes = _i >> 1;
+  o.tuning.layout = MSOCL_LAYOUT_GRID;
+  o.tuning.planes = _i >> 1 ? MSOCL_ON : MSOCL_OFF;
   int planes;
   double worst = device_minus_reference(m, &o, 200, &planes);
   ck_assert_int_eq(planes, _i >> 1);

@@ -19,12 +19,12 @@
  * threads build several programs at once as well as the same one. */
 static const struct config {
   msocl_layout layout;
-  int planes, fused;
+  msocl_choice planes, fused;
 } configs[] = {
-    {MSOCL_LAYOUT_GRID, 1, 0},
-    {MSOCL_LAYOUT_GRID, 0, 0},
-    {MSOCL_LAYOUT_BUFFER, 0, 0},
-    {MSOCL_LAYOUT_BUFFER, 0, 1},
+    {MSOCL_LAYOUT_GRID, MSOCL_ON, MSOCL_OFF},
+    {MSOCL_LAYOUT_GRID, MSOCL_OFF, MSOCL_OFF},
+    {MSOCL_LAYOUT_BUFFER, MSOCL_OFF, MSOCL_OFF},
+    {MSOCL_LAYOUT_BUFFER, MSOCL_OFF, MSOCL_ON},
 };
 #define NCONFIGS (int)(sizeof configs / sizeof configs[0])
 
@@ -37,9 +37,9 @@ static int run(msocl_runtime *rt, int c, float *xyz)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = scene_tablecloth_dt(N);
-  o.layout = configs[c].layout;
-  o.planes = configs[c].planes;
-  o.fused = configs[c].fused;
+  o.tuning.layout = configs[c].layout;
+  o.tuning.planes = configs[c].planes;
+  o.tuning.fused = configs[c].fused;
   msocl_sim *s = NULL;
   int rc = m ? msocl_sim_create(&s, rt, m, &o) : MSOCL_ERR_NO_MEMORY;
   msocl_model_destroy(m);

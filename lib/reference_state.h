@@ -1,6 +1,6 @@
 /* The host reference's state, shared by its files (reference*.c). */
-#ifndef MSOCL_REFERENCE_H
-#define MSOCL_REFERENCE_H
+#ifndef MSOCL_REFERENCE_STATE_H
+#define MSOCL_REFERENCE_STATE_H
 
 #include "internal.h"
 
@@ -30,10 +30,13 @@ static inline double msocl__dot3(const double *a, const double *b)
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* reference_force.c: internal and viscous force on point i; collisions. */
 void msocl__ref_force(const msocl_reference *r, const double *pos,
                       const double *vel, int i, double *f);
 void msocl__ref_collide(const msocl_reference *r, const double *p, double *v,
                         double fscale);
+/* Pushes p out of the colliders it is inside, with v's normal part. */
+void msocl__ref_project(const msocl_reference *r, double *p, double *v);
 /* Backward Euler's new velocities into r->vnew (reference_implicit.c). */
 void msocl__ref_implicit_velocity(msocl_reference *r);
 /* As msocl__cg_report, for msocl_reference_step. */
