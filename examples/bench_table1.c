@@ -293,7 +293,7 @@ static void run_expert(struct ctx *c, const msocl_model *m, int n, float dt,
 /* Expert C against the library's GRID in planes: their speeds and whether
  * the final positions agree bit for bit. */
 static void print_expert(const struct ctx *c, const float *xyz, int n,
-                         double ips)
+                         double ips, double gbps)
 {
   double most = 0.0;
   int same = 1;
@@ -308,6 +308,14 @@ static void print_expert(const struct ctx *c, const float *xyz, int n,
   printf("%9s   expert C vs this: bitwise: %s, max |diff| %.3g; expert C's "
          "speed over this: %s\n",
          "", same ? "yes" : "no", most, ratio);
+  /* issue 15's memory bound: 48 bytes a vertex-step (x, y, z of position
+   * and velocity read and written) at the measured copy bandwidth */
+  if (gbps > 0) {
+    const double bound = gbps * 1e9 / (48.0 * n * n);
+    printf("%9s   memory bound (48 B a vertex-step at %.2f GB/s) %.0f "
+           "steps/s: expert C %.0f%%, this %.0f%%\n",
+           "", gbps, bound, 100.0 * c->expert_ips / bound, 100.0 * ips / bound);
+  }
 }
 
 static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
@@ -398,7 +406,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   bench_progress(0, 0, " ");
   print_row(&r, engine, serial_ips);
   if (vs_expert && r.status && !strcmp(r.status, "ok"))
-    print_expert(c, c->xyz, n, r.steps_per_s);
+    print_expert(c, c->xyz, n, r.steps_per_s, c->copy[dev]);
   bench_csv_row(c->csv, &r);
   keep(c, &r, engine);
 }

@@ -551,7 +551,8 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
                                   0, bytes, 0, NULL, NULL));
   }
   TRY(collider_table(s));
-  return fixed_args(s);
+  TRY(fixed_args(s));
+  return msocl__pl_rows_create(s, prog);
 }
 
 /* A pass over the padded grid; CPU devices in work-groups of a row's
@@ -658,6 +659,11 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
 {
   const int r = s->pl_set, w = 1 - r;
   const cl_mem *p = s->pl_p, *v = s->pl_v;
+  /* symplectic Euler's two passes, or fused, in one sweep (planes_rows.c) */
+  if (s->pl_rows && (pass == MSOCL__P_VELOCITY || pass == MSOCL__P_FUSED))
+    return msocl__pl_rows_step(s, r, w);
+  if (s->pl_rows && pass == MSOCL__P_POSITION)
+    return MSOCL_OK;
   switch (pass) {
   case MSOCL__P_VELOCITY: {
     const cl_mem vel[3] = {p[r], v[r], v[w]};
@@ -773,4 +779,5 @@ void msocl__planes_release(msocl__engine *s)
       clReleaseMemObject(s->pl_table[q]);
   if (s->pl_list)
     clReleaseMemObject(s->pl_list);
+  msocl__pl_rows_release(s);
 }

@@ -28,4 +28,11 @@ int msocl__pl_launch(msocl__engine *s, int k);
  * schedule.h). */
 int msocl__pl_implicit_args(msocl__engine *s);
 
+/* planes_rows.c: symplectic Euler in one sweep a step with each spring
+ * computed once, where it applies (s->pl_rows then set), and its step
+ * from plane set r to w. */
+int msocl__pl_rows_create(msocl__engine *s, cl_program prog);
+int msocl__pl_rows_step(msocl__engine *s, int r, int w);
+void msocl__pl_rows_release(msocl__engine *s);
+
 #endif

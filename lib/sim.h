@@ -80,6 +80,10 @@ struct msocl__engine {
   int pl_pitch, pl_slab, pl_plane; /* floats a row, a layer, a plane */
   size_t pl_global[3];    /* the passes' range: rows padded to a group */
   size_t pl_group;        /* a work-group's points (CPU devices) */
+  /* symplectic Euler in one sweep a step (planes_rows.c), where it applies */
+  cl_kernel pl_rows;
+  cl_mem pl_ring;         /* its work-items' rings of spring terms */
+  size_t pl_blocks;       /* its work-items: blocks of rows */
 };
 
 /* The largest number of engines and of exchange buffers a step names. */

@@ -879,6 +879,90 @@ START_TEST(auto_meshes)
 }
 END_TEST
 
+/* The one-sweep symplectic Euler (lib/planes_rows.c: no dashpots, rows
+ * of at least 16 points) is bitwise float4's, two passes or fused: rows a
+ * vector wide, one more, two rows (the least a cloth has), three, many
+ * rows a work-item; each collider kind alone, all three, none; pins at
+ * corners and along the edges; and a grid narrower than a vector, which
+ * the planes passes run. colliders: 1 table, 2 sphere, 4 plane; pins: 1
+ * two corners, 2 also edge midpoints. */
+static const struct {
+  int nx, ny, colliders, pins;
+} rows_cases[] = {{16, 16, 1, 0}, {17, 9, 7, 2}, {47, 3, 4, 1},
+                  {33, 2, 2, 1},  {40, 23, 0, 2}, {70, 37, 1, 1},
+                  {12, 20, 7, 1}};
+
+static msocl_model *rows_cloth(int q)
+{
+  const int nx = rows_cases[q].nx, ny = rows_cases[q].ny;
+  msocl_cloth_desc d;
+  msocl_cloth_desc_init(&d);
+  d.nx = nx;
+  d.ny = ny;
+  d.origin[0] = -0.5f;
+  d.origin[1] = 0.05f;
+  d.origin[2] = -0.5f;
+  d.u[0] = 0.0f; d.u[1] = 0.0f; d.u[2] = 1.0f;
+  d.v[0] = 1.0f; d.v[1] = 0.0f; d.v[2] = 0.0f;
+  d.point_mass = 0.5f / (float)(nx * ny);
+  d.k_stretch = 50.0f;
+  d.k_shear = 10.0f;
+  d.k_bend = 10.0f;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_cloth_grid(&m, &d), MSOCL_OK);
+  const float top[3] = {-0.1f, 0.0f, 0.0f}, ball[3] = {0.35f, -0.05f, 0.1f};
+  const float up[3] = {0.0f, 1.0f, 0.0f};
+  const int c = rows_cases[q].colliders;
+  if (c & 1)
+    ck_assert_int_eq(msocl_model_add_table(m, top, 0.3f, 0.3f), MSOCL_OK);
+  if (c & 2)
+    ck_assert_int_eq(msocl_model_add_sphere(m, ball, 0.15f, 0.5f), MSOCL_OK);
+  if (c & 4)
+    ck_assert_int_eq(msocl_model_add_plane(m, up, -0.2f, 0.2f), MSOCL_OK);
+  if (rows_cases[q].pins) {
+    ck_assert_int_eq(msocl_model_pin(m, 0, 1), MSOCL_OK);
+    ck_assert_int_eq(msocl_model_pin(m, nx * ny - 1, 1), MSOCL_OK);
+  }
+  if (rows_cases[q].pins == 2) {
+    const int edge[4] = {nx / 2, (ny / 2) * nx, (ny / 2) * nx + nx - 1,
+                         (ny - 1) * nx + nx / 2};
+    for (int e = 0; e < 4; e++)
+      ck_assert_int_eq(msocl_model_pin(m, edge[e], 1), MSOCL_OK);
+  }
+  ck_assert_int_eq(msocl_model_set_viscous_damping(m, 1e-4f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_set_air_resistance(m, 0.999f), MSOCL_OK);
+  return m;
+}
+
+START_TEST(rows_bitwise)
+{
+  msocl_model *m = rows_cloth(_i);
+  float dt;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  dt *= 0.5f;
+  struct state f4 = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 400);
+  struct state pl = run(m, 1, MSOCL_MATH_PRECISE, dt, 4, 100);
+  struct state fu = run(m, 2, MSOCL_MATH_PRECISE, dt, 57, 7);
+  char what[96];
+  snprintf(what, sizeof what, "%d x %d cloth, colliders %d, pins %d",
+           rows_cases[_i].nx, rows_cases[_i].ny, rows_cases[_i].colliders,
+           rows_cases[_i].pins);
+  ck_assert_int_eq(pl.planes, 1);
+  assert_bitwise(&f4, &pl, what);
+  struct state f4b = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 399);
+  assert_bitwise(&f4b, &fu, what);
+  double far = 0.0;
+  for (int i = 0; i < f4.n; i++)
+    far = fmax(far, fabs(f4.vel[3 * i + 1]));
+  ck_assert_msg(far > 0.01, "%s: fastest vertical speed %g m/s", what, far);
+  state_free(&f4);
+  state_free(&f4b);
+  state_free(&pl);
+  state_free(&fu);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 int main(void)
 {
   scene_require_device("check_planes");
@@ -904,5 +988,11 @@ int main(void)
   tcase_add_loop_test(tc, mesh_writes_between_calls, 0, 2);
   tcase_add_test(tc, auto_meshes);
   suite_add_tcase(su, tc);
+  TCase *rows = tcase_create("rows");
+  tcase_add_checked_fixture(rows, scene_setup_cpu, scene_teardown);
+  tcase_set_timeout(rows, 300);
+  tcase_add_loop_test(rows, rows_bitwise, 0,
+                      (int)(sizeof rows_cases / sizeof rows_cases[0]));
+  suite_add_tcase(su, rows);
   return scene_run(su);
 }

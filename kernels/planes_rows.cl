@@ -1,0 +1,292 @@
+/* Symplectic Euler on a cloth grid in planes, one sweep a step, each
+ * spring computed once (lib/planes_rows.c takes it where it applies: a
+ * CPU device, no dashpots, no strain limit, rows at least MSOCL_ROWS_W
+ * points wide). Needs common.cl and planes.cl before it (MSOCL_DOT3,
+ * MSOCL_PLANES_COL), and keeps planes.cl's layout: point (x, y) at
+ * (y + 2) * pitch + x + 2 of each plane, aux the inverse masses then
+ * pos.w, col a float4 a collider value.
+ *
+ * Why: the planes kernels compute each spring at both of its ends, two
+ * square roots and two divisions a spring, and the dividers bound the
+ * step on a CPU. Here a work-item sweeps a block of rows in explicit
+ * vectors of MSOCL_ROWS_W points: for each row it writes the terms of
+ * every point's six forward springs (right, above, above-left,
+ * above-right, bend right, bend above) into a ring of three rows in
+ * `ring`, then sums each point's twelve slots from the ring - a
+ * backward spring is a forward one negated, bit for bit, as its d is -d
+ * and its length the same - and moves the point, both passes at once as
+ * in msocl_planes_fused: its velocity in place (no other point reads
+ * it), its position into the other plane set.
+ *
+ * The position planes' padding holds NaN (lib/planes_rows.c): a missing
+ * neighbour's length is NaN, `len > 0` fails and its term is the zero
+ * msocl_planes_force adds for it, with no edge test a slot. Same slot
+ * order and arithmetic as msocl_planes_kick, so the result is bitwise
+ * GRID's (tests/check_planes.c). */
+#if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID) && \
+    !defined(MSOCL_GRID_3D) && !defined(MSOCL_DAMPING)
+
+#ifndef MSOCL_ROWS_W
+#define MSOCL_ROWS_W 16
+#endif
+#if MSOCL_ROWS_W == 16
+typedef float16 msocl_rows_f;
+typedef int16 msocl_rows_m;
+#define MSOCL_ROWS_LOAD(q) vload16(0, (q))
+#define MSOCL_ROWS_STORE(v, q) vstore16((v), 0, (q))
+#else
+typedef float8 msocl_rows_f;
+typedef int8 msocl_rows_m;
+#define MSOCL_ROWS_LOAD(q) vload8(0, (q))
+#define MSOCL_ROWS_STORE(v, q) vstore8((v), 0, (q))
+#endif
+
+/* c ? a : b per lane */
+#define MSOCL_ROWS_SEL(c, a, b)                                               \
+  select((msocl_rows_f)(b), (msocl_rows_f)(a), (msocl_rows_m)(c))
+
+/* Floats of one ring row: six forward springs' x, y, z terms, each `ring_w`
+ * floats (a padded row's columns) */
+#define MSOCL_ROWS_TERMS 18
+
+/* The forward springs: offset in a plane, kind and rest index (as
+ * common.cl's slots 2, 3, 6, 7, 10, 11). */
+#define MSOCL_ROWS_OFF(f, pitch)                                              \
+  ((f) == 0 ? 1 : (f) == 1 ? (pitch) : (f) == 2 ? (pitch) - 1                \
+   : (f) == 3 ? (pitch) + 1 : (f) == 4 ? 2 : 2 * (pitch))
+#define MSOCL_ROWS_KIND(f) ((f) < 2 ? 0 : (f) < 4 ? 1 : 2)
+#define MSOCL_ROWS_REST(f)                                                    \
+  ((f) == 0 ? grid_rest.s0 : (f) == 1 ? grid_rest.s1                         \
+   : (f) == 2 ? grid_rest.s3 : (f) == 3 ? grid_rest.s2                       \
+   : (f) == 4 ? grid_rest.s4 : grid_rest.s5)
+#define MSOCL_ROWS_K(f)                                                       \
+  (MSOCL_ROWS_KIND(f) == 0 ? grid_k.x : MSOCL_ROWS_KIND(f) == 1 ? grid_k.y   \
+                                                               : grid_k.z)
+#define MSOCL_ROWS_HAS(f) ((MSOCL_GRID_KINDS >> MSOCL_ROWS_KIND(f)) & 1)
+
+/* Row y's forward spring terms at padded columns 0..nx + 2 (x from -2 to
+ * nx) into ring row t: msocl_planes_force's `on ? t * d : 0`. The last
+ * vector is moved back to end at column nx + 2, and overlaps the one
+ * before it (the same terms again), so no load passes the planes. */
+static void msocl_rows_springs(MSOCL_CONN, __global const float *p,
+                               int pitch, int plane, int y,
+                               __global float *t, int ring_w)
+{
+  __global const float *py_ = p + plane, *pz_ = py_ + plane;
+  const int row = (y + 2) * pitch, cols = grid_nx + 3;
+  for (int c0 = 0; c0 < cols; c0 += MSOCL_ROWS_W) {
+    const int c = min(c0, cols - MSOCL_ROWS_W), a = row + c;
+    const msocl_rows_f px = MSOCL_ROWS_LOAD(p + a),
+                       py = MSOCL_ROWS_LOAD(py_ + a),
+                       pz = MSOCL_ROWS_LOAD(pz_ + a);
+#pragma unroll
+    for (int f = 0; f < 6; f++) {
+      if (!MSOCL_ROWS_HAS(f))
+        continue;
+      const int b = a + MSOCL_ROWS_OFF(f, pitch);
+      const float kk = MSOCL_ROWS_K(f), rest = MSOCL_ROWS_REST(f);
+      const msocl_rows_f dx = MSOCL_ROWS_LOAD(p + b) - px,
+                         dy = MSOCL_ROWS_LOAD(py_ + b) - py,
+                         dz = MSOCL_ROWS_LOAD(pz_ + b) - pz;
+      const msocl_rows_f len = MSOCL_SQRT(dx * dx + dy * dy + dz * dz);
+      const msocl_rows_f k = kk * MSOCL_DIV(len - rest, len);
+      const msocl_rows_m on = len > 0.0f;
+      __global float *q = t + 3 * f * ring_w + c;
+      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dx, 0.0f), q);
+      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dy, 0.0f), q + ring_w);
+      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dz, 0.0f), q + 2 * ring_w);
+    }
+  }
+}
+
+/* msocl_planes_gap and msocl_respond for collider c, lane by lane. */
+static void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
+                               msocl_rows_f pz, msocl_rows_f *vx_io,
+                               msocl_rows_f *vy_io, msocl_rows_f *vz_io,
+                               float dt, __constant const float *cf, int c)
+{
+#define cv(k) MSOCL_PLANES_COL(cf, c, k)
+  const int kind = (int)cv(0);
+  msocl_rows_f g = INFINITY, nx = 0.0f, ny = 1.0f, nz = 0.0f;
+#ifdef MSOCL_PLANE
+  if (kind == MSOCL_PLANE_KIND) {
+    nx = cv(4);
+    ny = cv(5);
+    nz = cv(6);
+    g = MSOCL_DOT3(cv(4), cv(5), cv(6), px, py, pz) - cv(7);
+  }
+#endif
+#ifdef MSOCL_SPHERE
+  if (kind == MSOCL_SPHERE_KIND) {
+    const msocl_rows_f dx = px - cv(4), dy = py - cv(5), dz = pz - cv(6);
+    const msocl_rows_f len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+    const msocl_rows_m out = len > 0.0f;
+    nx = MSOCL_ROWS_SEL(out, MSOCL_DIV(dx, len), 0.0f);
+    ny = MSOCL_ROWS_SEL(out, MSOCL_DIV(dy, len), 1.0f);
+    nz = MSOCL_ROWS_SEL(out, MSOCL_DIV(dz, len), 0.0f);
+    g = len - cv(7);
+  }
+#endif
+#ifdef MSOCL_TABLE
+  if (kind == MSOCL_TABLE_KIND) {
+    const msocl_rows_f dx = px - cv(4), dz = pz - cv(6);
+    const msocl_rows_f rr = MSOCL_SQRT(dx * dx + dz * dz);
+    const msocl_rows_f gside = rr - cv(7), gtop = py - cv(5);
+    const msocl_rows_m top = (gtop >= gside) | !(rr > 0.0f);
+    nx = MSOCL_ROWS_SEL(top, 0.0f, MSOCL_DIV(dx, rr));
+    ny = MSOCL_ROWS_SEL(top, 1.0f, 0.0f);
+    nz = MSOCL_ROWS_SEL(top, 0.0f, MSOCL_DIV(dz, rr));
+    g = MSOCL_ROWS_SEL(top, gtop, gside);
+  }
+#endif
+  (void)kind; (void)px; (void)py; (void)pz;
+  const float fr = 1.0f * cv(1);
+#undef cv
+  const msocl_rows_f vx = *vx_io, vy = *vy_io, vz = *vz_io;
+  const msocl_rows_f vn = MSOCL_DOT3(vx, vy, vz, nx, ny, nz);
+  const msocl_rows_f lim = MSOCL_DIV(-g, dt);
+  msocl_rows_f hx = vx + (lim - vn) * nx, hy = vy + (lim - vn) * ny,
+               hz = vz + (lim - vn) * nz;
+  hx = hx - fr * (hx - lim * nx);
+  hy = hy - fr * (hy - lim * ny);
+  hz = hz - fr * (hz - lim * nz);
+  const msocl_rows_m hit = vn < lim;
+  *vx_io = MSOCL_ROWS_SEL(hit, hx, vx);
+  *vy_io = MSOCL_ROWS_SEL(hit, hy, vy);
+  *vz_io = MSOCL_ROWS_SEL(hit, hz, vz);
+}
+
+/* Term q of forward spring f in ring row r at padded column c */
+#define MSOCL_ROWS_T(r, f, q, c)                                              \
+  MSOCL_ROWS_LOAD((r) + (3 * (f) + (q)) * ring_w + (c))
+
+/* One component of a point's force: its twelve slots in common.cl's order
+ * from ring rows r0, r1, r2 (rows y - 2, y - 1, y) at column c; kinds the
+ * model leaves out add nothing, as in msocl_planes_force. */
+static inline __attribute__((always_inline)) msocl_rows_f
+msocl_rows_sum(__global const float *r0,
+                                   __global const float *r1,
+                                   __global const float *r2, int q, int c,
+                                   int ring_w)
+{
+  msocl_rows_f g = 0.0f;
+  if (MSOCL_ROWS_HAS(0)) {
+    g += -MSOCL_ROWS_T(r1, 1, q, c);
+    g += -MSOCL_ROWS_T(r2, 0, q, c - 1);
+    g += MSOCL_ROWS_T(r2, 0, q, c);
+    g += MSOCL_ROWS_T(r2, 1, q, c);
+  }
+  if (MSOCL_ROWS_HAS(2)) {
+    g += -MSOCL_ROWS_T(r1, 3, q, c - 1);
+    g += -MSOCL_ROWS_T(r1, 2, q, c + 1);
+    g += MSOCL_ROWS_T(r2, 2, q, c);
+    g += MSOCL_ROWS_T(r2, 3, q, c);
+  }
+  if (MSOCL_ROWS_HAS(4)) {
+    g += -MSOCL_ROWS_T(r0, 5, q, c);
+    g += -MSOCL_ROWS_T(r2, 4, q, c - 2);
+    g += MSOCL_ROWS_T(r2, 4, q, c);
+    g += MSOCL_ROWS_T(r2, 5, q, c);
+  }
+  return g;
+}
+
+/* Row y's kick and drift (msocl_planes_fused) from ring rows r0, r1, r2,
+ * the velocities in place (only the point reads its own). The last
+ * vector moves back to end at the row's last point, over points the one
+ * before it has updated: its velocities are read before that. */
+static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
+                            __global float *v, __global float *p_out,
+                            __global const float *aux,
+                            int pitch, int plane, float4 gravity,
+                            float viscous, float air, float dt,
+                            __constant const float *cf,
+                            __global const float *r0,
+                            __global const float *r1,
+                            __global const float *r2, int y, int ring_w)
+{
+  const int row = (y + 2) * pitch + 2, tail = grid_nx - MSOCL_ROWS_W;
+  const msocl_rows_f tx = MSOCL_ROWS_LOAD(v + row + tail),
+                     ty = MSOCL_ROWS_LOAD(v + plane + row + tail),
+                     tz = MSOCL_ROWS_LOAD(v + 2 * plane + row + tail);
+  for (int x0 = 0; x0 < grid_nx; x0 += MSOCL_ROWS_W) {
+    const bool last = x0 >= tail;
+    const int x = last ? tail : x0, a = row + x, c = x + 2;
+    const msocl_rows_f fx0 = msocl_rows_sum(r0, r1, r2, 0, c, ring_w),
+                       fy0 = msocl_rows_sum(r0, r1, r2, 1, c, ring_w),
+                       fz0 = msocl_rows_sum(r0, r1, r2, 2, c, ring_w);
+    const msocl_rows_f ux = last ? tx : MSOCL_ROWS_LOAD(v + a),
+                       uy = last ? ty : MSOCL_ROWS_LOAD(v + plane + a),
+                       uz = last ? tz : MSOCL_ROWS_LOAD(v + 2 * plane + a);
+    msocl_rows_f fx = fx0, fy = fy0, fz = fz0;
+#ifdef MSOCL_VISCOUS
+    fx = fx - viscous * ux;
+    fy = fy - viscous * uy;
+    fz = fz - viscous * uz;
+#endif
+    (void)viscous;
+    const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
+    msocl_rows_f vx = ux + dt * (fx * im + gravity.x);
+    msocl_rows_f vy = uy + dt * (fy * im + gravity.y);
+    msocl_rows_f vz = uz + dt * (fz * im + gravity.z);
+#ifdef MSOCL_AIR
+    vx = air * vx;
+    vy = air * vy;
+    vz = air * vz;
+#endif
+    (void)air;
+    const msocl_rows_f px = MSOCL_ROWS_LOAD(p + a),
+                       py = MSOCL_ROWS_LOAD(p + plane + a),
+                       pz = MSOCL_ROWS_LOAD(p + 2 * plane + a);
+#pragma unroll
+    for (int k = 0; k < MSOCL_NCOL; k++)
+      msocl_rows_collide(px, py, pz, &vx, &vy, &vz, dt, cf, k);
+    (void)cf;
+    msocl_rows_f qx = px + dt * vx, qy = py + dt * vy, qz = pz + dt * vz;
+#ifdef MSOCL_PINS
+    const msocl_rows_m pinned = MSOCL_ROWS_LOAD(aux + plane + a) != 0.0f;
+    vx = MSOCL_ROWS_SEL(pinned, 0.0f, vx);
+    vy = MSOCL_ROWS_SEL(pinned, 0.0f, vy);
+    vz = MSOCL_ROWS_SEL(pinned, 0.0f, vz);
+    qx = MSOCL_ROWS_SEL(pinned, px, qx);
+    qy = MSOCL_ROWS_SEL(pinned, py, qy);
+    qz = MSOCL_ROWS_SEL(pinned, pz, qz);
+#endif
+    MSOCL_ROWS_STORE(vx, v + a);
+    MSOCL_ROWS_STORE(vy, v + plane + a);
+    MSOCL_ROWS_STORE(vz, v + 2 * plane + a);
+    MSOCL_ROWS_STORE(qx, p_out + a);
+    MSOCL_ROWS_STORE(qy, p_out + plane + a);
+    MSOCL_ROWS_STORE(qz, p_out + 2 * plane + a);
+  }
+}
+
+/* One step, work-item b of B sweeping rows [ny b / B, ny (b + 1) / B)
+ * with its own ring of three rows: the two rows below the block first,
+ * for its first rows' backward springs. */
+__kernel void msocl_planes_rows(MSOCL_CONN, __global const float *p,
+                                __global float *v, __global float *p_out,
+                                __global const float *aux, int pitch,
+                                int plane, float4 gravity, float viscous,
+                                float air, float dt, __constant float4 *col,
+                                __global float *ring, int ring_w)
+{
+  const int b = get_global_id(0), nb = get_global_size(0);
+  const int y0 = (int)((long)grid_ny * b / nb),
+            y1 = (int)((long)grid_ny * (b + 1) / nb);
+  const size_t one = (size_t)MSOCL_ROWS_TERMS * ring_w;
+  __global float *mine = ring + (size_t)b * 3 * one;
+  __constant const float *cf = (__constant const float *)col;
+  for (int y = y0 - 2; y < y1; y++) {
+    msocl_rows_springs(MSOCL_CONN_ARGS, p, pitch, plane, y,
+                       mine + (size_t)((y + 3) % 3) * one, ring_w);
+    if (y >= y0)
+      msocl_rows_kick(MSOCL_CONN_ARGS, p, v, p_out, aux, pitch, plane,
+                      gravity, viscous, air, dt, cf,
+                      mine + (size_t)((y + 1) % 3) * one,
+                      mine + (size_t)((y + 2) % 3) * one,
+                      mine + (size_t)((y + 3) % 3) * one, y, ring_w);
+  }
+}
+
+#endif

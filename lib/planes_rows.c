@@ -1,0 +1,93 @@
+/* Symplectic Euler on a cloth grid in planes in one sweep a step, each
+ * spring computed once (kernels/planes_rows.cl), where it applies: a CPU
+ * device, a cloth (not a lattice), no dashpots, no strain limit, rows of
+ * at least one vector. Elsewhere planes.c's passes run. */
+#include "config.h"
+#include "planes.h"
+
+#include <math.h>
+
+/* points a vector of the kernel's (MSOCL_ROWS_W) */
+#define ROWS_W 16
+
+/* Work-items a CPU compute unit: blocks of rows, each sweeping two rows
+ * more than its own, handed to the device's threads as they come free. */
+#define BLOCKS_PER_UNIT 2
+
+static int applies(const msocl__engine *s)
+{
+  return s->planes && s->dev->info.type == MSOCL_DEVICE_CPU &&
+         s->lay.grid_nz == 0 && s->lay.grid_nx >= ROWS_W &&
+         s->o.integrator == MSOCL_SYMPLECTIC_EULER &&
+         s->o.strain == MSOCL_STRAIN_NONE && s->lay.grid_k.s[3] == 0.0f;
+}
+
+int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
+{
+  if (!applies(s))
+    return MSOCL_OK;
+  cl_int e;
+  s->pl_rows = clCreateKernel(prog, "msocl_planes_rows", &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateKernel(msocl_planes_rows): %s",
+                       msocl_err_name(e));
+  size_t blocks = BLOCKS_PER_UNIT * (size_t)(s->dev->info.compute_units
+                                                 ? s->dev->info.compute_units
+                                                 : 1);
+  if (blocks > (size_t)s->lay.grid_ny)
+    blocks = (size_t)s->lay.grid_ny;
+  s->pl_blocks = blocks;
+  /* a ring row: 18 terms of a padded row's columns -2..nx, whole vectors */
+  const int ring_w = (s->lay.grid_nx + 3 + ROWS_W - 1) / ROWS_W * ROWS_W;
+  const size_t bytes = blocks * 3 * 18 * (size_t)ring_w * sizeof(float);
+  s->pl_ring = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes, NULL, &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateBuffer(%zu bytes of rings): %s", bytes,
+                       msocl_err_name(e));
+  /* NaN in the positions' padding: the kernel's missing neighbours (the
+   * other planes kernels test the grid's edges and ignore it) */
+  const float nan = NAN;
+  for (int q = 0; q < 2; q++)
+    MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->pl_p[q], &nan, sizeof nan,
+                                  0, 3 * (size_t)s->pl_plane * sizeof(float),
+                                  0, NULL, NULL));
+  /* connectivity, p, v (in place), p_out, then these */
+  cl_kernel k = s->pl_rows;
+  cl_uint a;
+  MSOCL__TRY(msocl__layout_set_args(&s->lay, k, &a));
+  a += 3;
+  MSOCL__TRY(msocl__pl_arg(s, k, a, sizeof s->pl_aux, &s->pl_aux));
+  MSOCL__TRY(msocl__pl_arg(s, k, a + 1, sizeof(int), &s->pl_pitch));
+  MSOCL__TRY(msocl__pl_arg(s, k, a + 2, sizeof(int), &s->pl_plane));
+  MSOCL__TRY(msocl__pl_arg(s, k, a + 3, sizeof s->gravity, &s->gravity));
+  MSOCL__TRY(msocl__pl_arg(s, k, a + 4, sizeof(float), &s->viscous));
+  MSOCL__TRY(msocl__pl_arg(s, k, a + 5, sizeof(float), &s->air));
+  MSOCL__TRY(msocl__pl_arg(s, k, a + 6, sizeof(float), &s->o.dt));
+  MSOCL__TRY(msocl__pl_arg(s, k, a + 7, sizeof s->pl_col, &s->pl_col));
+  MSOCL__TRY(msocl__pl_arg(s, k, a + 8, sizeof s->pl_ring, &s->pl_ring));
+  return msocl__pl_arg(s, k, a + 9, sizeof(int), &ring_w);
+}
+
+int msocl__pl_rows_step(msocl__engine *s, int r, int w)
+{
+  const cl_mem bufs[3] = {s->pl_p[r], s->pl_v[r], s->pl_p[w]};
+  for (cl_uint q = 0; q < 3; q++)
+    MSOCL__TRY(msocl__pl_arg(s, s->pl_rows, s->pl_conn + q, sizeof bufs[q],
+                             &bufs[q]));
+  const size_t one = 1;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_rows, 1, NULL,
+                                   &s->pl_blocks, &one, 0, NULL, NULL));
+  /* the velocities moved in place: set w's are now that buffer */
+  const cl_mem t = s->pl_v[r];
+  s->pl_v[r] = s->pl_v[w];
+  s->pl_v[w] = t;
+  return MSOCL_OK;
+}
+
+void msocl__pl_rows_release(msocl__engine *s)
+{
+  if (s->pl_rows)
+    clReleaseKernel(s->pl_rows);
+  if (s->pl_ring)
+    clReleaseMemObject(s->pl_ring);
+}
