@@ -1,55 +1,68 @@
-/* The EDGES layout - the second seed's way: one work-item per spring
- * computes its force and adds it to both end points' force accumulators
- * with atomics; a per-point pass then integrates (symplectic Euler, like
- * msocl_velocity) and clears the accumulator for the next step. Summation
- * order depends on scheduling, so results agree with the gather layouts
- * within rounding, not bitwise. Needs common.cl and step.cl before it (the
- * library builds it with the BUFFER macros and no slots). */
+/* The EDGES layout - the second seed's per-spring pass, without its float
+ * atomics: a work-item per spring computes the spring's (and dashpot's)
+ * force as a coefficient of the spring's length vector, once for both
+ * ends; a per-point pass then sums t (q - p) over the point's springs in
+ * BUFFER's slot order (the CSR list the host builds) and integrates. The
+ * coefficient is even in the spring's direction and q - p is odd, so each
+ * end's term is bitwise what BUFFER's gather computes there, added in the
+ * same order: the result is BUFFER's, bit for bit, run after run. Needs
+ * common.cl and step.cl before it (the library builds it with the BUFFER
+ * macros and no slots). */
 
-/* Float add by compare-and-swap on the 32-bit word: OpenCL 1.2 has no
- * float atomics. */
-static void msocl_atomic_add(volatile __global float *at, float v)
-{
-  union {
-    unsigned int u;
-    float f;
-  } old, sum;
-  do {
-    old.f = *at;
-    sum.f = old.f + v;
-  } while (atomic_cmpxchg((volatile __global unsigned int *)at, old.u,
-                          sum.u) != old.u);
-}
+/* Coefficients per spring: t[s] = k (l - r) / l, u[s] = c (dv . d) / l^2,
+ * in msocl_force's scalar arithmetic lane by lane; 0 where the spring has
+ * no length, as BUFFER's select adds zeros there. Eight springs a
+ * work-item, so that the square roots and divisions take one SIMD
+ * instruction for eight (PoCL does not vectorise across work-items here);
+ * the host pads the lists to a multiple of 8 with springs of no length. */
+#define MSOCL_GATHER8(buf, j, c)                                              \
+  (float8)(buf[j.s0].c, buf[j.s1].c, buf[j.s2].c, buf[j.s3].c, buf[j.s4].c,  \
+           buf[j.s5].c, buf[j.s6].c, buf[j.s7].c)
 
 __kernel void msocl_edges_force(__global const int2 *ij,
                                 __global const float2 *rk,
                                 __global const float *dmp,
                                 __global const float4 *pos,
                                 __global const float4 *vel,
-                                __global float *force, int ns)
+                                __global float *t_out,
+                                __global float *u_out, int groups)
 {
-  int s = get_global_id(0);
-  if (s >= ns)
+  int g = get_global_id(0);
+  if (g >= groups)
     return;
-  int2 e = ij[s];
-  float2 c = rk[s];
-  float3 p = pos[e.x].xyz, q = pos[e.y].xyz;
-  float3 f = msocl_spring(p, q, c.x, c.y); /* on e.x; -f on e.y */
+  int16 e = vload16(g, (__global const int *)ij);
+  float16 c = vload16(g, (__global const float *)rk);
+  int8 a = e.even, b = e.odd;
+  float8 dx = MSOCL_GATHER8(pos, b, x) - MSOCL_GATHER8(pos, a, x);
+  float8 dy = MSOCL_GATHER8(pos, b, y) - MSOCL_GATHER8(pos, a, y);
+  float8 dz = MSOCL_GATHER8(pos, b, z) - MSOCL_GATHER8(pos, a, z);
+  float8 len2 = dx * dx + dy * dy + dz * dz, len = MSOCL_SQRT(len2);
+  float8 t = c.odd * MSOCL_DIV(len - c.even, len);
+  vstore8(select((float8)(0.0f), t, len > 0.0f), g, t_out);
 #ifdef MSOCL_DAMPING
-  f += msocl_dashpot(p, q, vel[e.x].xyz, vel[e.y].xyz, dmp[s]);
+  float8 wx = MSOCL_GATHER8(vel, b, x) - MSOCL_GATHER8(vel, a, x);
+  float8 wy = MSOCL_GATHER8(vel, b, y) - MSOCL_GATHER8(vel, a, y);
+  float8 wz = MSOCL_GATHER8(vel, b, z) - MSOCL_GATHER8(vel, a, z);
+  float8 u = vload8(g, dmp) * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
+  vstore8(select((float8)(0.0f), u, len2 > 0.0f), g, u_out);
 #endif
-  (void)vel; (void)dmp;
-  for (int a = 0; a < 3; a++) {
-    float fa = a == 0 ? f.x : a == 1 ? f.y : f.z;
-    msocl_atomic_add(force + 4 * e.x + a, fa);
-    msocl_atomic_add(force + 4 * e.y + a, -fa);
-  }
+  (void)vel; (void)dmp; (void)u_out;
 }
+#undef MSOCL_GATHER8
 
-__kernel void msocl_edges_velocity(__global const float4 *pos,
+/* Point i's springs are inc[off[i] .. off[i + 1]) as (other end, spring).
+ * Each term is its own statement (FP_CONTRACT is off anyway): fx += sx
+ * as msocl_force adds it, spring then dashpot. The point then moves by its
+ * new velocity at once, as msocl_fused does: other points read only pos,
+ * so this is the two passes' result in one. */
+__kernel void msocl_edges_velocity(__global const int *off,
+                                   __global const int2 *inc,
+                                   __global const float *tc,
+                                   __global const float *uc,
+                                   __global const float4 *pos,
                                    __global const float4 *vel,
+                                   __global float4 *pos_out,
                                    __global float4 *vel_out,
-                                   __global float4 *force,
                                    __global const float *inv_mass,
                                    float4 gravity, float viscous, float air,
                                    float dt, __constant float4 *col,
@@ -58,20 +71,37 @@ __kernel void msocl_edges_velocity(__global const float4 *pos,
   int i = get_global_id(0);
   if (i >= n)
     return;
-  float3 f = force[i].xyz;
-  force[i] = (float4)(0.0f); /* cleared for the next step's springs */
   float4 p4 = pos[i];
   if (MSOCL_PINNED(p4)) {
     vel_out[i] = (float4)(0.0f);
+    pos_out[i] = p4;
     return;
   }
-  float3 v = vel[i].xyz;
+  float4 v4 = vel[i];
+  float fx = 0.0f, fy = 0.0f, fz = 0.0f;
+  const int end = off[i + 1];
+  for (int o = off[i]; o < end; o++) {
+    const int2 e = inc[o];
+    const float4 q = pos[e.x];
+    const float dx = q.x - p4.x, dy = q.y - p4.y, dz = q.z - p4.z;
+    const float t = tc[e.y];
+    const float sx = t * dx, sy = t * dy, sz = t * dz;
+    fx += sx; fy += sy; fz += sz;
+#ifdef MSOCL_DAMPING
+    const float u = uc[e.y];
+    const float hx = u * dx, hy = u * dy, hz = u * dz;
+    fx += hx; fy += hy; fz += hz;
+#endif
+  }
+  (void)uc;
+  float3 f = (float3)(fx, fy, fz), v = v4.xyz;
 #ifdef MSOCL_VISCOUS
   f -= viscous * v;
 #endif
   (void)viscous;
   v = msocl_kick(p4.xyz, v, f, inv_mass[i], gravity, air, dt, col, ncol);
   vel_out[i] = (float4)(v, 0.0f);
+  pos_out[i] = (float4)(p4.xyz + dt * v, p4.w);
 }
 
 /* Spring energy k (l - r)^2 / 2 per spring, summed per work-group of 64

@@ -157,23 +157,8 @@ int msocl__integrate_setup(msocl__engine *s)
     TRY(msocl__arg_int(k, c + 5, s->n));
     TRY(msocl__arg_int(k, c + 6, s->hi));
   }
-  if ((k = s->k[MSOCL__K_EDGES_FORCE])) {
-    TRY(msocl__arg_mem(k, 0, s->lay.con));
-    TRY(msocl__arg_mem(k, 1, s->lay.rk));
-    TRY(msocl__arg_mem(k, 2, s->lay.damp));
-    TRY(msocl__arg_mem(k, 5, s->force));
-    TRY(msocl__arg_int(k, 6, s->lay.nsprings));
-  }
-  if ((k = s->k[MSOCL__K_EDGES_VEL])) {
-    TRY(msocl__arg_mem(k, 3, s->force));
-    TRY(point_pass_args(s, k, 4));
-  }
-  if ((k = s->k[MSOCL__K_EDGES_ENERGY])) {
-    TRY(msocl__arg_mem(k, 0, s->lay.con));
-    TRY(msocl__arg_mem(k, 1, s->lay.rk));
-    TRY(msocl__arg_mem(k, 3, s->partial));
-    TRY(msocl__arg_int(k, 4, s->lay.nsprings));
-  }
+  if (s->lay.kind == MSOCL_LAYOUT_EDGES)
+    TRY(msocl__edges_setup(s));
   if (s->o.integrator == MSOCL_IMPLICIT_EULER)
     TRY(msocl__implicit_setup(s));
   return msocl__strain_setup(s);
@@ -189,28 +174,13 @@ static int position_pass(msocl__engine *s)
   return msocl__launch(s, MSOCL__K_POSITION);
 }
 
-/* EDGES: the per-spring pass scatters forces, then the per-point pass
- * integrates and clears them. */
-static int edges_velocity(msocl__engine *s)
-{
-  const int r = s->r, w = 1 - r;
-  cl_kernel f = s->k[MSOCL__K_EDGES_FORCE];
-  TRY(msocl__arg_mem(f, 3, s->pos[r]));
-  TRY(msocl__arg_mem(f, 4, s->vel[r]));
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, f, 1, NULL,
-                                   &s->edge_global, NULL, 0, NULL, NULL));
-  cl_mem v[3] = {s->pos[r], s->vel[r], s->vel[w]};
-  TRY(mems(s->k[MSOCL__K_EDGES_VEL], 0, 3, v));
-  return msocl__launch(s, MSOCL__K_EDGES_VEL);
-}
-
-/* The velocity pass of the paper's two (EDGES: scatter, then integrate),
+/* The velocity pass of the paper's two (EDGES: the whole step),
  * with the velocity strain correction after it when asked for. */
 static int symplectic_velocity(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
   if (s->lay.kind == MSOCL_LAYOUT_EDGES)
-    return edges_velocity(s);
+    return msocl__edges_velocity(s);
   cl_mem v[3] = {s->pos[r], s->vel[r], s->vel[w]};
   TRY(mems(s->k[MSOCL__K_VELOCITY], s->nconn, 3, v));
   TRY(msocl__launch(s, MSOCL__K_VELOCITY));
@@ -296,7 +266,8 @@ static int rk4_stage(msocl__engine *s, int q)
 int msocl__phase_count(const msocl__engine *s)
 {
   switch (s->o.integrator) {
-  case MSOCL_SYMPLECTIC_EULER: return s->o.fused ? 1 : 2;
+  case MSOCL_SYMPLECTIC_EULER:
+    return s->o.fused || s->lay.kind == MSOCL_LAYOUT_EDGES ? 1 : 2;
   case MSOCL_EXPLICIT_EULER: return 1;
   case MSOCL_VERLET: return 2;
   case MSOCL_RK4: return 4;
@@ -312,7 +283,7 @@ int msocl__phase_count(const msocl__engine *s)
 unsigned msocl__phase_mask(const msocl__engine *s, int phase)
 {
   const unsigned vel_w = s->damped ? MSOCL__X_VEL_W : 0;
-  if (s->o.fused)
+  if (s->o.fused || s->lay.kind == MSOCL_LAYOUT_EDGES)
     return MSOCL__X_POS_W | vel_w;
   switch (s->o.integrator) {
   case MSOCL_SYMPLECTIC_EULER:

@@ -274,16 +274,21 @@ out:
   return rc;
 }
 
-/* One entry per spring, in the model's order: the second seed's list. */
+/* One entry per spring, in the model's order: the second seed's list; and
+ * each point's springs as the adjacency lists them, for the point pass. */
 static int build_edges(struct msocl__device *dev, const msocl_model *m,
-                       int damped, struct msocl__layout *l)
+                       const struct msocl__adjacency *adj, int damped,
+                       struct msocl__layout *l)
 {
-  const size_t ns = (size_t)(m->ns > 0 ? m->ns : 1);
+  /* padded to whole blocks of the spring pass's eight, with springs of
+   * no length (zeros) */
+  const size_t ns = ((size_t)m->ns + 7) / 8 * 8 + (m->ns == 0) * 8;
   int *ij = calloc(2 * ns, sizeof *ij);
   float *rk = calloc(2 * ns, sizeof *rk);
   float *dmp = calloc(damped ? ns : 1, sizeof *dmp);
+  int *inc = calloc(4 * ns, sizeof *inc);
   int rc = MSOCL_OK;
-  if (!ij || !rk || !dmp) {
+  if (!ij || !rk || !dmp || !inc) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "spring list");
     goto out;
   }
@@ -295,13 +300,24 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
     if (damped)
       dmp[s] = m->damp[s];
   }
+  for (int e = 0; e < adj->off[m->n]; e++) {
+    inc[2 * e] = adj->other[e];
+    inc[2 * e + 1] = adj->spring[e];
+  }
   l->nsprings = m->ns;
+  l->nblocks = (int)(ns / 8);
   l->con = make_buffer(dev, 2 * ns * sizeof *ij, ij, &rc);
   if (rc == MSOCL_OK)
     l->rk = make_buffer(dev, 2 * ns * sizeof *rk, rk, &rc);
   if (rc == MSOCL_OK)
     l->damp = make_buffer(dev, (damped ? ns : 1) * sizeof *dmp, dmp, &rc);
+  if (rc == MSOCL_OK)
+    l->inc_off = make_buffer(dev, ((size_t)m->n + 1) * sizeof *adj->off,
+                             adj->off, &rc);
+  if (rc == MSOCL_OK)
+    l->inc = make_buffer(dev, 4 * ns * sizeof *inc, inc, &rc);
 out:
+  free(inc);
   free(ij);
   free(rk);
   free(dmp);
@@ -379,7 +395,7 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
     rc = MSOCL_OK;
   } else if (out->kind == MSOCL_LAYOUT_EDGES) {
     out->slots = 0;
-    rc = build_edges(dev, m, has_damping(m), out);
+    rc = build_edges(dev, m, adj, has_damping(m), out);
   } else {
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d", (int)kind);
   }
@@ -398,7 +414,11 @@ void msocl__layout_release(struct msocl__layout *l)
     clReleaseMemObject(l->damp);
   if (l->spill)
     clReleaseMemObject(l->spill);
-  l->con = l->rk = l->damp = l->spill = NULL;
+  if (l->inc_off)
+    clReleaseMemObject(l->inc_off);
+  if (l->inc)
+    clReleaseMemObject(l->inc);
+  l->con = l->rk = l->damp = l->spill = l->inc_off = l->inc = NULL;
 }
 
 int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,

@@ -1,0 +1,78 @@
+/* The EDGES layout's passes (kernels/edges.cl): the per-spring pass writes
+ * each spring's force coefficients once, the per-point pass sums them over
+ * the point's springs in a fixed order (the layout's CSR list), kicks and
+ * moves the point: a step in two launches.
+ * No atomics: the sum's order is BUFFER's, so is its result. */
+#include "config.h"
+#include "sim.h"
+
+#define TRY MSOCL__TRY
+
+int msocl__edges_buffers(msocl__engine *s)
+{
+  const size_t ns = 8 * (size_t)s->lay.nblocks;
+  s->edge_work = ((size_t)s->lay.nblocks + 63) / 64 * 64;
+  s->edge_global = ((size_t)s->lay.nsprings + 63) / 64 * 64;
+  if (s->edge_global == 0)
+    s->edge_global = 64;
+  s->edge_groups = s->edge_global / 64;
+  for (int q = 0; q < 2; q++) {
+    /* the dashpots' coefficients only where there are dashpots */
+    size_t bytes = (q == 0 || s->damped ? ns : 1) * sizeof(float);
+    cl_int e;
+    s->edge_coef[q] =
+        clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes, NULL, &e);
+    if (e != CL_SUCCESS)
+      return msocl__fail(e, "clCreateBuffer(%zu bytes) on %s: %s", bytes,
+                         s->dev->info.name, msocl_err_name(e));
+  }
+  return MSOCL_OK;
+}
+
+int msocl__edges_setup(msocl__engine *s)
+{
+  cl_kernel k = s->k[MSOCL__K_EDGES_FORCE];
+  TRY(msocl__arg_mem(k, 0, s->lay.con));
+  TRY(msocl__arg_mem(k, 1, s->lay.rk));
+  TRY(msocl__arg_mem(k, 2, s->lay.damp));
+  TRY(msocl__arg_mem(k, 5, s->edge_coef[0]));
+  TRY(msocl__arg_mem(k, 6, s->edge_coef[1]));
+  TRY(msocl__arg_int(k, 7, s->lay.nblocks));
+  k = s->k[MSOCL__K_EDGES_VEL];
+  TRY(msocl__arg_mem(k, 0, s->lay.inc_off));
+  TRY(msocl__arg_mem(k, 1, s->lay.inc));
+  TRY(msocl__arg_mem(k, 2, s->edge_coef[0]));
+  TRY(msocl__arg_mem(k, 3, s->edge_coef[1]));
+  TRY(msocl__arg_mem(k, 8, s->inv_mass));
+  MSOCL__CL(clSetKernelArg(k, 9, sizeof s->gravity, &s->gravity));
+  TRY(msocl__arg_float(k, 10, s->viscous));
+  TRY(msocl__arg_float(k, 11, s->air));
+  TRY(msocl__arg_float(k, 12, s->o.dt));
+  TRY(msocl__arg_mem(k, 13, s->col));
+  TRY(msocl__arg_int(k, 14, s->ncol));
+  TRY(msocl__arg_int(k, 15, s->n));
+  k = s->k[MSOCL__K_EDGES_ENERGY];
+  TRY(msocl__arg_mem(k, 0, s->lay.con));
+  TRY(msocl__arg_mem(k, 1, s->lay.rk));
+  TRY(msocl__arg_mem(k, 3, s->partial));
+  return msocl__arg_int(k, 4, s->lay.nsprings);
+}
+
+int msocl__edges_velocity(msocl__engine *s)
+{
+  const int r = s->r, w = 1 - r;
+  cl_kernel f = s->k[MSOCL__K_EDGES_FORCE];
+  TRY(msocl__arg_mem(f, 3, s->pos[r]));
+  TRY(msocl__arg_mem(f, 4, s->vel[r]));
+  /* groups of 64 on a CPU, as msocl__launch chooses for points */
+  const size_t cpu = 64;
+  MSOCL__CL(clEnqueueNDRangeKernel(
+      s->dev->queue, f, 1, NULL, &s->edge_work,
+      s->dev->info.type == MSOCL_DEVICE_CPU ? &cpu : NULL, 0, NULL, NULL));
+  cl_kernel k = s->k[MSOCL__K_EDGES_VEL];
+  TRY(msocl__arg_mem(k, 4, s->pos[r]));
+  TRY(msocl__arg_mem(k, 5, s->vel[r]));
+  TRY(msocl__arg_mem(k, 6, s->pos[w]));
+  TRY(msocl__arg_mem(k, 7, s->vel[w]));
+  return msocl__launch(s, MSOCL__K_EDGES_VEL);
+}
