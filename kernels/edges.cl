@@ -2,7 +2,7 @@
  * atomics: a work-item per spring computes the spring's (and dashpot's)
  * force as a coefficient of the spring's length vector, once for both
  * ends; a per-point pass then sums t (q - p) over the point's springs in
- * BUFFER's slot order (the CSR list the host builds) and integrates. The
+ * BUFFER's slot order (a table the host builds) and integrates. The
  * coefficient is even in the spring's direction and q - p is odd, so each
  * end's term is bitwise what BUFFER's gather computes there, added in the
  * same order: the result is BUFFER's, bit for bit, run after run. Needs
@@ -48,14 +48,22 @@ __kernel void msocl_edges_force(__global const int2 *ij,
 #endif
   (void)vel; (void)dmp; (void)u_out;
 }
-#undef MSOCL_GATHER8
+/* Eight points a work-item, a lane each: slot s of points 8b .. 8b + 7 is
+ * tab[16 (b width + s) + l] (other end) and [... + 8 + l] (spring), the
+ * points' first `width` springs in slot order, padded with the point
+ * itself and a spring of no length (adding +0, as BUFFER's free slots
+ * do). Each lane sums its own point's terms in order, fx += sx as
+ * msocl_force adds them, spring then dashpot; springs past the table
+ * (off[i] + width .. off[i + 1] of the CSR list inc, a hub's) follow one
+ * at a time. Then each point kicks and moves by its new velocity at once,
+ * as msocl_fused does: other points read only pos, so this is the two
+ * passes' result in one. */
+#define MSOCL_COEF8(buf, j)                                                   \
+  (float8)(buf[j.s0], buf[j.s1], buf[j.s2], buf[j.s3], buf[j.s4], buf[j.s5],  \
+           buf[j.s6], buf[j.s7])
 
-/* Point i's springs are inc[off[i] .. off[i + 1]) as (other end, spring).
- * Each term is its own statement (FP_CONTRACT is off anyway): fx += sx
- * as msocl_force adds it, spring then dashpot. The point then moves by its
- * new velocity at once, as msocl_fused does: other points read only pos,
- * so this is the two passes' result in one. */
-__kernel void msocl_edges_velocity(__global const int *off,
+__kernel void msocl_edges_velocity(__global const int *tab, int width,
+                                   __global const int *off,
                                    __global const int2 *inc,
                                    __global const float *tc,
                                    __global const float *uc,
@@ -68,41 +76,66 @@ __kernel void msocl_edges_velocity(__global const int *off,
                                    float dt, __constant float4 *col,
                                    int ncol, int n)
 {
-  int i = get_global_id(0);
-  if (i >= n)
+  const int b = get_global_id(0), i0 = 8 * b;
+  if (i0 >= n)
     return;
-  float4 p4 = pos[i];
-  if (MSOCL_PINNED(p4)) {
-    vel_out[i] = (float4)(0.0f);
-    pos_out[i] = p4;
-    return;
-  }
-  float4 v4 = vel[i];
-  float fx = 0.0f, fy = 0.0f, fz = 0.0f;
-  const int end = off[i + 1];
-  for (int o = off[i]; o < end; o++) {
-    const int2 e = inc[o];
-    const float4 q = pos[e.x];
-    const float dx = q.x - p4.x, dy = q.y - p4.y, dz = q.z - p4.z;
-    const float t = tc[e.y];
-    const float sx = t * dx, sy = t * dy, sz = t * dz;
+  const int8 me = min(i0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7), n - 1);
+  const float8 px = MSOCL_GATHER8(pos, me, x), py = MSOCL_GATHER8(pos, me, y),
+               pz = MSOCL_GATHER8(pos, me, z);
+  float8 fx = 0.0f, fy = 0.0f, fz = 0.0f;
+  for (int s = 0; s < width; s++) {
+    const int16 e = vload16(b * width + s, tab);
+    const int8 j = e.lo, sp = e.hi;
+    const float8 dx = MSOCL_GATHER8(pos, j, x) - px;
+    const float8 dy = MSOCL_GATHER8(pos, j, y) - py;
+    const float8 dz = MSOCL_GATHER8(pos, j, z) - pz;
+    const float8 t = MSOCL_COEF8(tc, sp);
+    const float8 sx = t * dx, sy = t * dy, sz = t * dz;
     fx += sx; fy += sy; fz += sz;
 #ifdef MSOCL_DAMPING
-    const float u = uc[e.y];
-    const float hx = u * dx, hy = u * dy, hz = u * dz;
+    const float8 u = MSOCL_COEF8(uc, sp);
+    const float8 hx = u * dx, hy = u * dy, hz = u * dz;
     fx += hx; fy += hy; fz += hz;
 #endif
   }
-  (void)uc;
-  float3 f = (float3)(fx, fy, fz), v = v4.xyz;
-#ifdef MSOCL_VISCOUS
-  f -= viscous * v;
+  float ax[8], ay[8], az[8];
+  vstore8(fx, 0, ax);
+  vstore8(fy, 0, ay);
+  vstore8(fz, 0, az);
+  for (int l = 0; l < 8 && i0 + l < n; l++) {
+    const int i = i0 + l;
+    const float4 p4 = pos[i];
+    if (MSOCL_PINNED(p4)) {
+      vel_out[i] = (float4)(0.0f);
+      pos_out[i] = p4;
+      continue;
+    }
+    float x = ax[l], y = ay[l], z = az[l];
+    for (int o = off[i] + width; o < off[i + 1]; o++) {
+      const int2 e = inc[o];
+      const float4 q = pos[e.x];
+      const float dx = q.x - p4.x, dy = q.y - p4.y, dz = q.z - p4.z;
+      const float t = tc[e.y];
+      const float sx = t * dx, sy = t * dy, sz = t * dz;
+      x += sx; y += sy; z += sz;
+#ifdef MSOCL_DAMPING
+      const float u = uc[e.y];
+      const float hx = u * dx, hy = u * dy, hz = u * dz;
+      x += hx; y += hy; z += hz;
 #endif
-  (void)viscous;
-  v = msocl_kick(p4.xyz, v, f, inv_mass[i], gravity, air, dt, col, ncol);
-  vel_out[i] = (float4)(v, 0.0f);
-  pos_out[i] = (float4)(p4.xyz + dt * v, p4.w);
+    }
+    float3 f = (float3)(x, y, z), v = vel[i].xyz;
+#ifdef MSOCL_VISCOUS
+    f -= viscous * v;
+#endif
+    v = msocl_kick(p4.xyz, v, f, inv_mass[i], gravity, air, dt, col, ncol);
+    vel_out[i] = (float4)(v, 0.0f);
+    pos_out[i] = (float4)(p4.xyz + dt * v, p4.w);
+  }
+  (void)uc; (void)viscous;
 }
+#undef MSOCL_GATHER8
+#undef MSOCL_COEF8
 
 /* Spring energy k (l - r)^2 / 2 per spring, summed per work-group of 64
  * into partial[group].y (the per-point energies come from msocl_energy). */

@@ -1,7 +1,7 @@
 /* The EDGES layout's passes (kernels/edges.cl): the per-spring pass writes
  * each spring's force coefficients once, the per-point pass sums them over
- * the point's springs in a fixed order (the layout's CSR list), kicks and
- * moves the point: a step in two launches.
+ * the point's springs in a fixed order (the layout's table and list),
+ * kicks and moves the point: a step in two launches.
  * No atomics: the sum's order is BUFFER's, so is its result. */
 #include "config.h"
 #include "sim.h"
@@ -12,6 +12,7 @@ int msocl__edges_buffers(msocl__engine *s)
 {
   const size_t ns = 8 * (size_t)s->lay.nblocks;
   s->edge_work = ((size_t)s->lay.nblocks + 63) / 64 * 64;
+  s->edge_points = ((size_t)(s->n + 7) / 8 + 63) / 64 * 64;
   s->edge_global = ((size_t)s->lay.nsprings + 63) / 64 * 64;
   if (s->edge_global == 0)
     s->edge_global = 64;
@@ -39,18 +40,20 @@ int msocl__edges_setup(msocl__engine *s)
   TRY(msocl__arg_mem(k, 6, s->edge_coef[1]));
   TRY(msocl__arg_int(k, 7, s->lay.nblocks));
   k = s->k[MSOCL__K_EDGES_VEL];
-  TRY(msocl__arg_mem(k, 0, s->lay.inc_off));
-  TRY(msocl__arg_mem(k, 1, s->lay.inc));
-  TRY(msocl__arg_mem(k, 2, s->edge_coef[0]));
-  TRY(msocl__arg_mem(k, 3, s->edge_coef[1]));
-  TRY(msocl__arg_mem(k, 8, s->inv_mass));
-  MSOCL__CL(clSetKernelArg(k, 9, sizeof s->gravity, &s->gravity));
-  TRY(msocl__arg_float(k, 10, s->viscous));
-  TRY(msocl__arg_float(k, 11, s->air));
-  TRY(msocl__arg_float(k, 12, s->o.dt));
-  TRY(msocl__arg_mem(k, 13, s->col));
-  TRY(msocl__arg_int(k, 14, s->ncol));
-  TRY(msocl__arg_int(k, 15, s->n));
+  TRY(msocl__arg_mem(k, 0, s->lay.tab));
+  TRY(msocl__arg_int(k, 1, s->lay.width));
+  TRY(msocl__arg_mem(k, 2, s->lay.inc_off));
+  TRY(msocl__arg_mem(k, 3, s->lay.inc));
+  TRY(msocl__arg_mem(k, 4, s->edge_coef[0]));
+  TRY(msocl__arg_mem(k, 5, s->edge_coef[1]));
+  TRY(msocl__arg_mem(k, 10, s->inv_mass));
+  MSOCL__CL(clSetKernelArg(k, 11, sizeof s->gravity, &s->gravity));
+  TRY(msocl__arg_float(k, 12, s->viscous));
+  TRY(msocl__arg_float(k, 13, s->air));
+  TRY(msocl__arg_float(k, 14, s->o.dt));
+  TRY(msocl__arg_mem(k, 15, s->col));
+  TRY(msocl__arg_int(k, 16, s->ncol));
+  TRY(msocl__arg_int(k, 17, s->n));
   k = s->k[MSOCL__K_EDGES_ENERGY];
   TRY(msocl__arg_mem(k, 0, s->lay.con));
   TRY(msocl__arg_mem(k, 1, s->lay.rk));
@@ -70,9 +73,13 @@ int msocl__edges_velocity(msocl__engine *s)
       s->dev->queue, f, 1, NULL, &s->edge_work,
       s->dev->info.type == MSOCL_DEVICE_CPU ? &cpu : NULL, 0, NULL, NULL));
   cl_kernel k = s->k[MSOCL__K_EDGES_VEL];
-  TRY(msocl__arg_mem(k, 4, s->pos[r]));
-  TRY(msocl__arg_mem(k, 5, s->vel[r]));
-  TRY(msocl__arg_mem(k, 6, s->pos[w]));
-  TRY(msocl__arg_mem(k, 7, s->vel[w]));
-  return msocl__launch(s, MSOCL__K_EDGES_VEL);
+  TRY(msocl__arg_mem(k, 6, s->pos[r]));
+  TRY(msocl__arg_mem(k, 7, s->vel[r]));
+  TRY(msocl__arg_mem(k, 8, s->pos[w]));
+  TRY(msocl__arg_mem(k, 9, s->vel[w]));
+  /* eight points a work-item */
+  MSOCL__CL(clEnqueueNDRangeKernel(
+      s->dev->queue, k, 1, NULL, &s->edge_points,
+      s->dev->info.type == MSOCL_DEVICE_CPU ? &cpu : NULL, 0, NULL, NULL));
+  return MSOCL_OK;
 }

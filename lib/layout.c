@@ -280,15 +280,18 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
                        const struct msocl__adjacency *adj, int damped,
                        struct msocl__layout *l)
 {
-  /* padded to whole blocks of the spring pass's eight, with springs of
-   * no length (zeros) */
-  const size_t ns = ((size_t)m->ns + 7) / 8 * 8 + (m->ns == 0) * 8;
+  /* padded to whole blocks of the spring pass's eight with springs of no
+   * length (zeros), at least one: spring m->ns pads the table */
+  const size_t ns = ((size_t)m->ns / 8 + 1) * 8;
+  const int w = msocl__table_slots(adj, 0), nb = (m->n + 7) / 8;
+  const size_t ntab = 16 * (size_t)nb * (size_t)w + 1;
   int *ij = calloc(2 * ns, sizeof *ij);
   float *rk = calloc(2 * ns, sizeof *rk);
   float *dmp = calloc(damped ? ns : 1, sizeof *dmp);
   int *inc = calloc(4 * ns, sizeof *inc);
+  int *tab = calloc(ntab, sizeof *tab);
   int rc = MSOCL_OK;
-  if (!ij || !rk || !dmp || !inc) {
+  if (!ij || !rk || !dmp || !inc || !tab) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "spring list");
     goto out;
   }
@@ -304,6 +307,16 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
     inc[2 * e] = adj->other[e];
     inc[2 * e + 1] = adj->spring[e];
   }
+  for (int b = 0; b < nb; b++)
+    for (int s = 0; s < w; s++)
+      for (int q = 0; q < 8; q++) {
+        const int i = 8 * b + q, at = adj->off[i < m->n ? i : m->n] + s;
+        const int in = i < m->n && at < adj->off[i + 1];
+        int *slot = tab + 16 * ((size_t)b * w + s) + q;
+        slot[0] = in ? adj->other[at] : i < m->n ? i : m->n - 1;
+        slot[8] = in ? adj->spring[at] : m->ns;
+      }
+  l->width = w;
   l->nsprings = m->ns;
   l->nblocks = (int)(ns / 8);
   l->con = make_buffer(dev, 2 * ns * sizeof *ij, ij, &rc);
@@ -316,7 +329,10 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
                              adj->off, &rc);
   if (rc == MSOCL_OK)
     l->inc = make_buffer(dev, 4 * ns * sizeof *inc, inc, &rc);
+  if (rc == MSOCL_OK)
+    l->tab = make_buffer(dev, ntab * sizeof *tab, tab, &rc);
 out:
+  free(tab);
   free(inc);
   free(ij);
   free(rk);
@@ -418,7 +434,9 @@ void msocl__layout_release(struct msocl__layout *l)
     clReleaseMemObject(l->inc_off);
   if (l->inc)
     clReleaseMemObject(l->inc);
-  l->con = l->rk = l->damp = l->spill = l->inc_off = l->inc = NULL;
+  if (l->tab)
+    clReleaseMemObject(l->tab);
+  l->con = l->rk = l->damp = l->spill = l->inc_off = l->inc = l->tab = NULL;
 }
 
 int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,

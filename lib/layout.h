@@ -19,6 +19,9 @@ struct msocl__layout {
                         (n + 1 ints) */
   cl_mem inc;        /* EDGES: int2 (other end, spring) per spring end, a
                         point's in BUFFER's slot order (the adjacency's) */
+  cl_mem tab;        /* EDGES: the first `width` of them, blocks of eight
+                        points slot by slot (kernels/edges.cl) */
+  int width;         /* EDGES: BUFFER's table width for this model */
   int grid_nx, grid_ny;    /* GRID */
   int grid_nz;             /* GRID: a lattice's layers; 0: a cloth */
   cl_float4 grid_k;        /* cloth: stretch, shear, bend stiffness,

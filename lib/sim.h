@@ -36,8 +36,8 @@ struct msocl__engine {
   cl_mem edge_coef[2];    /* EDGES: per spring, the spring's and the
                              dashpot's force over its length vector */
   size_t edge_global, edge_groups; /* EDGES: springs rounded up to 64 */
-  size_t edge_work;       /* EDGES: the spring pass's blocks of 8 springs,
-                             rounded up to 64 */
+  size_t edge_work, edge_points; /* EDGES: the passes' blocks of 8
+                             springs, of 8 points, rounded up to 64 */
   cl_kernel k[MSOCL__K_COUNT];
   int r;
   int acc_valid;          /* acc matches the current state */

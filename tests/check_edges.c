@@ -162,21 +162,28 @@ static void same_bits(const float *a, const float *b, size_t bytes,
 }
 
 /* The three scenes above (damped hanging cloth, tablecloth in contact,
- * degree-24 lattice): bitwise BUFFER's positions and velocities. The old
- * atomic scatter summed in another order and missed by 1e-7..1e-6. */
+ * degree-24 lattice) and the soft ball, whose centre's 162 springs pass
+ * the table's width (the per-point list past it): bitwise BUFFER's
+ * positions and velocities. The old atomic scatter summed in another order
+ * and missed by 1e-7..1e-6. */
 START_TEST(bitwise_buffer)
 {
   msocl_lattice_desc ld;
   msocl_lattice_desc_init(&ld);
   ld.nx = ld.ny = ld.nz = 5;
-  msocl_model *m[3] = {scene_hanging(16), scene_tablecloth(24), NULL};
+  msocl_solid_desc sd;
+  msocl_solid_desc_init(&sd);
+  msocl_model *m[4] = {scene_hanging(16), scene_tablecloth(24), NULL, NULL};
   ck_assert_int_eq(msocl_model_lattice(&m[2], &ld), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_solid(&m[3], &sd), MSOCL_OK);
   const float up[3] = {0, 1, 0};
   msocl_model_add_plane(m[2], up, 0.0f, 0.5f);
-  const float dt[3] = {1e-3f, scene_tablecloth_dt(24), 1e-4f};
-  const int steps[3] = {1000, 300, 3000};
-  const char *what[3] = {"hanging cloth", "tablecloth", "jello cube"};
-  for (int q = 0; q < 3; q++) {
+  msocl_model_add_plane(m[3], up, 0.0f, 0.5f);
+  const float dt[4] = {1e-3f, scene_tablecloth_dt(24), 1e-4f, 1e-4f};
+  const int steps[4] = {1000, 300, 3000, 4000}; /* the ball lands */
+  const char *what[4] = {"hanging cloth", "tablecloth", "jello cube",
+                         "soft ball"};
+  for (int q = 0; q < 4; q++) {
     size_t bytes;
     float *e = state(m[q], &bytes), *b = state(m[q], &bytes);
     const int n3 = (int)(bytes / sizeof(float));
