@@ -7,7 +7,8 @@
  * end's term is bitwise what BUFFER's gather computes there, added in the
  * same order: the result is BUFFER's, bit for bit, run after run. Needs
  * common.cl and step.cl before it (the library builds it with the BUFFER
- * macros and no slots). */
+ * macros and no slots, and MSOCL_CLASSES where the springs' values fit 256
+ * classes). */
 
 /* Coefficients per spring: t[s] = k (l - r) / l, u[s] = c (dv . d) / l^2,
  * in msocl_force's scalar arithmetic lane by lane; 0 where the spring has
@@ -19,9 +20,7 @@
   (float8)(buf[j.s0].c, buf[j.s1].c, buf[j.s2].c, buf[j.s3].c, buf[j.s4].c,  \
            buf[j.s5].c, buf[j.s6].c, buf[j.s7].c)
 
-__kernel void msocl_edges_force(__global const int2 *ij,
-                                __global const float2 *rk,
-                                __global const float *dmp,
+__kernel void msocl_edges_force(__global const int2 *ij, MSOCL_RK,
                                 __global const float4 *pos,
                                 __global const float4 *vel,
                                 __global float *t_out,
@@ -31,22 +30,37 @@ __kernel void msocl_edges_force(__global const int2 *ij,
   if (g >= groups)
     return;
   int16 e = vload16(g, (__global const int *)ij);
-  float16 c = vload16(g, (__global const float *)rk);
   int8 a = e.even, b = e.odd;
+#ifdef MSOCL_CLASSES
+  /* a byte a spring naming its (rest, k, dashpot) */
+  const uchar8 q = vload8(g, rk);
+  const float4 v0 = dmp[q.s0], v1 = dmp[q.s1], v2 = dmp[q.s2],
+               v3 = dmp[q.s3], v4 = dmp[q.s4], v5 = dmp[q.s5],
+               v6 = dmp[q.s6], v7 = dmp[q.s7];
+  const float8 rest = (float8)(v0.x, v1.x, v2.x, v3.x, v4.x, v5.x, v6.x, v7.x);
+  const float8 k = (float8)(v0.y, v1.y, v2.y, v3.y, v4.y, v5.y, v6.y, v7.y);
+  const float8 cd = (float8)(v0.z, v1.z, v2.z, v3.z, v4.z, v5.z, v6.z, v7.z);
+#else
+  const float16 c = vload16(g, (__global const float *)rk);
+  const float8 rest = c.even, k = c.odd;
+#ifdef MSOCL_DAMPING
+  const float8 cd = vload8(g, dmp);
+#endif
+#endif
   float8 dx = MSOCL_GATHER8(pos, b, x) - MSOCL_GATHER8(pos, a, x);
   float8 dy = MSOCL_GATHER8(pos, b, y) - MSOCL_GATHER8(pos, a, y);
   float8 dz = MSOCL_GATHER8(pos, b, z) - MSOCL_GATHER8(pos, a, z);
   float8 len2 = dx * dx + dy * dy + dz * dz, len = MSOCL_SQRT(len2);
-  float8 t = c.odd * MSOCL_DIV(len - c.even, len);
+  float8 t = k * MSOCL_DIV(len - rest, len);
   vstore8(select((float8)(0.0f), t, len > 0.0f), g, t_out);
 #ifdef MSOCL_DAMPING
   float8 wx = MSOCL_GATHER8(vel, b, x) - MSOCL_GATHER8(vel, a, x);
   float8 wy = MSOCL_GATHER8(vel, b, y) - MSOCL_GATHER8(vel, a, y);
   float8 wz = MSOCL_GATHER8(vel, b, z) - MSOCL_GATHER8(vel, a, z);
-  float8 u = vload8(g, dmp) * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
+  float8 u = cd * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
   vstore8(select((float8)(0.0f), u, len2 > 0.0f), g, u_out);
 #endif
-  (void)vel; (void)dmp; (void)u_out;
+  (void)vel; (void)u_out;
 }
 /* Eight points a work-item, a lane each: slot s of points 8b .. 8b + 7 is
  * tab[16 (b width + s) + l] (other end) and [... + 8 + l] (spring), the
@@ -140,7 +154,7 @@ __kernel void msocl_edges_velocity(__global const int *tab, int width,
 /* Spring energy k (l - r)^2 / 2 per spring, summed per work-group of 64
  * into partial[group].y (the per-point energies come from msocl_energy). */
 __kernel __attribute__((reqd_work_group_size(64, 1, 1)))
-void msocl_edges_energy(__global const int2 *ij, __global const float2 *rk,
+void msocl_edges_energy(__global const int2 *ij, MSOCL_RK,
                         __global const float4 *pos,
                         __global float4 *partial, int ns)
 {
@@ -150,8 +164,10 @@ void msocl_edges_energy(__global const int2 *ij, __global const float2 *rk,
   if (s < ns) {
     int2 q = ij[s];
     float3 d = pos[q.y].xyz - pos[q.x].xyz;
-    float stretch = MSOCL_SQRT(dot(d, d)) - rk[s].x;
-    e = 0.5f * rk[s].y * stretch * stretch;
+    float rest, k, c;
+    msocl_values(rk, dmp, s, &rest, &k, &c);
+    float stretch = MSOCL_SQRT(dot(d, d)) - rest;
+    e = 0.5f * k * stretch * stretch;
   }
   part[l] = e;
   barrier(CLK_LOCAL_MEM_FENCE);

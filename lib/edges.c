@@ -57,8 +57,9 @@ int msocl__edges_setup(msocl__engine *s)
   k = s->k[MSOCL__K_EDGES_ENERGY];
   TRY(msocl__arg_mem(k, 0, s->lay.con));
   TRY(msocl__arg_mem(k, 1, s->lay.rk));
-  TRY(msocl__arg_mem(k, 3, s->partial));
-  return msocl__arg_int(k, 4, s->lay.nsprings);
+  TRY(msocl__arg_mem(k, 2, s->lay.damp));
+  TRY(msocl__arg_mem(k, 4, s->partial));
+  return msocl__arg_int(k, 5, s->lay.nsprings);
 }
 
 int msocl__edges_velocity(msocl__engine *s)

@@ -278,7 +278,7 @@ out:
  * each point's springs as the adjacency lists them, for the point pass. */
 static int build_edges(struct msocl__device *dev, const msocl_model *m,
                        const struct msocl__adjacency *adj, int damped,
-                       struct msocl__layout *l)
+                       int classes, struct msocl__layout *l)
 {
   /* padded to whole blocks of the spring pass's eight with springs of no
    * length (zeros), at least one: spring m->ns pads the table */
@@ -290,8 +290,13 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
   float *dmp = calloc(damped ? ns : 1, sizeof *dmp);
   int *inc = calloc(4 * ns, sizeof *inc);
   int *tab = calloc(ntab, sizeof *tab);
+  /* a byte a spring where the values fit 256 classes (the padding's: 0,
+   * the zeros), as BUFFER's, unless options.classes is 0: the spring pass
+   * then reads 1 B a spring, not 8-12 */
+  cl_float4 ctab[256];
+  unsigned char *sc = calloc(ns, 1);
   int rc = MSOCL_OK;
-  if (!ij || !rk || !dmp || !inc || !tab) {
+  if (!ij || !rk || !dmp || !inc || !tab || !sc) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "spring list");
     goto out;
   }
@@ -319,11 +324,18 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
   l->width = w;
   l->nsprings = m->ns;
   l->nblocks = (int)(ns / 8);
+  l->classes = classes ? spring_classes(m, damped, ctab, sc) : 0;
   l->con = make_buffer(dev, 2 * ns * sizeof *ij, ij, &rc);
-  if (rc == MSOCL_OK)
+  if (rc == MSOCL_OK && l->classes) {
+    l->rk = make_buffer(dev, ns, sc, &rc);
+    if (rc == MSOCL_OK)
+      l->damp =
+          make_buffer(dev, (size_t)l->classes * sizeof *ctab, ctab, &rc);
+  } else if (rc == MSOCL_OK) {
     l->rk = make_buffer(dev, 2 * ns * sizeof *rk, rk, &rc);
-  if (rc == MSOCL_OK)
-    l->damp = make_buffer(dev, (damped ? ns : 1) * sizeof *dmp, dmp, &rc);
+    if (rc == MSOCL_OK)
+      l->damp = make_buffer(dev, (damped ? ns : 1) * sizeof *dmp, dmp, &rc);
+  }
   if (rc == MSOCL_OK)
     l->inc_off = make_buffer(dev, ((size_t)m->n + 1) * sizeof *adj->off,
                              adj->off, &rc);
@@ -332,6 +344,7 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
   if (rc == MSOCL_OK)
     l->tab = make_buffer(dev, ntab * sizeof *tab, tab, &rc);
 out:
+  free(sc);
   free(tab);
   free(inc);
   free(ij);
@@ -411,7 +424,7 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
     rc = MSOCL_OK;
   } else if (out->kind == MSOCL_LAYOUT_EDGES) {
     out->slots = 0;
-    rc = build_edges(dev, m, adj, has_damping(m), out);
+    rc = build_edges(dev, m, adj, has_damping(m), classes, out);
   } else {
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d", (int)kind);
   }

@@ -197,6 +197,36 @@ START_TEST(bitwise_buffer)
 }
 END_TEST
 
+/* Spring values in every entry (options.classes 0) rather than a byte
+ * naming their class: the same bits. */
+START_TEST(values)
+{
+  msocl_model *m = scene_hanging(16);
+  size_t bytes;
+  float *a = state(m, &bytes), *b = state(m, &bytes);
+  const int n3 = (int)(bytes / sizeof(float));
+  run(rt, m, MSOCL_LAYOUT_BUFFER, 1e-3f, 1000, 0, 1, b, b + n3);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = 1e-3f;
+  o.layout = MSOCL_LAYOUT_EDGES;
+  o.classes = 0;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, 1000), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_read_positions(s, a), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_read_velocities(s, a + n3), MSOCL_OK);
+  msocl_energy e;
+  ck_assert_int_eq(msocl_sim_energy(s, &e), MSOCL_OK);
+  ck_assert(e.spring > 0.0);
+  msocl_sim_destroy(s);
+  same_bits(a, b, bytes, "EDGES with values");
+  free(a);
+  free(b);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 /* Two runs, bitwise the same. The old atomic scatter could pass this by
  * luck (2 cores, few conflicting adds at a time), so bitwise_buffer is
  * the case that shows the fixed order. */
@@ -278,6 +308,7 @@ int main(void)
   tcase_add_test(tc, lattice_degree_24);
   tcase_add_test(tc, only_symplectic);
   tcase_add_test(tc, bitwise_buffer);
+  tcase_add_test(tc, values);
   tcase_add_test(tc, repeatable);
   tcase_add_test(tc, devices);
   suite_add_tcase(su, tc);
