@@ -72,11 +72,21 @@ __kernel void msocl_edges_force(__global const int2 *ij, MSOCL_RK,
  * at a time. Then each point kicks and moves by its new velocity at once,
  * as msocl_fused does: other points read only pos, so this is the two
  * passes' result in one. */
+/* x, y, z of the eight points from p on */
+#define MSOCL_ROW8(p, x8, y8, z8)                                             \
+  do {                                                                        \
+    const float16 lo_ = vload16(0, (__global const float *)(p));             \
+    const float16 hi_ = vload16(0, (__global const float *)(p) + 16);        \
+    x8 = (float8)(lo_.s048c, hi_.s048c);                                      \
+    y8 = (float8)(lo_.s159d, hi_.s159d);                                      \
+    z8 = (float8)(lo_.s26ae, hi_.s26ae);                                      \
+  } while (0)
 #define MSOCL_COEF8(buf, j)                                                   \
   (float8)(buf[j.s0], buf[j.s1], buf[j.s2], buf[j.s3], buf[j.s4], buf[j.s5],  \
            buf[j.s6], buf[j.s7])
 
-__kernel void msocl_edges_velocity(__global const int *tab, int width,
+__kernel void msocl_edges_velocity(__global const int *tab,
+                                   __global const uchar *run, int width,
                                    __global const int *off,
                                    __global const int2 *inc,
                                    __global const float *tc,
@@ -93,17 +103,33 @@ __kernel void msocl_edges_velocity(__global const int *tab, int width,
   const int b = get_global_id(0), i0 = 8 * b;
   if (i0 >= n)
     return;
-  const int8 me = min(i0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7), n - 1);
-  const float8 px = MSOCL_GATHER8(pos, me, x), py = MSOCL_GATHER8(pos, me, y),
-               pz = MSOCL_GATHER8(pos, me, z);
+  /* run: in every slot the eight other ends are consecutive points (a
+   * grid's rows; the block's own points all < n), read with two vector
+   * loads, not eight */
+  const uchar r = run[b];
+  float8 px, py, pz;
+  if (r) {
+    MSOCL_ROW8(pos + i0, px, py, pz);
+  } else {
+    const int8 me = min(i0 + (int8)(0, 1, 2, 3, 4, 5, 6, 7), n - 1);
+    px = MSOCL_GATHER8(pos, me, x);
+    py = MSOCL_GATHER8(pos, me, y);
+    pz = MSOCL_GATHER8(pos, me, z);
+  }
   float8 fx = 0.0f, fy = 0.0f, fz = 0.0f;
   for (int s = 0; s < width; s++) {
     const int16 e = vload16(b * width + s, tab);
     const int8 j = e.lo, sp = e.hi;
-    const float8 dx = MSOCL_GATHER8(pos, j, x) - px;
-    const float8 dy = MSOCL_GATHER8(pos, j, y) - py;
-    const float8 dz = MSOCL_GATHER8(pos, j, z) - pz;
+    float8 qx, qy, qz;
+    if (r) {
+      MSOCL_ROW8(pos + j.s0, qx, qy, qz);
+    } else {
+      qx = MSOCL_GATHER8(pos, j, x);
+      qy = MSOCL_GATHER8(pos, j, y);
+      qz = MSOCL_GATHER8(pos, j, z);
+    }
     const float8 t = MSOCL_COEF8(tc, sp);
+    const float8 dx = qx - px, dy = qy - py, dz = qz - pz;
     const float8 sx = t * dx, sy = t * dy, sz = t * dz;
     fx += sx; fy += sy; fz += sz;
 #ifdef MSOCL_DAMPING
@@ -150,6 +176,7 @@ __kernel void msocl_edges_velocity(__global const int *tab, int width,
 }
 #undef MSOCL_GATHER8
 #undef MSOCL_COEF8
+#undef MSOCL_ROW8
 
 /* Spring energy k (l - r)^2 / 2 per spring, summed per work-group of 64
  * into partial[group].y (the per-point energies come from msocl_energy). */

@@ -41,19 +41,20 @@ int msocl__edges_setup(msocl__engine *s)
   TRY(msocl__arg_int(k, 7, s->lay.nblocks));
   k = s->k[MSOCL__K_EDGES_VEL];
   TRY(msocl__arg_mem(k, 0, s->lay.tab));
-  TRY(msocl__arg_int(k, 1, s->lay.width));
-  TRY(msocl__arg_mem(k, 2, s->lay.inc_off));
-  TRY(msocl__arg_mem(k, 3, s->lay.inc));
-  TRY(msocl__arg_mem(k, 4, s->edge_coef[0]));
-  TRY(msocl__arg_mem(k, 5, s->edge_coef[1]));
-  TRY(msocl__arg_mem(k, 10, s->inv_mass));
-  MSOCL__CL(clSetKernelArg(k, 11, sizeof s->gravity, &s->gravity));
-  TRY(msocl__arg_float(k, 12, s->viscous));
-  TRY(msocl__arg_float(k, 13, s->air));
-  TRY(msocl__arg_float(k, 14, s->o.dt));
-  TRY(msocl__arg_mem(k, 15, s->col));
-  TRY(msocl__arg_int(k, 16, s->ncol));
-  TRY(msocl__arg_int(k, 17, s->n));
+  TRY(msocl__arg_mem(k, 1, s->lay.run));
+  TRY(msocl__arg_int(k, 2, s->lay.width));
+  TRY(msocl__arg_mem(k, 3, s->lay.inc_off));
+  TRY(msocl__arg_mem(k, 4, s->lay.inc));
+  TRY(msocl__arg_mem(k, 5, s->edge_coef[0]));
+  TRY(msocl__arg_mem(k, 6, s->edge_coef[1]));
+  TRY(msocl__arg_mem(k, 11, s->inv_mass));
+  MSOCL__CL(clSetKernelArg(k, 12, sizeof s->gravity, &s->gravity));
+  TRY(msocl__arg_float(k, 13, s->viscous));
+  TRY(msocl__arg_float(k, 14, s->air));
+  TRY(msocl__arg_float(k, 15, s->o.dt));
+  TRY(msocl__arg_mem(k, 16, s->col));
+  TRY(msocl__arg_int(k, 17, s->ncol));
+  TRY(msocl__arg_int(k, 18, s->n));
   k = s->k[MSOCL__K_EDGES_ENERGY];
   TRY(msocl__arg_mem(k, 0, s->lay.con));
   TRY(msocl__arg_mem(k, 1, s->lay.rk));
@@ -74,10 +75,10 @@ int msocl__edges_velocity(msocl__engine *s)
       s->dev->queue, f, 1, NULL, &s->edge_work,
       s->dev->info.type == MSOCL_DEVICE_CPU ? &cpu : NULL, 0, NULL, NULL));
   cl_kernel k = s->k[MSOCL__K_EDGES_VEL];
-  TRY(msocl__arg_mem(k, 6, s->pos[r]));
-  TRY(msocl__arg_mem(k, 7, s->vel[r]));
-  TRY(msocl__arg_mem(k, 8, s->pos[w]));
-  TRY(msocl__arg_mem(k, 9, s->vel[w]));
+  TRY(msocl__arg_mem(k, 7, s->pos[r]));
+  TRY(msocl__arg_mem(k, 8, s->vel[r]));
+  TRY(msocl__arg_mem(k, 9, s->pos[w]));
+  TRY(msocl__arg_mem(k, 10, s->vel[w]));
   /* eight points a work-item */
   MSOCL__CL(clEnqueueNDRangeKernel(
       s->dev->queue, k, 1, NULL, &s->edge_points,

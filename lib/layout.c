@@ -290,13 +290,14 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
   float *dmp = calloc(damped ? ns : 1, sizeof *dmp);
   int *inc = calloc(4 * ns, sizeof *inc);
   int *tab = calloc(ntab, sizeof *tab);
+  unsigned char *run = calloc((size_t)nb + 1, 1);
   /* a byte a spring where the values fit 256 classes (the padding's: 0,
    * the zeros), as BUFFER's, unless options.classes is 0: the spring pass
    * then reads 1 B a spring, not 8-12 */
   cl_float4 ctab[256];
   unsigned char *sc = calloc(ns, 1);
   int rc = MSOCL_OK;
-  if (!ij || !rk || !dmp || !inc || !tab || !sc) {
+  if (!ij || !rk || !dmp || !inc || !tab || !run || !sc) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "spring list");
     goto out;
   }
@@ -321,6 +322,17 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
         slot[0] = in ? adj->other[at] : i < m->n ? i : m->n - 1;
         slot[8] = in ? adj->spring[at] : m->ns;
       }
+  /* blocks inside the model whose other ends are consecutive points in
+   * every slot (a grid's rows, away from its edges) */
+  for (int b = 0; b < nb; b++) {
+    int in = 8 * b + 7 < m->n;
+    for (int s = 0; s < w && in; s++) {
+      const int *e = tab + 16 * ((size_t)b * w + s);
+      for (int q = 1; q < 8; q++)
+        in &= e[q] == e[0] + q;
+    }
+    run[b] = (unsigned char)in;
+  }
   l->width = w;
   l->nsprings = m->ns;
   l->nblocks = (int)(ns / 8);
@@ -343,7 +355,10 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
     l->inc = make_buffer(dev, 4 * ns * sizeof *inc, inc, &rc);
   if (rc == MSOCL_OK)
     l->tab = make_buffer(dev, ntab * sizeof *tab, tab, &rc);
+  if (rc == MSOCL_OK)
+    l->run = make_buffer(dev, (size_t)nb + 1, run, &rc);
 out:
+  free(run);
   free(sc);
   free(tab);
   free(inc);
@@ -449,7 +464,10 @@ void msocl__layout_release(struct msocl__layout *l)
     clReleaseMemObject(l->inc);
   if (l->tab)
     clReleaseMemObject(l->tab);
-  l->con = l->rk = l->damp = l->spill = l->inc_off = l->inc = l->tab = NULL;
+  if (l->run)
+    clReleaseMemObject(l->run);
+  l->con = l->rk = l->damp = l->spill = NULL;
+  l->inc_off = l->inc = l->tab = l->run = NULL;
 }
 
 int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,

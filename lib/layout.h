@@ -21,6 +21,8 @@ struct msocl__layout {
                         point's in BUFFER's slot order (the adjacency's) */
   cl_mem tab;        /* EDGES: the first `width` of them, blocks of eight
                         points slot by slot (kernels/edges.cl) */
+  cl_mem run;        /* EDGES: a byte a block of eight points, 1 where
+                        its slots hold runs of consecutive points */
   int width;         /* EDGES: BUFFER's table width for this model */
   int grid_nx, grid_ny;    /* GRID */
   int grid_nz;             /* GRID: a lattice's layers; 0: a cloth */
