@@ -62,6 +62,7 @@ __kernel void msocl_edges_force(__global const int2 *ij, MSOCL_RK,
 #endif
   (void)vel; (void)u_out;
 }
+
 /* Eight points a work-item, a lane each: slot s of points 8b .. 8b + 7 is
  * tab[16 (b width + s) + l] (other end) and [... + 8 + l] (spring), the
  * points' first `width` springs in slot order, padded with the point
@@ -72,6 +73,7 @@ __kernel void msocl_edges_force(__global const int2 *ij, MSOCL_RK,
  * at a time. Then each point kicks and moves by its new velocity at once,
  * as msocl_fused does: other points read only pos, so this is the two
  * passes' result in one. */
+
 /* x, y, z of the eight points from p on */
 #define MSOCL_ROW8(p, x8, y8, z8)                                             \
   do {                                                                        \
@@ -191,8 +193,13 @@ void msocl_edges_energy(__global const int2 *ij, MSOCL_RK,
   if (s < ns) {
     int2 q = ij[s];
     float3 d = pos[q.y].xyz - pos[q.x].xyz;
-    float rest, k, c;
-    msocl_values(rk, dmp, s, &rest, &k, &c);
+#ifdef MSOCL_CLASSES
+    const float4 v = dmp[rk[s]];
+    const float rest = v.x, k = v.y;
+#else
+    const float rest = rk[s].x, k = rk[s].y;
+    (void)dmp;
+#endif
     float stretch = MSOCL_SQRT(dot(d, d)) - rest;
     e = 0.5f * k * stretch * stretch;
   }
