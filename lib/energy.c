@@ -31,7 +31,7 @@ int msocl__energy(msocl__engine *s, msocl_energy *e)
   if (s->lay.kind == MSOCL_LAYOUT_EDGES) {
     /* the springs' part, a work-item a spring */
     cl_kernel ke = s->k[MSOCL__K_EDGES_ENERGY];
-    rc = msocl__arg_mem(ke, 2, s->pos[s->r]);
+    rc = msocl__arg_mem(ke, 3, s->pos[s->r]);
     if (rc != MSOCL_OK)
       return rc;
     MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, ke, 1, NULL,

@@ -4,62 +4,15 @@
 #include "config.h"
 #include "schedule.h"
 
-static int arg_vec(cl_kernel k, cl_uint i, const cl_float4 *v)
-{
-  MSOCL__CL(clSetKernelArg(k, i, sizeof *v, v));
-  return MSOCL_OK;
-}
-
-/* Sets buffers args[0..n) from argument `first` on. */
-static int mems(cl_kernel k, cl_uint first, int n, const cl_mem *args)
-{
-  for (int q = 0; q < n; q++) {
-    int rc = msocl__arg_mem(k, first + (cl_uint)q, args[q]);
-    if (rc != MSOCL_OK)
-      return rc;
-  }
-  return MSOCL_OK;
-}
-
 #define TRY MSOCL__TRY
 
-/* The tail the point passes that end a symplectic or explicit Euler step
- * share: inverse masses, gravity, viscous damping, air, dt, colliders, n. */
-static int point_pass_args(msocl__engine *s, cl_kernel k, cl_uint a)
-{
-  TRY(msocl__arg_mem(k, a, s->inv_mass));
-  TRY(arg_vec(k, a + 1, &s->gravity));
-  TRY(msocl__arg_float(k, a + 2, s->viscous));
-  TRY(msocl__arg_float(k, a + 3, s->air));
-  TRY(msocl__arg_float(k, a + 4, s->o.dt));
-  TRY(msocl__arg_mem(k, a + 5, s->col));
-  TRY(msocl__arg_int(k, a + 6, s->ncol));
-  return msocl__arg_int(k, a + 7, s->n);
-}
-
 /* Fixed arguments: everything but the state buffers that ping-pong; the
- * float4 kernels' by name (kernel_args.c), the EDGES kernels' here. */
+ * float4 kernels' by name (kernel_args.c), the EDGES kernels' in edges.c. */
 int msocl__integrate_setup(msocl__engine *s)
 {
-  cl_kernel k;
   TRY(msocl__set_fixed(s));
-  if ((k = s->k[MSOCL__K_EDGES_FORCE])) {
-    TRY(msocl__arg_mem(k, 0, s->lay.con));
-    TRY(msocl__arg_mem(k, 1, s->lay.rk));
-    TRY(msocl__arg_mem(k, 2, s->lay.damp));
-    TRY(msocl__arg_mem(k, 5, s->force));
-    TRY(msocl__arg_int(k, 6, s->lay.nsprings));
-  }
-  if ((k = s->k[MSOCL__K_EDGES_VEL])) {
-    TRY(msocl__arg_mem(k, 3, s->force));
-    TRY(point_pass_args(s, k, 4));
-  }
-  if ((k = s->k[MSOCL__K_EDGES_ENERGY])) {
-    TRY(msocl__arg_mem(k, 0, s->lay.con));
-    TRY(msocl__arg_mem(k, 1, s->lay.rk));
-    TRY(msocl__arg_mem(k, 3, s->partial));
-    TRY(msocl__arg_int(k, 4, s->lay.nsprings));
-  }
+  if (s->lay.kind == MSOCL_LAYOUT_EDGES)
+    TRY(msocl__edges_setup(s));
   return MSOCL_OK;
 }
 
@@ -74,27 +27,10 @@ static int position_pass(msocl__engine *s)
   return msocl__launch(s, MSOCL__K_POSITION);
 }
 
-/* EDGES: the per-spring pass scatters forces, then the per-point pass
- * integrates and clears them. */
-static int edges_velocity(msocl__engine *s)
-{
-  const int r = s->r, w = 1 - r;
-  cl_kernel f = s->k[MSOCL__K_EDGES_FORCE];
-  TRY(msocl__arg_mem(f, 3, s->pos[r]));
-  TRY(msocl__arg_mem(f, 4, s->vel[r]));
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, f, 1, NULL,
-                                   &s->edge_global, NULL, 0, NULL, NULL));
-  cl_mem v[3] = {s->pos[r], s->vel[r], s->vel[w]};
-  TRY(mems(s->k[MSOCL__K_EDGES_VEL], 0, 3, v));
-  return msocl__launch(s, MSOCL__K_EDGES_VEL);
-}
-
-/* The velocity pass of the paper's two (EDGES: scatter, then integrate). */
+/* The velocity pass of the paper's two. */
 static int symplectic_velocity(msocl__engine *s)
 {
   const int r = s->r, w = 1 - r;
-  if (s->lay.kind == MSOCL_LAYOUT_EDGES)
-    return edges_velocity(s);
   TRY(msocl__set_mem(s, MSOCL__K_VELOCITY, "pos", s->pos[r]));
   TRY(msocl__set_mem(s, MSOCL__K_VELOCITY, "vel", s->vel[r]));
   TRY(msocl__set_mem(s, MSOCL__K_VELOCITY, "vel_out", s->vel[w]));
@@ -179,7 +115,9 @@ int msocl__float4_pass(msocl__engine *s, enum msocl__pass p)
   case MSOCL__P_VELOCITY: return symplectic_velocity(s);
   case MSOCL__P_STRAIN_VEL: return msocl__strain_velocity(s);
   case MSOCL__P_POSITION: return position_pass(s);
-  case MSOCL__P_FUSED: return one_pass(s, MSOCL__K_FUSED);
+  case MSOCL__P_FUSED: /* EDGES: its whole step */
+    return s->lay.kind == MSOCL_LAYOUT_EDGES ? msocl__edges_velocity(s)
+                                             : one_pass(s, MSOCL__K_FUSED);
   case MSOCL__P_EULER: return one_pass(s, MSOCL__K_EULER);
   case MSOCL__P_DRIFT: return verlet_drift(s);
   case MSOCL__P_KICK: return verlet_kick(s);

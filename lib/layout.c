@@ -275,16 +275,30 @@ out:
   return rc;
 }
 
-/* One entry per spring, in the model's order: the second seed's list. */
+/* One entry per spring, in the model's order: the second seed's list; and
+ * each point's springs as the adjacency lists them, for the point pass. */
 static int build_edges(struct msocl__device *dev, const msocl_model *m,
-                       int damped, struct msocl__layout *l)
+                       const struct msocl__adjacency *adj, int damped,
+                       msocl_choice classes, struct msocl__layout *l)
 {
-  const size_t ns = (size_t)(m->ns > 0 ? m->ns : 1);
+  /* padded to whole blocks of the spring pass's eight with springs of no
+   * length (zeros), at least one: spring m->ns pads the table */
+  const size_t ns = ((size_t)m->ns / 8 + 1) * 8;
+  const int w = msocl__table_slots(adj, 0), nb = (m->n + 7) / 8;
+  const size_t ntab = 16 * (size_t)nb * (size_t)w + 1;
   int *ij = calloc(2 * ns, sizeof *ij);
   float *rk = calloc(2 * ns, sizeof *rk);
   float *dmp = calloc(damped ? ns : 1, sizeof *dmp);
+  int *inc = calloc(4 * ns, sizeof *inc);
+  int *tab = calloc(ntab, sizeof *tab);
+  unsigned char *run = calloc((size_t)nb + 1, 1);
+  /* a byte a spring where the values fit 256 classes (the padding's: 0,
+   * the zeros), as BUFFER's, unless tuning.classes is OFF: the spring pass
+   * then reads 1 B a spring, not 8-12 */
+  cl_float4 ctab[256];
+  unsigned char *sc = calloc(ns, 1);
   int rc = MSOCL_OK;
-  if (!ij || !rk || !dmp) {
+  if (!ij || !rk || !dmp || !inc || !tab || !run || !sc) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "spring list");
     goto out;
   }
@@ -296,13 +310,60 @@ static int build_edges(struct msocl__device *dev, const msocl_model *m,
     if (damped)
       dmp[s] = m->damp[s];
   }
+  for (int e = 0; e < adj->off[m->n]; e++) {
+    inc[2 * e] = adj->other[e];
+    inc[2 * e + 1] = adj->spring[e];
+  }
+  for (int b = 0; b < nb; b++)
+    for (int s = 0; s < w; s++)
+      for (int q = 0; q < 8; q++) {
+        const int i = 8 * b + q, at = adj->off[i < m->n ? i : m->n] + s;
+        const int in = i < m->n && at < adj->off[i + 1];
+        int *slot = tab + 16 * ((size_t)b * w + s) + q;
+        slot[0] = in ? adj->other[at] : i < m->n ? i : m->n - 1;
+        slot[8] = in ? adj->spring[at] : m->ns;
+      }
+  /* blocks inside the model whose other ends are consecutive points in
+   * every slot (a grid's rows, away from its edges) */
+  for (int b = 0; b < nb; b++) {
+    int in = 8 * b + 7 < m->n;
+    for (int s = 0; s < w && in; s++) {
+      const int *e = tab + 16 * ((size_t)b * w + s);
+      for (int q = 1; q < 8; q++)
+        in &= e[q] == e[0] + q;
+    }
+    run[b] = (unsigned char)in;
+  }
+  l->width = w;
   l->nsprings = m->ns;
+  l->nblocks = (int)(ns / 8);
+  l->classes =
+      classes != MSOCL_OFF ? spring_classes(m, damped, ctab, sc) : 0;
   l->con = make_buffer(dev, 2 * ns * sizeof *ij, ij, &rc);
-  if (rc == MSOCL_OK)
+  if (rc == MSOCL_OK && l->classes) {
+    l->rk = make_buffer(dev, ns, sc, &rc);
+    if (rc == MSOCL_OK)
+      l->damp =
+          make_buffer(dev, (size_t)l->classes * sizeof *ctab, ctab, &rc);
+  } else if (rc == MSOCL_OK) {
     l->rk = make_buffer(dev, 2 * ns * sizeof *rk, rk, &rc);
+    if (rc == MSOCL_OK)
+      l->damp = make_buffer(dev, (damped ? ns : 1) * sizeof *dmp, dmp, &rc);
+  }
   if (rc == MSOCL_OK)
-    l->damp = make_buffer(dev, (damped ? ns : 1) * sizeof *dmp, dmp, &rc);
+    l->inc_off = make_buffer(dev, ((size_t)m->n + 1) * sizeof *adj->off,
+                             adj->off, &rc);
+  if (rc == MSOCL_OK)
+    l->inc = make_buffer(dev, 4 * ns * sizeof *inc, inc, &rc);
+  if (rc == MSOCL_OK)
+    l->tab = make_buffer(dev, ntab * sizeof *tab, tab, &rc);
+  if (rc == MSOCL_OK)
+    l->run = make_buffer(dev, (size_t)nb + 1, run, &rc);
 out:
+  free(run);
+  free(sc);
+  free(tab);
+  free(inc);
   free(ij);
   free(rk);
   free(dmp);
@@ -381,7 +442,7 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
     rc = MSOCL_OK;
   } else if (out->kind == MSOCL_LAYOUT_EDGES) {
     out->slots = 0;
-    rc = build_edges(dev, m, has_damping(m), out);
+    rc = build_edges(dev, m, adj, has_damping(m), classes, out);
   } else {
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d", (int)kind);
   }
@@ -400,7 +461,16 @@ void msocl__layout_release(struct msocl__layout *l)
     clReleaseMemObject(l->damp);
   if (l->spill)
     clReleaseMemObject(l->spill);
+  if (l->inc_off)
+    clReleaseMemObject(l->inc_off);
+  if (l->inc)
+    clReleaseMemObject(l->inc);
+  if (l->tab)
+    clReleaseMemObject(l->tab);
+  if (l->run)
+    clReleaseMemObject(l->run);
   l->con = l->rk = l->damp = l->spill = NULL;
+  l->inc_off = l->inc = l->tab = l->run = NULL;
 }
 
 int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,

@@ -13,6 +13,17 @@ struct msocl__layout {
                         table start in the list after it (n + 1 ints);
                         NULL: none spill */
   int nsprings;      /* EDGES */
+  int nblocks;       /* EDGES: its lists' blocks of 8 springs (the last
+                        padded with springs of no length) */
+  cl_mem inc_off;    /* EDGES: per point, where its springs start in inc
+                        (n + 1 ints) */
+  cl_mem inc;        /* EDGES: int2 (other end, spring) per spring end, a
+                        point's in BUFFER's slot order (the adjacency's) */
+  cl_mem tab;        /* EDGES: the first `width` of them, blocks of eight
+                        points slot by slot (kernels/edges.cl) */
+  cl_mem run;        /* EDGES: a byte a block of eight points, 1 where
+                        its slots hold runs of consecutive points */
+  int width;         /* EDGES: BUFFER's table width for this model */
   int grid_nx, grid_ny;    /* GRID */
   int grid_nz;             /* GRID: a lattice's layers; 0: a cloth */
   cl_float4 grid_k;        /* cloth: stretch, shear, bend stiffness,

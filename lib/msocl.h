@@ -274,8 +274,10 @@ typedef enum {
   MSOCL_LAYOUT_AUTO = 0, /* GRID for a cloth grid as built, else BUFFER */
   MSOCL_LAYOUT_IMAGE2D,  /* the paper's connectivity texture, 16 slots */
   MSOCL_LAYOUT_BUFFER,   /* slot-major buffers, max-degree slots */
-  MSOCL_LAYOUT_EDGES,    /* seed 2: a work-item per spring, float atomics
-                            into force accumulators (symplectic Euler only) */
+  MSOCL_LAYOUT_EDGES,    /* seed 2: a work-item per spring computes its
+                            force once, then each point sums its springs'
+                            in BUFFER's order, no atomics: bitwise BUFFER
+                            (symplectic Euler only, one device) */
   MSOCL_LAYOUT_GRID      /* no stored springs: a cloth from
                             msocl_model_cloth_grid (or a lattice from
                             msocl_model_lattice) recomputes its 12 (32)

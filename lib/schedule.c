@@ -88,8 +88,10 @@ static const struct msocl__schedule fused[3] = {
 
 const struct msocl__schedule *msocl__schedule_of(const msocl_sim_options *o)
 {
-  return o->tuning.fused == MSOCL_ON ? &fused[o->strain]
-                                      : &table[o->integrator][o->strain];
+  /* EDGES: its spring pass and point pass are the whole step, as fused */
+  const int one = o->tuning.fused == MSOCL_ON ||
+                  o->tuning.layout == MSOCL_LAYOUT_EDGES;
+  return one ? &fused[o->strain] : &table[o->integrator][o->strain];
 }
 
 int msocl__phase_count(const msocl__engine *s)

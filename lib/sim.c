@@ -178,20 +178,8 @@ static int make_buffers(msocl__engine *s, const msocl_model *m)
     s->backup_p = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
     s->backup_v = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
   }
-  if (s->lay.kind == MSOCL_LAYOUT_EDGES) {
-    s->edge_global = ((size_t)s->lay.nsprings + 63) / 64 * 64;
-    if (s->edge_global == 0)
-      s->edge_global = 64;
-    s->edge_groups = s->edge_global / 64;
-    s->force = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
-    if (rc == MSOCL_OK) {
-      float zero = 0.0f;
-      cl_int e = clEnqueueFillBuffer(s->dev->queue, s->force, &zero,
-                                     sizeof zero, 0, state, 0, NULL, NULL);
-      if (e != CL_SUCCESS)
-        rc = msocl__fail(e, "clEnqueueFillBuffer: %s", msocl_err_name(e));
-    }
-  }
+  if (rc == MSOCL_OK && s->lay.kind == MSOCL_LAYOUT_EDGES)
+    rc = msocl__edges_buffers(s);
   size_t parts = s->groups > s->edge_groups ? s->groups : s->edge_groups;
   s->partial = buffer(s, CL_MEM_READ_WRITE, parts * sizeof(cl_float4), NULL,
                       &rc);
@@ -386,7 +374,8 @@ void msocl__engine_destroy(msocl__engine *s)
                    s->inv_mass,   s->col,        s->normal,     s->tri_off,
                    s->tri_ab,     s->acc,        s->stage_p[0], s->stage_p[1],
                    s->stage_v[0], s->stage_v[1], s->sum_p,      s->sum_v,
-                   s->backup_p,   s->backup_v,   s->partial,    s->force};
+                   s->backup_p,   s->backup_v,   s->partial,    s->edge_coef[0],
+                   s->edge_coef[1]};
   for (size_t q = 0; q < sizeof mems / sizeof mems[0]; q++)
     if (mems[q])
       clReleaseMemObject(mems[q]);

@@ -33,8 +33,11 @@ struct msocl__engine {
   cl_mem stage_p[2], stage_v[2], sum_p, sum_v; /* RK4 stages; CG vectors */
   cl_mem backup_p, backup_v; /* last state that passed the blow-up check */
   cl_mem partial;         /* one float4 per work-group of reductions */
-  cl_mem force;           /* EDGES: float4 force accumulators */
+  cl_mem edge_coef[2];    /* EDGES: per spring, the spring's and the
+                             dashpot's force over its length vector */
   size_t edge_global, edge_groups; /* EDGES: springs rounded up to 64 */
+  size_t edge_work, edge_points; /* EDGES: the passes' blocks of 8
+                             springs, of 8 points, rounded up to 64 */
   cl_kernel k[MSOCL__K_COUNT];
   int r;
   int acc_valid;          /* acc matches the current state */
@@ -336,5 +339,11 @@ int msocl__strain_position(msocl__engine *s, cl_mem vel);
 int msocl__launch(msocl__engine *s, int k);
 int msocl__launch_range(msocl__engine *s, int k);
 int msocl__launch_all(msocl__engine *s, int k);
+/* EDGES (edges.c): the coefficient buffers; the kernels' fixed arguments;
+ * the whole step (the spring pass, then the point pass, which writes
+ * pos[1 - r] and vel[1 - r]). */
+int msocl__edges_buffers(msocl__engine *s);
+int msocl__edges_setup(msocl__engine *s);
+int msocl__edges_velocity(msocl__engine *s);
 
 #endif

@@ -48,12 +48,17 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
       return msocl__fail(MSOCL_ERR_BAD_VALUE,
                          "weight %d is %g: weights must be finite and >= 0",
                          d, t->weights[d]);
-  if (parts > 1 && (t->layout == MSOCL_LAYOUT_EDGES ||
-                    o->strain != MSOCL_STRAIN_NONE))
+  if (parts > 1 && t->layout == MSOCL_LAYOUT_EDGES)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "the EDGES layout runs on one device, not split over "
+                       "%d: use BUFFER (in precise math EDGES gives its "
+                       "result bit for bit)",
+                       parts);
+  if (parts > 1 && o->strain != MSOCL_STRAIN_NONE)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "a model split over %d devices runs the gather layouts "
-                       "without strain limiting (EDGES and strain sweeps run "
-                       "on one device)",
+                       "without strain limiting (strain sweeps run on one "
+                       "device)",
                        parts);
   if (o->integrator < MSOCL_SYMPLECTIC_EULER ||
       o->integrator > MSOCL_IMPLICIT_EULER)
