@@ -47,7 +47,8 @@ static const char *const files[] = {"common.cl",   "step.cl",
                                     "integrators.cl", "implicit.cl",
                                     "strain.cl",   "energy.cl",
                                     "normals.cl",  "edges.cl",
-                                    "planes.cl",   "planes_implicit.cl"};
+                                    "planes.cl",   "planes_implicit.cl",
+                                    "planes_rows.cl"};
 #define NFILES (sizeof files / sizeof files[0])
 
 /* All kernel files into dir, with `extra` after the step file. */
