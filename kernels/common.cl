@@ -379,7 +379,7 @@ static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
 {
   float4 p = pos[i], v = vel[i];
   float fx = 0.0f, fy = 0.0f, fz = 0.0f;
-  /* unrolled for a mesh's few slots; a wide table (options.buffer_slots)
+  /* unrolled for a mesh's few slots; a wide table (tuning.buffer_slots)
    * would only bloat the code */
 #if MSOCL_TABLE_SLOTS <= 64
 #pragma unroll

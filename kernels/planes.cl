@@ -1,4 +1,4 @@
-/* GRID in planes (options.planes): symplectic Euler's two passes (or
+/* GRID in planes (tuning.planes): symplectic Euler's two passes (or
  * fused), velocity Verlet's and RK4's stages and both strain limits'
  * sweeps, over a cloth grid or lattice whose state is held as separate
  * x, y, z planes of floats, each row padded by two points on every side.
@@ -469,7 +469,7 @@ MSOCL_PLANES_GATHER(msocl_planes_velocity,
   }
 }
 
-/* Both passes in one kernel (options.fused), as msocl_fused: the point
+/* Both passes in one kernel (tuning.fused), as msocl_fused: the point
  * moves by its new velocity at once; others read only the old p. */
 MSOCL_PLANES_GATHER(msocl_planes_fused,
                     (MSOCL_CONN, __global const float *p,

@@ -53,7 +53,7 @@ __kernel void msocl_position(__global const float4 *pos,
   pos_out[i] = (float4)(p.xyz + dt * vel[i].xyz, p.w);
 }
 
-/* Both passes in one kernel (options.fused): the velocity pass, then the
+/* Both passes in one kernel (tuning.fused): the velocity pass, then the
  * point moves by the new velocity at once. Other points read only the old
  * positions (pos, not pos_out), so this is exactly the two passes' result -
  * with one launch and one read of the state instead of two. */
