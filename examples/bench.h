@@ -92,6 +92,17 @@ int bench_open(const struct bench_opts *o, msocl_runtime **rt,
                msocl_device_info *info);
 /* r->device: the label of rt's first device. */
 void bench_row_device(struct bench_row *r, msocl_runtime *rt);
+/* The largest |a[i] - b[i]| over n floats (NaN where either is). */
+double bench_max_diff(const float *a, const float *b, size_t n);
+/* Times model m under options so on rt: a warm-up step, then the best of
+ * o->repeat runs of o->steps into r->seconds; the final positions into pos
+ * (3 r->points floats), their largest difference from ref (when not NULL)
+ * into r->error, and whether the steps ran in planes into *planes (when
+ * not NULL). Returns the library's status. */
+int bench_time_sim(const struct bench_opts *o, msocl_runtime *rt,
+                   const msocl_model *m, const msocl_sim_options *so,
+                   struct bench_row *r, float *pos, const float *ref,
+                   int *planes);
 
 int bench_table1(const struct bench_opts *o, FILE *csv);
 int bench_precision(const struct bench_opts *o, FILE *csv);

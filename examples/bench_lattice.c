@@ -32,16 +32,6 @@ static msocl_model *build(int n)
   return m;
 }
 
-static double max_diff(const float *a, const float *b, size_t n)
-{
-  double d = 0.0;
-  for (size_t i = 0; i < n; i++) {
-    double e = fabs((double)a[i] - (double)b[i]);
-    d = e > d || isnan(e) ? e : d;
-  }
-  return d;
-}
-
 /* One engine: a row, printed and written; pos receives its final
  * positions. Returns its steps per second, 0 where it failed. */
 static double run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
@@ -65,28 +55,13 @@ static double run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
   so.tuning.layout = engine ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
   so.tuning.planes = engine == 2 ? MSOCL_ON : MSOCL_OFF;
   so.check_every = 0;
-  msocl_sim *s = NULL;
-  int rc = msocl_sim_create(&s, rt, m, &so);
-  if (rc == MSOCL_OK)
-    rc = msocl_sim_step(s, 1); /* warm-up */
-  r.seconds = INFINITY;
-  for (int rep = 0; rc == MSOCL_OK && rep < o->repeat; rep++) {
-    double t0 = bench_now();
-    rc = msocl_sim_step(s, o->steps);
-    double t = bench_now() - t0;
-    r.seconds = t < r.seconds ? t : r.seconds;
-  }
-  if (rc == MSOCL_OK)
-    rc = msocl_sim_read_positions(s, pos);
-  if (rc == MSOCL_OK && ref)
-    r.error = max_diff(pos, ref, 3 * (size_t)r.points);
+  int rc = bench_time_sim(o, rt, m, &so, &r, pos, ref, NULL);
   r.status = rc == MSOCL_OK ? "ok" : "failed";
   if (rc != MSOCL_OK) {
     bench_fail(r.layout, rc);
     r.seconds = NAN;
   }
   bench_row_rates(&r);
-  msocl_sim_destroy(s);
   char ratio[16] = "-", err[16] = "-";
   if (ref_ips > 0 && r.steps_per_s > 0)
     snprintf(ratio, sizeof ratio, "%.2fx", r.steps_per_s / ref_ips);

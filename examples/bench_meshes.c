@@ -67,16 +67,6 @@ static msocl_model *obj_cloth(int n)
   return m;
 }
 
-static double max_diff(const float *a, const float *b, size_t n)
-{
-  double d = 0.0;
-  for (size_t i = 0; i < n; i++) {
-    double e = fabs((double)a[i] - (double)b[i]);
-    d = e > d || isnan(e) ? e : d;
-  }
-  return d;
-}
-
 /* One engine's row; pos receives its final positions. Returns its steps
  * per second, 0 where it failed, -1 where planes were declined. */
 static double run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
@@ -109,23 +99,8 @@ static double run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
                      : engine == 1 ? MSOCL_ON
                                    : MSOCL_AUTO;
   so.check_every = 0;
-  msocl_sim *s = NULL;
-  int rc = msocl_sim_create(&s, rt, m, &so), planes = 0;
-  if (rc == MSOCL_OK)
-    rc = msocl_sim_step(s, 1); /* warm-up */
-  r.seconds = INFINITY;
-  for (int rep = 0; rc == MSOCL_OK && rep < o->repeat; rep++) {
-    double t0 = bench_now();
-    rc = msocl_sim_step(s, o->steps);
-    double t = bench_now() - t0;
-    r.seconds = t < r.seconds ? t : r.seconds;
-  }
-  if (rc == MSOCL_OK)
-    rc = msocl_sim_read_positions(s, pos);
-  if (rc == MSOCL_OK)
-    rc = msocl_sim_planes(s, &planes);
-  if (rc == MSOCL_OK && ref)
-    r.error = max_diff(pos, ref, 3 * (size_t)n);
+  int planes = 0;
+  int rc = bench_time_sim(o, rt, m, &so, &r, pos, ref, &planes);
   /* forced planes the library declines (a spill): a row saying so */
   const int declined = engine == 1 && rc == MSOCL_ERR_BAD_VALUE;
   r.status = rc == MSOCL_OK ? "ok" : declined ? "declined" : "failed";
@@ -135,7 +110,6 @@ static double run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
     r.seconds = NAN;
   }
   bench_row_rates(&r);
-  msocl_sim_destroy(s);
   char ratio[16] = "-", err[16] = "-";
   if (ref_ips > 0 && r.steps_per_s > 0)
     snprintf(ratio, sizeof ratio, "%.2fx", r.steps_per_s / ref_ips);

@@ -314,6 +314,42 @@ int main(int argc, char **argv)
 
 /* ------------------------------------------------------------ shared */
 
+double bench_max_diff(const float *a, const float *b, size_t n)
+{
+  double d = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    double e = fabs((double)a[i] - (double)b[i]);
+    d = e > d || isnan(e) ? e : d;
+  }
+  return d;
+}
+
+int bench_time_sim(const struct bench_opts *o, msocl_runtime *rt,
+                   const msocl_model *m, const msocl_sim_options *so,
+                   struct bench_row *r, float *pos, const float *ref,
+                   int *planes)
+{
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, rt, m, so);
+  if (rc == MSOCL_OK)
+    rc = msocl_sim_step(s, 1); /* warm-up */
+  r->seconds = INFINITY;
+  for (int rep = 0; rc == MSOCL_OK && rep < o->repeat; rep++) {
+    double t0 = bench_now();
+    rc = msocl_sim_step(s, o->steps);
+    double t = bench_now() - t0;
+    r->seconds = t < r->seconds ? t : r->seconds;
+  }
+  if (rc == MSOCL_OK)
+    rc = msocl_sim_read_positions(s, pos);
+  if (rc == MSOCL_OK && planes)
+    rc = msocl_sim_planes(s, planes);
+  if (rc == MSOCL_OK && ref)
+    r->error = bench_max_diff(pos, ref, 3 * (size_t)r->points);
+  msocl_sim_destroy(s);
+  return rc;
+}
+
 double bench_now(void)
 {
   struct timespec t;
