@@ -238,28 +238,6 @@ static int msocl_slot(MSOCL_CONN, int i, int s, int n, int *j, float *rest,
 #endif
 }
 
-/* Force on point p from a spring to q of rest length r and stiffness k
- * (Hooke, eq. 2 of the paper with the sign that pulls a stretched spring
- * together). A zero-length spring exerts nothing rather than NaN. */
-static float3 msocl_spring(float3 p, float3 q, float rest, float k)
-{
-  float3 d = q - p;
-  float len = MSOCL_SQRT(dot(d, d));
-  if (len > 0.0f)
-    return (k * MSOCL_DIV(len - rest, len)) * d;
-  return (float3)(0.0f);
-}
-
-/* Dashpot along the spring: c times the closing speed, along the spring. */
-static float3 msocl_dashpot(float3 p, float3 q, float3 vp, float3 vq, float c)
-{
-  float3 d = q - p;
-  float len2 = dot(d, d);
-  if (len2 > 0.0f)
-    return (c * MSOCL_DIV(dot(vq - vp, d), len2)) * d;
-  return (float3)(0.0f);
-}
-
 /* Slots s0 .. s0 + 3 of point i (s0 a multiple of 4, unrolled) as
  * vectors; a slot past the last is the point itself with zeros. */
 static void msocl_slot4(MSOCL_CONN, int i, int s0, int n, int4 *j,
@@ -367,8 +345,9 @@ static void msocl_diff4(__global const float4 *buf, int4 j, float4 o,
 }
 
 /* Internal and viscous force on point i (not gravity): the gather over its
- * springs, in slot order - msocl_spring and msocl_dashpot four slots at a
- * time, so that their square roots and divisions, which bounded this loop
+ * springs, in slot order - each spring k (len - rest) / len d (Hooke, eq. 2
+ * of the paper; a zero-length spring exerts nothing rather than NaN) and
+ * each dashpot c dot(vq - vp, d) / len^2 d, four slots at a time, so that their square roots and divisions, which bounded this loop
  * on a CPU (PoCL runs it one work-item at a time: docs/PERFORMANCE.md),
  * take one SIMD instruction for four springs. Each lane does the scalar
  * arithmetic, and the sums still go slot after slot: bitwise the one-slot
@@ -390,7 +369,7 @@ static float3 msocl_force(MSOCL_CONN, __global const float4 *pos,
     msocl_slot4(MSOCL_CONN_ARGS, i, s0, n, &j, &rest, &k, &c);
     float4 dx, dy, dz;
     msocl_diff4(pos, j, p, &dx, &dy, &dz);
-    /* dot(d, d) = (x x + y y) + z z, as msocl_spring */
+    /* dot(d, d) = (x x + y y) + z z */
     float4 len2 = dx * dx + dy * dy + dz * dz;
     float4 len = MSOCL_SQRT(len2);
     float4 t = k * MSOCL_DIV(len - rest, len);
