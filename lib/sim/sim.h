@@ -1,107 +1,15 @@
-/* A simulation is one or more engines - a whole copy of the model on one
- * device, advancing the points of its own range - and, with several, the
+/* A simulation is one or more engines (engine.h) and, with several, the
  * plan for exchanging what their neighbours read. Shared by the files that
- * set engines up (sim.c), step them (schedule.c, integrate*.c, strain.c,
- * planes*.c, cg.c), measure them (energy.c), and join them into the public
- * simulation (sim_step.c, sim_io.c). */
+ * join engines into the public simulation (sim_create.c, sim_step.c,
+ * sim_io.c, batch.c), exchange their halos (exchange*.c) and run them on
+ * host threads (workers.c). */
 #ifndef MSOCL_SIM_H
 #define MSOCL_SIM_H
 
-#include "layout.h"
-
-/* Kernels the library's program holds; the enum indexes msocl_sim.k. */
-enum {
-  MSOCL__K_VELOCITY, MSOCL__K_POSITION, MSOCL__K_NORMALS, MSOCL__K_EULER,
-  MSOCL__K_ACCEL, MSOCL__K_DRIFT, MSOCL__K_KICK, MSOCL__K_RK4,
-  MSOCL__K_ENERGY, MSOCL__K_IE_RHS, MSOCL__K_IE_APPLY, MSOCL__K_CG_STEP,
-  MSOCL__K_CG_DIR, MSOCL__K_IE_FINISH, MSOCL__K_STRAIN_VEL,
-  MSOCL__K_STRAIN_POS, MSOCL__K_STRAIN_COMMIT, MSOCL__K_EDGES_FORCE,
-  MSOCL__K_EDGES_VEL, MSOCL__K_EDGES_ENERGY, MSOCL__K_FUSED, MSOCL__K_COUNT
-};
-
-typedef struct msocl__engine msocl__engine;
-
-struct msocl__engine {
-  struct msocl__device *dev;
-  msocl_sim_options o;
-  int n;
-  cl_uint nconn;          /* connectivity arguments before the others */
-  struct msocl__layout lay;
-  cl_mem pos[2], vel[2];  /* ping-pong: [r] is current */
-  cl_mem inv_mass, col, normal, tri_off, tri_ab;
-  cl_mem acc;             /* Verlet: a at the current state */
-  cl_mem stage_p[2], stage_v[2], sum_p, sum_v; /* RK4 stages; CG vectors */
-  cl_mem backup_p, backup_v; /* last state that passed the blow-up check */
-  cl_mem partial;         /* one float4 per work-group of reductions */
-  cl_mem edge_coef[2];    /* EDGES: per spring, the spring's and the
-                             dashpot's force over its length vector */
-  size_t edge_global, edge_groups; /* EDGES: springs rounded up to 64 */
-  size_t edge_work, edge_points; /* EDGES: the passes' blocks of 8
-                             springs, of 8 points, rounded up to 64 */
-  cl_kernel k[MSOCL__K_COUNT];
-  int r;
-  int acc_valid;          /* acc matches the current state */
-  int damped;             /* dashpots: gathers read neighbours' velocities */
-  int lo, hi;             /* the points this engine advances */
-  size_t offset, global;  /* its launches: from lo, (hi - lo) work-items
-                             (one engine: 0 and n rounded up to 64) */
-  size_t run_offset, run_global; /* what msocl__launch covers now: the
-                             above, or one span of it while a split job
-                             runs its boundary first */
-  size_t groups;          /* reductions: work-groups of 64 over [lo, hi) */
-  size_t full_global;     /* n rounded up to 64 */
-  int cg_iterations;
-  double cg_residual;
-  /* steps since the last msocl__cg_report whose CG stopped above the
-   * tolerance, and the worst of them */
-  int cg_missed, cg_worst_iterations;
-  double cg_worst_residual;
-  cl_float4 gravity;
-  float viscous, air;
-  int ncol;
-  float *stage;           /* 4n floats, the initial upload */
-  cl_float4 *partial_host;
-  /* GRID in planes (planes.c, kernels/planes.cl): the state as x, y, z
-   * planes of padded rows, kept there between calls */
-  int planes;
-  int pl_valid;           /* the planes hold the current state */
-  int pl_ahead;           /* ... and the float4 buffers are behind */
-  int pl_set;             /* the plane set that holds it */
-  cl_mem pl_p[2], pl_v[2], pl_aux; /* ping-pong like pos and vel */
-  cl_mem pl_a;            /* Verlet: the acceleration */
-  cl_mem pl_sp[2], pl_sv[2], pl_sum[2]; /* RK4: stage states, sums */
-  cl_mem pl_s[2];         /* strain sweeps (velocity: pl_s[0]) */
-  cl_mem pl_col;          /* the colliders, a float4 a value (planes.c) */
-  struct msocl__layout pl_lay; /* the planes kernels' connectivity: lay,
-                             BUFFER's table copied with a plane's stride */
-  cl_mem pl_table[4];     /* that copy's nbr, rk, dashpots, spill (owned) */
-  cl_mem pl_list;         /* BUFFER with a spill: the points that spill */
-  int pl_nspill;          /* ... and how many */
-  cl_kernel pl_ks[22];    /* the gathering kernels' _spill twins */
-  cl_kernel pl_k[22];     /* planes.c's kernels (planes.h) */
-  cl_uint pl_conn;        /* the gathering kernels' connectivity args */
-  int pl_pitch, pl_slab, pl_plane; /* floats a row, a layer, a plane */
-  size_t pl_global[3];    /* the passes' range: rows padded to a group */
-  size_t pl_group;        /* a work-group's points (CPU devices) */
-  /* symplectic Euler in one sweep a step (planes_rows.c), where it applies */
-  cl_kernel pl_rows;
-  cl_mem pl_ring;         /* its work-items' rings of spring terms */
-  size_t pl_blocks;       /* its work-items: blocks of rows */
-};
+#include "engine.h"
 
 /* The largest number of engines and of exchange buffers a step names. */
 #define MSOCL__MAX_PARTS MSOCL__MAX_DEVICES
-
-/* What a phase of a step leaves that other engines' next phase reads. */
-enum {
-  MSOCL__X_POS_W = 1, MSOCL__X_VEL_W = 2, MSOCL__X_VEL_R = 4,
-  MSOCL__X_STAGE0 = 8, MSOCL__X_STAGE1 = 16, /* RK4 stage positions */
-  MSOCL__X_STAGEV0 = 32, MSOCL__X_STAGEV1 = 64, /* and velocities */
-  MSOCL__X_CG_P = 128,                          /* implicit: CG direction */
-  MSOCL__X_LAST = MSOCL__X_CG_P
-};
-/* The most buffers one phase exchanges (positions and velocities). */
-#define MSOCL__X_SLOTS 2
 
 /* A write an engine will receive into its halos: the buffer (bound when
  * the phase that filled the staging area ended) and the staging area. */
@@ -229,64 +137,7 @@ int msocl__workers_run(struct msocl__workers *w, int (*fn)(void *ctx, int i),
                        void *ctx);
 void msocl__workers_destroy(struct msocl__workers *w);
 
-/* One engine for the whole model on `dev`, advancing points [lo, hi). */
-int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
-                         const msocl_model *m, const msocl_sim_options *o,
-                         int lo, int hi);
-void msocl__engine_destroy(msocl__engine *e);
-/* Sets the kernels' fixed arguments, once. */
-int msocl__integrate_setup(msocl__engine *s);
-/* A step is a few phases (schedule.c's table); after each, the buffers in
- * the returned mask must reach the other engines before the next phase
- * reads them. */
-int msocl__phase_count(const msocl__engine *s);
-int msocl__phase(msocl__engine *s, int phase, unsigned *exchange);
-/* That mask, without queuing anything. */
-unsigned msocl__phase_mask(const msocl__engine *s, int phase);
-/* GRID in planes (planes.c). would: whether model m's GRID on dev, over
- * points [lo, hi), would run in planes (what AUTO weighs for a lattice);
- * choose: whether this engine runs in planes (tuning.planes;
- * MSOCL_ERR_BAD_VALUE when forced where it cannot); create: its buffers
- * and kernels, from the program built with -DMSOCL_PLANES; release: frees
- * them. Its passes: schedule.h. */
-int msocl__planes_would(const struct msocl__device *dev,
-                        const msocl_sim_options *o, const msocl_model *m,
-                        int lo, int hi);
-int msocl__planes_choose(msocl__engine *s, const msocl_model *m);
-/* MSOCL_ERR_BAD_VALUE, before anything is allocated, where planes are
- * forced (tuning.planes ON) on a grid the kernels' int indices cannot address
- * or on a split; else MSOCL_OK. */
-int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
-                          int lo, int hi);
-/* Device bytes the planes of model m's grid take under options o
- * (msocl.h's formula). */
-size_t msocl__planes_bytes(const msocl_model *m, const msocl_sim_options *o);
-int msocl__planes_create(msocl__engine *s, cl_program prog);
-/* enter: before a run of steps, the state into the planes unless they
- * hold it; step_done: ends a step, from one plane set into the other. */
-int msocl__planes_enter(msocl__engine *s);
-void msocl__planes_step_done(msocl__engine *s);
-/* The state stays in the planes between calls. current: brings the
- * engine's float4 buffers up to date before anything reads them (a copy
- * back only when the planes are ahead); written: after anything writes
- * them, the planes are stale (copied in again at the next step). Both do
- * nothing for an engine without planes. */
-int msocl__planes_current(msocl__engine *s);
-void msocl__planes_written(msocl__engine *s);
-void msocl__planes_release(msocl__engine *s);
-/* Verlet: the acceleration at the current state into acc, over the whole
- * range, unless acc already holds it. */
-int msocl__verlet_accel(msocl__engine *s);
-/* Ends a step: swaps the ping-pong buffers (or plane sets). */
-void msocl__step_done(msocl__engine *s);
-/* The buffer an exchange bit names, at this point of the step. */
-cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit);
-/* Enqueues `n` whole steps on one engine (no wait, no exchange), float4
- * or planes. */
-int msocl__integrate(msocl__engine *s, int n);
-/* Energy of the engine's points (waits for the device); of the whole
- * simulation. */
-int msocl__energy(msocl__engine *s, msocl_energy *e);
+/* Energy of the whole simulation. */
 int msocl__sim_energy(msocl_sim *s, msocl_energy *e);
 /* Stepping pieces (sim_step.c) for batches of simulations. Checked, the
  * steps are counted across calls: room is how many may run before the
@@ -301,49 +152,9 @@ int msocl__batch_end(msocl_sim *s);
 int msocl__check_write(msocl_sim *s);
 int msocl__sim_steps(msocl_sim *s, int n);
 int msocl__sim_finish(msocl_sim *s);
-/* Sets argument i of kernel k to a buffer, a float, an int (launch.c). */
-int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m);
-int msocl__arg_float(cl_kernel k, cl_uint i, float f);
-int msocl__arg_int(cl_kernel k, cl_uint i, int v);
-/* Sets the argument of the engine's float4 kernel k (MSOCL__K_*) that
- * kernels/ names `name` (kernel_args.c): to size bytes at v, a buffer, a
- * float, an int. */
-int msocl__set(msocl__engine *s, int k, const char *name, size_t size,
-               const void *v);
-int msocl__set_mem(msocl__engine *s, int k, const char *name, cl_mem m);
-int msocl__set_float(msocl__engine *s, int k, const char *name, float f);
-int msocl__set_int(msocl__engine *s, int k, const char *name, int v);
-/* Sets every argument of the float4 kernels that holds a value fixed for
- * the engine's life (inv_mass, dt, n, ...), by name. */
-int msocl__set_fixed(msocl__engine *s);
-/* Implicit Euler: the new velocities of one step's CG (cg.c) over
- * `parts` engines, into vel[1 - r] (planes: the other plane set), where
- * exchange(ctx) spreads the CG direction's halo between products. */
-int msocl__implicit_cg(msocl__engine *const *e, int parts,
-                       int (*exchange)(void *ctx), void *ctx);
 /* Ends a stepping call of n steps that returns rc: MSOCL_ERR_NO_CONVERGENCE
  * with its message if rc is MSOCL_OK and a step's CG missed the tolerance;
  * clears the record either way. */
 int msocl__cg_report(msocl_sim *s, int rc, int n);
-/* Adds the engine's reduction partials (s->partial), in group order, to
- * *sum (launch.c). */
-int msocl__implicit_collect(msocl__engine *s, double *sum);
-/* Strain limiting (strain.c): the velocity correction on vel[1 - r];
- * Provot's position correction on pos[1 - r], taken up by the velocities
- * vel. */
-int msocl__strain_velocity(msocl__engine *s);
-int msocl__strain_position(msocl__engine *s, cl_mem vel);
-/* Enqueues kernel k (launch.c) over the engine's current span
- * (run_offset, run_global); _range: over its whole range (offset, global);
- * _all: over every point. */
-int msocl__launch(msocl__engine *s, int k);
-int msocl__launch_range(msocl__engine *s, int k);
-int msocl__launch_all(msocl__engine *s, int k);
-/* EDGES (edges.c): the coefficient buffers; the kernels' fixed arguments;
- * the whole step (the spring pass, then the point pass, which writes
- * pos[1 - r] and vel[1 - r]). */
-int msocl__edges_buffers(msocl__engine *s);
-int msocl__edges_setup(msocl__engine *s);
-int msocl__edges_velocity(msocl__engine *s);
 
 #endif
