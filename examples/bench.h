@@ -127,7 +127,7 @@ const float *bench_serial_positions(const bench_serial *s);
 void bench_serial_destroy(bench_serial *s);
 
 /* Rest lengths of the n x n tablecloth's stretch, shear and bend springs,
- * as lib/model_cloth.c rounds them (bench_serial.c). */
+ * as lib/model/model_cloth.c rounds them (bench_serial.c). */
 void bench_tc_rests(int n, float rest[3]);
 
 /* The tablecloth as expert C: struct of arrays, padded rows, both passes

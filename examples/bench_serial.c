@@ -24,7 +24,8 @@ struct bench_serial {
 };
 
 /* Every spring of a kind rests at the grid's spacing for that kind (as
- * lib/model_cloth.c does): h for stretch, h sqrt 2 for shear, 2h for bend. */
+ * lib/model/model_cloth.c does): h for stretch, h sqrt 2 for shear, 2h for
+ * bend. */
 static void push(bench_serial *s, int i, int j, float k, float rest)
 {
   struct spring *e = &s->sp[s->ns++];
@@ -42,7 +43,7 @@ void bench_tc_rests(int n, float rest[3])
   rest[2] = (float)(2 * h);
 }
 
-/* The grid of lib/model_cloth.c: point (i, j) at origin + i/(n-1) z +
+/* The grid of lib/model/model_cloth.c: point (i, j) at origin + i/(n-1) z +
  * j/(n-1) x, stretch, shear and bend springs. */
 static void build(bench_serial *s, int n)
 {

@@ -17,7 +17,7 @@
  * pass, Verlet's drift and kick, RK4's stage and the strain sweeps, slot
  * by slot in the same order, so the result is bitwise theirs
  * (tests/check_planes.c). The state stays in the planes between calls
- * (lib/planes.c): msocl_planes_pack copies it in after the engine's
+ * (lib/engine/planes.c): msocl_planes_pack copies it in after the engine's
  * float4 buffers were written, msocl_planes_unpack back before they are
  * read.
  *
@@ -70,7 +70,7 @@
 #endif
 
 /* Value k of collider c (0: kind, 1: friction, 4-7: msocl_collider_gap's
- * prm) in the planes' collider table (lib/planes.c), where each value
+ * prm) in the planes' collider table (lib/engine/planes.c), where each value
  * has a float4 to itself: adjacent ones would be loaded as a pair into a
  * <2 x float>, which stops PoCL vectorising the kernel. */
 #define MSOCL_PLANES_COL(cf, c, k) ((cf)[4 * (8 * (c) + (k))])

@@ -1,5 +1,5 @@
 /* Symplectic Euler on a cloth grid in planes, one sweep a step, each
- * spring computed once (lib/planes_rows.c takes it where it applies: a
+ * spring computed once (lib/engine/planes_rows.c takes it where it applies: a
  * CPU device, no dashpots, no strain limit, rows at least MSOCL_ROWS_W
  * points wide). Needs common.cl and planes.cl before it (MSOCL_DOT3,
  * MSOCL_PLANES_COL), and keeps planes.cl's layout: point (x, y) at
@@ -18,7 +18,7 @@
  * in msocl_planes_fused: its velocity in place (no other point reads
  * it), its position into the other plane set.
  *
- * The position planes' padding holds NaN (lib/planes_rows.c): a missing
+ * The position planes' padding holds NaN (engine/planes_rows.c): a missing
  * neighbour's length is NaN, `len > 0` fails and its term is the zero
  * msocl_planes_force adds for it, with no edge test a slot. Same slot
  * order and arithmetic as msocl_planes_kick, so the result is bitwise

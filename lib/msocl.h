@@ -476,7 +476,7 @@ MSOCL_EXTERN int msocl_sim_split_info(const msocl_sim *s,
 MSOCL_EXTERN int msocl_sim_point_order(const msocl_sim *s, int *order);
 
 /* The largest stable time step of the model under an integrator, from a
- * Gershgorin bound on the highest eigenfrequency (see lib/stable_dt.c):
+ * Gershgorin bound on the highest eigenfrequency (see lib/model/stable_dt.c):
  * symplectic Euler and Verlet h w < 2, RK4 h w <= 2 sqrt 2 (both less with
  * damping), explicit Euler needs damping (MSOCL_ERR_UNSTABLE without),
  * implicit Euler: +infinity. msocl_stable_dt bounds the model's own

@@ -879,7 +879,7 @@ START_TEST(auto_meshes)
 }
 END_TEST
 
-/* The one-sweep symplectic Euler (lib/planes_rows.c: no dashpots, rows
+/* The one-sweep symplectic Euler (lib/engine/planes_rows.c: no dashpots, rows
  * of at least 16 points) is bitwise float4's, two passes or fused: rows a
  * vector wide, one more, two rows (the least a cloth has), three, many
  * rows a work-item; each collider kind alone, all three, none; pins at

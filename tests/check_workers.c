@@ -1,4 +1,4 @@
-/* The host threads a split simulation runs its devices on (lib/workers.c):
+/* The host threads a split simulation runs its devices on (sim/workers.c):
  * every job index runs once a round, on a thread of its own, rounds never
  * overlap, and a job's failure reaches the caller with its message. No
  * OpenCL. */

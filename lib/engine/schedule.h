@@ -7,7 +7,7 @@
 #ifndef MSOCL_SCHEDULE_H
 #define MSOCL_SCHEDULE_H
 
-#include "sim.h"
+#include "engine.h"
 
 /* What a pass does, on the state [r] of the step into [w]. */
 enum msocl__pass {

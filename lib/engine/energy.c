@@ -2,7 +2,7 @@
  * on the device by work-group reduction and finished on the host in
  * double. */
 #include "config.h"
-#include "sim.h"
+#include "engine.h"
 
 #include <math.h>
 

@@ -2,7 +2,7 @@
  * every engine file uses; and reading back the work-group partials of a
  * reduction. */
 #include "config.h"
-#include "sim.h"
+#include "engine.h"
 
 int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m)
 {

@@ -4,7 +4,7 @@
  * engine's nconn of them (msocl__layout_set_args sets those). The EDGES
  * kernels keep their own argument code (integrate.c). */
 #include "config.h"
-#include "sim.h"
+#include "engine.h"
 
 #include <string.h>
 

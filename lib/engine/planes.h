@@ -3,7 +3,7 @@
 #ifndef MSOCL_PLANES_H
 #define MSOCL_PLANES_H
 
-#include "sim.h"
+#include "engine.h"
 
 enum {
   PL_VELOCITY, PL_POSITION, PL_PACK, PL_UNPACK, PL_FUSED, PL_DRIFT, PL_KICK,

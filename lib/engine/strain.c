@@ -3,7 +3,7 @@
  * correction after the step. Each sweep is a Jacobi pass from one buffer
  * into another. */
 #include "config.h"
-#include "sim.h"
+#include "engine.h"
 
 #define TRY MSOCL__TRY
 

@@ -4,7 +4,7 @@
  * kicks and moves the point: a step in two launches.
  * No atomics: the sum's order is BUFFER's, so is its result. */
 #include "config.h"
-#include "sim.h"
+#include "engine.h"
 
 #define TRY MSOCL__TRY
 

@@ -4,6 +4,7 @@
  * check. */
 #include "config.h"
 #include "schedule.h"
+#include "sim.h"
 
 #include <math.h>
 #include <string.h>
