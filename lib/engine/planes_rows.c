@@ -14,6 +14,13 @@
  * more than its own, handed to the device's threads as they come free. */
 #define BLOCKS_PER_UNIT 2
 
+/* Argument i of the sweep's kernel, which has no _spill twin. */
+static int arg(cl_kernel k, cl_uint i, size_t size, const void *v)
+{
+  MSOCL__CL(clSetKernelArg(k, i, size, v));
+  return MSOCL_OK;
+}
+
 static int applies(const msocl__engine *s)
 {
   return s->planes && s->dev->info.type == MSOCL_DEVICE_CPU &&
@@ -56,23 +63,23 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   cl_uint a;
   MSOCL__TRY(msocl__layout_set_args(&s->lay, k, &a));
   a += 3;
-  MSOCL__TRY(msocl__pl_arg(s, k, a, sizeof s->pl_aux, &s->pl_aux));
-  MSOCL__TRY(msocl__pl_arg(s, k, a + 1, sizeof(int), &s->pl_pitch));
-  MSOCL__TRY(msocl__pl_arg(s, k, a + 2, sizeof(int), &s->pl_plane));
-  MSOCL__TRY(msocl__pl_arg(s, k, a + 3, sizeof s->gravity, &s->gravity));
-  MSOCL__TRY(msocl__pl_arg(s, k, a + 4, sizeof(float), &s->viscous));
-  MSOCL__TRY(msocl__pl_arg(s, k, a + 5, sizeof(float), &s->air));
-  MSOCL__TRY(msocl__pl_arg(s, k, a + 6, sizeof(float), &s->o.dt));
-  MSOCL__TRY(msocl__pl_arg(s, k, a + 7, sizeof s->pl_col, &s->pl_col));
-  MSOCL__TRY(msocl__pl_arg(s, k, a + 8, sizeof s->pl_ring, &s->pl_ring));
-  return msocl__pl_arg(s, k, a + 9, sizeof(int), &ring_w);
+  MSOCL__TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
+  MSOCL__TRY(arg(k, a + 1, sizeof(int), &s->pl_pitch));
+  MSOCL__TRY(arg(k, a + 2, sizeof(int), &s->pl_plane));
+  MSOCL__TRY(arg(k, a + 3, sizeof s->gravity, &s->gravity));
+  MSOCL__TRY(arg(k, a + 4, sizeof(float), &s->viscous));
+  MSOCL__TRY(arg(k, a + 5, sizeof(float), &s->air));
+  MSOCL__TRY(arg(k, a + 6, sizeof(float), &s->o.dt));
+  MSOCL__TRY(arg(k, a + 7, sizeof s->pl_col, &s->pl_col));
+  MSOCL__TRY(arg(k, a + 8, sizeof s->pl_ring, &s->pl_ring));
+  return arg(k, a + 9, sizeof(int), &ring_w);
 }
 
 int msocl__pl_rows_step(msocl__engine *s, int r, int w)
 {
   const cl_mem bufs[3] = {s->pl_p[r], s->pl_v[r], s->pl_p[w]};
   for (cl_uint q = 0; q < 3; q++)
-    MSOCL__TRY(msocl__pl_arg(s, s->pl_rows, s->pl_conn + q, sizeof bufs[q],
+    MSOCL__TRY(arg(s->pl_rows, s->pl_conn + q, sizeof bufs[q],
                              &bufs[q]));
   const size_t one = 1;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_rows, 1, NULL,
