@@ -39,7 +39,9 @@ __kernel void msocl_edges_force(__global const int2 *ij, MSOCL_RK,
                v6 = dmp[q.s6], v7 = dmp[q.s7];
   const float8 rest = (float8)(v0.x, v1.x, v2.x, v3.x, v4.x, v5.x, v6.x, v7.x);
   const float8 k = (float8)(v0.y, v1.y, v2.y, v3.y, v4.y, v5.y, v6.y, v7.y);
+#ifdef MSOCL_DAMPING
   const float8 cd = (float8)(v0.z, v1.z, v2.z, v3.z, v4.z, v5.z, v6.z, v7.z);
+#endif
 #else
   const float16 c = vload16(g, (__global const float *)rk);
   const float8 rest = c.even, k = c.odd;

@@ -27,6 +27,7 @@ static float3 msocl_jacobian(float3 p, float3 q, float rest, float k,
   return k * (along + t * (dx - along));
 }
 
+#ifdef MSOCL_DAMPING
 static float3 msocl_damp_jacobian(float3 p, float3 q, float c, float3 dx)
 {
   float3 d = q - p;
@@ -35,6 +36,7 @@ static float3 msocl_damp_jacobian(float3 p, float3 q, float c, float3 dx)
     return (float3)(0.0f);
   return (c * MSOCL_DIV(dot(d, dx), len2)) * d;
 }
+#endif
 
 /* Sums v over the work-group into partial[group].x. */
 static void msocl_group_sum(float v, __local float *part,
