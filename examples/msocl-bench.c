@@ -3,7 +3,7 @@
  * math mode (precision), and the second seed's jello cube per engine
  * (lattice). A table on stdout, one CSV row per run.
  *
- *   msocl-bench [table1|precision|lattice|strain|colliders|meshes] [-d SPEC] [-g LIST] [-s STEPS]
+ *   msocl-bench [table1|precision|lattice|strain|colliders|meshes|wind] [-d SPEC] [-g LIST] [-s STEPS]
  *               [-l LIST] [-i LIST] [-m LIST] [-T SECONDS] [--from X]
  *               [--levels N]
  *               [--max-grid N] [--big-steps N] [--repeat N] [--copy-mib N]
@@ -25,7 +25,7 @@ const char *const bench_integrator_names[5] = {"symplectic", "explicit",
 static int usage(FILE *f, int code)
 {
   fprintf(f,
-"usage: msocl-bench [table1|precision|lattice|strain|colliders|meshes]\n"
+"usage: msocl-bench [table1|precision|lattice|strain|colliders|meshes|wind]\n"
 "                   [options]\n"
 "  table1     the paper's Table 1: tablecloth on a round table, serial C\n"
 "             (Algorithm 1) against libmsocl per layout, with a roofline\n"
@@ -47,6 +47,8 @@ static int usage(FILE *f, int code)
 "             default 6) and an n x n cloth read as OBJ (the second,\n"
 "             default 256): BUFFER in float4 and in planes, and AUTO\n"
 "             (-s default 200; -i default symplectic)\n"
+"  wind       a flag hanging from two corners with no wind and in a 5 m/s\n"
+"             wind, side by side (-g default 128,256,512; -s default 200)\n"
 "options:\n"
 "  -d SPEC        device spec (MSOCL_DEVICE grammar; 'all' = every device)\n"
 "  -g LIST        grid sizes, e.g. 48,64,96 (table1: default 48,64,96,128,\n"
@@ -159,6 +161,8 @@ int main(int argc, char **argv)
       mode = 4, takes = 0;
     } else if (!strcmp(w, "meshes") && a == 1) {
       mode = 5, takes = 0;
+    } else if (!strcmp(w, "wind") && a == 1) {
+      mode = 6, takes = 0;
     } else if (!strcmp(w, "--fused")) {
       o.fused = 1, takes = 0;
     } else if (!strcmp(w, "--values")) {
@@ -248,11 +252,13 @@ int main(int argc, char **argv)
     static const int str[] = {32, 64}, strq[] = {8};
     static const int col[] = {96, 256}, colq[] = {8};
     static const int msh[] = {6, 256}, mshq[] = {2, 16};
+    static const int wnd[] = {128, 256, 512}, wndq[] = {16};
     const int *g = mode == 1   ? NULL
                    : mode == 2 ? (o.quick ? latq : lat)
                    : mode == 3 ? (o.quick ? strq : str)
                    : mode == 4 ? (o.quick ? colq : col)
                    : mode == 5 ? (o.quick ? mshq : msh)
+                   : mode == 6 ? (o.quick ? wndq : wnd)
                    : o.quick   ? t1q
                                : t1;
     o.ngrids = mode == 1   ? 1
@@ -260,6 +266,7 @@ int main(int argc, char **argv)
                : mode == 3 ? (o.quick ? 1 : 2)
                : mode == 4 ? (o.quick ? 1 : 2)
                : mode == 5 ? 2
+               : mode == 6 ? (o.quick ? 1 : 3)
                : o.quick   ? 2
                            : 8;
     for (int i = 0; i < o.ngrids; i++)
@@ -279,7 +286,7 @@ int main(int argc, char **argv)
   }
   if (mode == 2 && !have_s)
     o.steps = o.quick ? 5 : 200;
-  if ((mode == 4 || mode == 5) && !have_s)
+  if (mode >= 4 && !have_s)
     o.steps = o.quick ? 5 : 200;
   if (mode == 3 && !have_t)
     o.sim_time = o.quick ? 0.02 : 2.0;
@@ -304,7 +311,8 @@ int main(int argc, char **argv)
            : mode == 2 ? bench_lattice(&o, csv)
            : mode == 3 ? bench_strain(&o, csv)
            : mode == 4 ? bench_colliders(&o, csv)
-                       : bench_meshes(&o, csv);
+           : mode == 5 ? bench_meshes(&o, csv)
+                       : bench_wind(&o, csv);
   if (csv && fclose(csv) != 0) {
     perror(o.csv);
     rc = 1;

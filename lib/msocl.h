@@ -424,6 +424,22 @@ MSOCL_EXTERN int msocl_sim_write_velocities(msocl_sim *s, const float *xyz);
 /* Unit normals from the model's triangles, computed on the device. */
 MSOCL_EXTERN int msocl_sim_read_normals(msocl_sim *s, float *xyz);
 
+/* Wind: air moving at `velocity` pushes on the model's triangles, each
+ * getting drag along the air's velocity relative to it and lift across
+ * it (NvCloth's model; docs/API.md has the formula), a third to each
+ * corner, before each step. Defaults (msocl_wind_init): still air of
+ * density 1.2 kg/m^3, drag 1.2 (a flat plate face-on), lift 0. */
+typedef struct {
+  float velocity[3]; /* m/s */
+  float density;     /* kg/m^3, >= 0 */
+  float drag;        /* drag coefficient, >= 0 */
+  float lift;        /* lift coefficient */
+} msocl_wind;
+MSOCL_EXTERN void msocl_wind_init(msocl_wind *w);
+/* From the next step, until set again; NULL: no wind. Needs triangles and
+ * the planes engine on one device (else MSOCL_ERR_BAD_VALUE). */
+MSOCL_EXTERN int msocl_sim_set_wind(msocl_sim *s, const msocl_wind *w);
+
 typedef struct {
   /* joules; gravity: -sum m g . p, zero at the origin (for gravity along
    * -y, m |g| y: relative to y = 0) */
@@ -539,6 +555,9 @@ MSOCL_EXTERN int msocl_reference_velocities(const msocl_reference *r,
                                             double *xyz);
 MSOCL_EXTERN int msocl_reference_energy(const msocl_reference *r,
                                         msocl_energy *e);
+/* As msocl_sim_set_wind, in double. */
+MSOCL_EXTERN int msocl_reference_set_wind(msocl_reference *r,
+                                          const msocl_wind *w);
 
 /* ---------------------------------------------------------------- export */
 

@@ -74,4 +74,11 @@ for e in grid-planes grid-float4 buffer; do
       fail "no $e+$c row"
   done
 done
+# wind: the flag without and with wind, both ok
+./examples/msocl-bench wind --quick --csv "$tmp/w.csv" >/dev/null ||
+  fail "wind exited $?"
+for w in none wind; do
+  grep -q ",$w,symplectic,precise,16,.*,ok,,\$" "$tmp/w.csv" ||
+    fail "no $w row"
+done
 echo "PASS"

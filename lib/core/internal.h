@@ -42,6 +42,10 @@ void msocl__clear_error(void);
       return msocl__rc;                                                       \
   } while (0)
 
+/* Checks wind's parameters (finite; density and drag >= 0) and gives
+ * kd = rho Cd / 2 and kl = rho Cl / 2 (core/wind.c). */
+int msocl__wind_check(const msocl_wind *w, double *kd, double *kl);
+
 /* ------------------------------------------------------------------ model */
 
 enum { MSOCL__PLANE = 1, MSOCL__SPHERE = 2, MSOCL__TABLE = 3 };

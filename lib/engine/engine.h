@@ -85,6 +85,12 @@ struct msocl__engine {
   cl_kernel pl_rows;
   cl_mem pl_ring;         /* its work-items' rings of spring terms */
   size_t pl_blocks;       /* its work-items: blocks of rows */
+  /* wind on the triangles, planes only (wind.c, kernels/wind.cl) */
+  int wind_on, wind_ntri, wind_nspill;
+  int *wind_host;         /* the model's triangles, 3 a triangle */
+  cl_kernel wind_k[3];    /* a triangle's force; a point's sum; the sum of
+                             a point on more triangles than the slots */
+  cl_mem wind_tri, wind_slot, wind_third, wind_corner, wind_list;
 };
 
 /* What a phase of a step leaves that other engines' next phase reads. */
@@ -153,6 +159,14 @@ cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit);
 /* Enqueues `n` whole steps on one engine (no wait, no exchange), float4
  * or planes. */
 int msocl__integrate(msocl__engine *s, int n);
+/* Wind (wind.c): create: its kernels, where the engine runs in planes and
+ * the model has triangles; set: air at air[3] with kd = rho Cd / 2 and
+ * kl = rho Cl / 2 from the next step (air NULL: none); pass: its velocity
+ * change, before a step's phases; release: frees it. */
+int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog);
+int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl);
+int msocl__wind_pass(msocl__engine *s);
+void msocl__wind_release(msocl__engine *s);
 /* Energy of the engine's points (waits for the device). */
 int msocl__energy(msocl__engine *s, msocl_energy *e);
 /* Sets argument i of kernel k to a buffer, a float, an int (launch.c). */

@@ -139,6 +139,8 @@ int msocl__integrate(msocl__engine *s, int n)
     TRY(msocl__planes_enter(s));
   const int phases = msocl__phase_count(s);
   for (int q = 0; q < n; q++) {
+    if (s->planes)
+      TRY(msocl__wind_pass(s));
     for (int ph = 0; ph < phases; ph++) {
       unsigned x;
       TRY(msocl__phase(s, ph, &x));

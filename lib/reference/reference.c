@@ -204,6 +204,7 @@ int msocl_reference_step(msocl_reference *r, int n)
   if (n < 0)
     return msocl__fail(MSOCL_ERR_BAD_COUNT, "step count %d is negative", n);
   for (int k = 0; k < n; k++) {
+    msocl__ref_wind(r);
     switch (r->o.integrator) {
     case MSOCL_SYMPLECTIC_EULER:
     case MSOCL_IMPLICIT_EULER:

@@ -79,6 +79,13 @@ int msocl_reference_create(msocl_reference **out, const msocl_model *m,
   r->air = m->air;
   r->ncol = m->ncol;
   memcpy(r->col, m->col, sizeof r->col);
+  r->nt = m->nt;
+  r->tri = malloc((3 * (size_t)m->nt + 1) * sizeof *r->tri);
+  if (!r->tri) {
+    msocl_reference_destroy(r);
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "reference triangles");
+  }
+  memcpy(r->tri, m->tri, 3 * (size_t)m->nt * sizeof *r->tri);
   *out = r;
   return MSOCL_OK;
 }
@@ -96,6 +103,7 @@ void msocl_reference_destroy(msocl_reference *r)
   for (size_t q = 0; q < sizeof vecs / sizeof vecs[0]; q++)
     free(vecs[q]);
   free(r->pinned);
+  free(r->tri);
   free(r);
 }
 

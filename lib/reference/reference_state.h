@@ -23,6 +23,9 @@ struct msocl_reference {
   double cg_residual;
   int cg_missed, cg_worst_iterations; /* as the engine's (sim.h) */
   double cg_worst_residual;
+  int nt, *tri;            /* the model's triangles, 3 a triangle */
+  int wind_on;             /* reference_wind.c */
+  double wind_air[3], wind_kd, wind_kl;
 };
 
 static inline double msocl__dot3(const double *a, const double *b)
@@ -39,6 +42,8 @@ void msocl__ref_collide(const msocl_reference *r, const double *p, double *v,
 void msocl__ref_project(const msocl_reference *r, double *p, double *v);
 /* Backward Euler's new velocities into r->vnew (reference_implicit.c). */
 void msocl__ref_implicit_velocity(msocl_reference *r);
+/* Wind's velocity change before a step (reference_wind.c). */
+void msocl__ref_wind(msocl_reference *r);
 /* As msocl__cg_report, for msocl_reference_step. */
 int msocl__ref_cg_report(msocl_reference *r, int rc, int n);
 

@@ -1,0 +1,115 @@
+/* Wind on the model's triangles in the planes engine (lib/engine/wind.c):
+ * before each step, each triangle's aerodynamic force from the air's
+ * velocity relative to the triangle's (its corners' mean), a third of it
+ * to each corner, as a velocity change dt f / m. The model follows
+ * NvCloth's: drag along the relative wind, proportional to |cos| of the
+ * angle between it and the normal, lift across it, to cos sin; both to
+ * the area and the relative speed squared. One kernel a triangle (no loop
+ * inside, so PoCL vectorises it), one a point summing its corners in the
+ * order the triangles were added, so every layout gets the same bits.
+ * Needs planes.cl before it (MSOCL_PLANES_POINT). */
+#if defined(MSOCL_PLANES)
+
+/* A third of the force on triangle k (its corners at tri[k],
+ * tri[ntri + k], tri[2 ntri + k] of the planes: ints, as an int4 would
+ * keep PoCL from vectorising) of air at velocity air.xyz, with coef.x = rho Cd / 2 and
+ * coef.y = rho Cl / 2, into plane `c` of `third` at triangle index k
+ * (three planes of `ntri` floats). */
+__kernel void msocl_wind_triangles(__global const float *p,
+                                   __global const float *v,
+                                   __global const int *tri,
+                                   __global float *third, float4 air,
+                                   float4 coef, int plane, int ntri,
+                                   int nreal)
+{
+  /* past nreal, triangles with every corner at 0 up to ntri, whose
+   * force is selected away (the padding they read holds anything): no
+   * branch */
+  const int k = get_global_id(0);
+  const bool real = k < nreal;
+  const int tx = tri[k], ty = tri[ntri + k], tz = tri[2 * ntri + k];
+  const int q = plane;
+  const float e1x = p[ty] - p[tx], e1y = p[q + ty] - p[q + tx],
+              e1z = p[2 * q + ty] - p[2 * q + tx];
+  const float e2x = p[tz] - p[tx], e2y = p[q + tz] - p[q + tx],
+              e2z = p[2 * q + tz] - p[2 * q + tx];
+  const float nx = e1y * e2z - e1z * e2y,
+              ny = fma(e1z, e2x, -(e1x * e2z)),
+              nz = fma(-e1y, e2x, e1x * e2y);
+  const float third_of = 1.0f / 3.0f;
+  const float ux = air.x - (v[tx] + v[ty] + v[tz]) * third_of,
+              uy = fma(v[q + tx] + v[q + ty] + v[q + tz], -third_of, air.y),
+              uz = air.z - (v[2 * q + tx] + v[2 * q + ty] + v[2 * q + tz]) /
+                               3.0f;
+  /* With the unnormalised normal (nx, ny, nz) = 2 A n the area cancels:
+   * f = kd |N.u| u / 2 + kl (N.u) (|u|^2 N - (N.u) u) / (2 |N| |u|), one
+   * square root (two would be paired into a vector and stop PoCL
+   * vectorising the kernel). */
+  const float nu = nx * ux + ny * uy + nz * uz;
+  const float uu = ux * ux + uy * uy + uz * uz;
+  const float root = sqrt((nx * nx + ny * ny + nz * nz) * uu);
+  const float d = 0.5f * third_of * coef.x * fabs(nu);
+  const float l = root > 0.0f ? 0.5f * third_of * coef.y * nu / root : 0.0f;
+  third[k] = real ? d * ux + l * (uu * nx - nu * ux) : 0.0f;
+  third[ntri + k] = real ? fma(d, uy, l * fma(uu, ny, -(nu * uy))) : 0.0f;
+  third[2 * ntri + k] = real ? fma(l, fma(-nu, uz, uu * nz), d * uz) : 0.0f;
+}
+
+/* Each point's corners into its velocity, in place: dt times the inverse
+ * mass, nothing for a pinned point. Corner slot c of the point at a is
+ * triangle slot[c plane + a] (a zero-force one past the last where the
+ * point has fewer, and for the planes' padding), in triangle order; the
+ * loop's fixed length unrolls, and nothing is conditional, so PoCL
+ * vectorises it. */
+#define MSOCL_WIND_SLOTS 8
+__kernel void msocl_wind_points(__global float *v, __global const float *aux,
+                                __global const int *slot,
+                                __global const float *third, float dt,
+                                int ntri, int nx, int pitch, int slab,
+                                int plane, int n)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)nx; (void)slab; (void)n;
+  float fx = 0.0f, fy = 0.0f, fz = 0.0f;
+#pragma unroll
+  for (int c = 0; c < MSOCL_WIND_SLOTS; c++) {
+    const int k = slot[c * plane + a];
+    fx += third[k];
+    fy += third[ntri + k];
+    fz += third[2 * ntri + k];
+  }
+  const float s = MSOCL_PLANES_PINNED(aux[plane + a]) ? 0.0f : dt * aux[a];
+  v[a] += s * fx;
+  v[plane + a] += s * fy;
+  v[2 * plane + a] += s * fz;
+}
+
+/* Points on more triangles than the slots (listed: point i at a): their
+ * whole sum from tri_off's CSR (corner c is triangle corner[c]), the
+ * slots having given them nothing. */
+__kernel void msocl_wind_spill(__global float *v, __global const float *aux,
+                               __global const int *tri_off,
+                               __global const int *corner,
+                               __global const float *third,
+                               __global const int *list, float dt, int ntri,
+                               int plane, int nspill)
+{
+  const int q = get_global_id(0);
+  if (q >= nspill)
+    return;
+  const int i = list[2 * q], a = list[2 * q + 1];
+  float fx = 0.0f, fy = 0.0f, fz = 0.0f;
+  for (int c = tri_off[i]; c < tri_off[i + 1]; c++) {
+    const int k = corner[c];
+    fx += third[k];
+    fy += third[ntri + k];
+    fz += third[2 * ntri + k];
+  }
+  const float s = MSOCL_PLANES_PINNED(aux[plane + a]) ? 0.0f : dt * aux[a];
+  v[a] += s * fx;
+  v[plane + a] += s * fy;
+  v[2 * plane + a] += s * fz;
+}
+
+#endif

@@ -1,0 +1,208 @@
+/* Wind in the planes engine (kernels/wind.cl): the triangles' corners as
+ * plane addresses, each point's corners in triangle order, and the pass
+ * that runs before each step while the wind blows. */
+#include "config.h"
+#include "planes.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define TRY MSOCL__TRY
+
+/* Where point j sits in each plane (planes.cl's MSOCL_PLANES_AT). */
+static int address(const msocl__engine *s, int j)
+{
+  if (s->lay.kind != MSOCL_LAYOUT_GRID)
+    return j;
+  const int nx = s->lay.grid_nx, ny = s->lay.grid_ny;
+  const int x = j % nx, y = (j / nx) % ny, z = j / (nx * ny);
+  const int a = (y + 2) * s->pl_pitch + x + 2;
+  return s->lay.grid_nz > 0 ? a + (z + 2) * s->pl_slab : a;
+}
+
+int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog)
+{
+  if (!s->planes || m->nt == 0)
+    return MSOCL_OK;
+  s->wind_host = malloc(3 * (size_t)m->nt * sizeof *s->wind_host);
+  if (!s->wind_host)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "wind's triangles");
+  memcpy(s->wind_host, m->tri, 3 * (size_t)m->nt * sizeof *s->wind_host);
+  s->wind_ntri = m->nt;
+  const char *names[3] = {"msocl_wind_triangles", "msocl_wind_points",
+                          "msocl_wind_spill"};
+  for (int q = 0; q < 3; q++) {
+    cl_int e;
+    s->wind_k[q] = clCreateKernel(prog, names[q], &e);
+    if (e != CL_SUCCESS)
+      return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
+                         msocl_err_name(e));
+  }
+  return MSOCL_OK;
+}
+
+static cl_mem upload(msocl__engine *s, size_t bytes, void *host, int *rc)
+{
+  cl_int e;
+  cl_mem b = clCreateBuffer(s->dev->ctx,
+                            CL_MEM_READ_WRITE |
+                                (host ? CL_MEM_COPY_HOST_PTR : 0),
+                            bytes, host, &e);
+  if (e != CL_SUCCESS && *rc == MSOCL_OK)
+    *rc = msocl__fail(e, "clCreateBuffer(%zu bytes for wind): %s", bytes,
+                      msocl_err_name(e));
+  return b;
+}
+
+/* The corners as addresses (a zero-force triangle, all corners at 0, at
+ * index wind_ntri and after it up to a whole 64), each point's triangles
+ * in its slots (in triangle order, as engine.c fills tri_off's CSR), the
+ * points with more listed for the spill kernel, and the fixed arguments;
+ * once, at the first wind. */
+enum { SLOTS = 8 };
+static int buffers(msocl__engine *s)
+{
+  const int n = s->n, nt = (s->wind_ntri / 64 + 1) * 64, zero = s->wind_ntri;
+  const size_t P = (size_t)s->pl_plane;
+  int *tri = calloc(3 * (size_t)nt, sizeof *tri);
+  int *off = calloc((size_t)n + 1, sizeof *off), *fill = calloc((size_t)n, sizeof *fill),
+      *corner = malloc(3 * (size_t)nt * sizeof *corner),
+      *slot = malloc(SLOTS * P * sizeof *slot), *list = malloc(2 * (size_t)n * sizeof *list);
+  int rc = MSOCL_OK;
+  if (!tri || !off || !fill || !corner || !slot || !list)
+    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "wind's tables");
+  for (int t = 0; rc == MSOCL_OK && t < s->wind_ntri; t++) {
+    const int *c = s->wind_host + 3 * t;
+    for (int k = 0; k < 3; k++) {
+      tri[k * nt + t] = address(s, c[k]);
+      off[c[k] + 1]++;
+    }
+  }
+  for (int i = 0; rc == MSOCL_OK && i < n; i++)
+    off[i + 1] += off[i];
+  for (int t = 0; rc == MSOCL_OK && t < s->wind_ntri; t++)
+    for (int k = 0; k < 3; k++) {
+      const int a = s->wind_host[3 * t + k];
+      corner[off[a] + fill[a]++] = t;
+    }
+  int nspill = 0;
+  for (size_t q = 0; rc == MSOCL_OK && q < SLOTS * P; q++)
+    slot[q] = zero;
+  for (int i = 0; rc == MSOCL_OK && i < n; i++) {
+    const int a = address(s, i), count = off[i + 1] - off[i];
+    if (count > SLOTS) {
+      list[2 * nspill] = i;
+      list[2 * nspill++ + 1] = a;
+      continue;
+    }
+    for (int c = 0; c < count; c++)
+      slot[(size_t)c * P + (size_t)a] = corner[off[i] + c];
+  }
+  if (rc == MSOCL_OK) {
+    s->wind_tri = upload(s, 3 * (size_t)nt * sizeof *tri, tri, &rc);
+    s->wind_slot = upload(s, SLOTS * P * sizeof *slot, slot, &rc);
+    s->wind_third = upload(s, 3 * (size_t)nt * sizeof(float), NULL, &rc);
+    if (nspill > 0) {
+      s->wind_corner = upload(s, 3 * (size_t)nt * sizeof *corner, corner, &rc);
+      s->wind_list = upload(s, 2 * (size_t)nspill * sizeof *list, list, &rc);
+    }
+  }
+  s->wind_nspill = nspill;
+  free(tri);
+  free(off);
+  free(fill);
+  free(corner);
+  free(slot);
+  free(list);
+  TRY(rc);
+  cl_kernel k = s->wind_k[0];
+  TRY(msocl__arg_mem(k, 2, s->wind_tri));
+  TRY(msocl__arg_mem(k, 3, s->wind_third));
+  TRY(msocl__arg_int(k, 6, s->pl_plane));
+  TRY(msocl__arg_int(k, 7, nt));
+  TRY(msocl__arg_int(k, 8, s->wind_ntri));
+  k = s->wind_k[1];
+  TRY(msocl__arg_mem(k, 1, s->pl_aux));
+  TRY(msocl__arg_mem(k, 2, s->wind_slot));
+  TRY(msocl__arg_mem(k, 3, s->wind_third));
+  TRY(msocl__arg_float(k, 4, s->o.dt));
+  TRY(msocl__arg_int(k, 5, nt));
+  TRY(msocl__pl_shape(s, k, 6, 1));
+  TRY(msocl__arg_int(k, 10, s->n));
+  if (nspill == 0)
+    return MSOCL_OK;
+  k = s->wind_k[2];
+  TRY(msocl__arg_mem(k, 1, s->pl_aux));
+  TRY(msocl__arg_mem(k, 2, s->tri_off));
+  TRY(msocl__arg_mem(k, 3, s->wind_corner));
+  TRY(msocl__arg_mem(k, 4, s->wind_third));
+  TRY(msocl__arg_mem(k, 5, s->wind_list));
+  TRY(msocl__arg_float(k, 6, s->o.dt));
+  TRY(msocl__arg_int(k, 7, nt));
+  TRY(msocl__arg_int(k, 8, s->pl_plane));
+  return msocl__arg_int(k, 9, nspill);
+}
+
+int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
+{
+  if (!air) {
+    s->wind_on = 0;
+    return MSOCL_OK;
+  }
+  if (!s->planes)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "wind needs the planes engine, and this simulation "
+                       "runs float4 (tuning.planes off, or its layout)");
+  if (s->wind_ntri == 0)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "wind pushes on triangles, and the model has none "
+                       "(msocl_model_add_triangles)");
+  if (!s->wind_tri)
+    TRY(buffers(s));
+  const cl_float4 a = {{air[0], air[1], air[2], 0.0f}},
+                  c = {{kd, kl, 0.0f, 0.0f}};
+  MSOCL__CL(clSetKernelArg(s->wind_k[0], 4, sizeof a, &a));
+  MSOCL__CL(clSetKernelArg(s->wind_k[0], 5, sizeof c, &c));
+  s->wind_on = 1;
+  return MSOCL_OK;
+}
+
+int msocl__wind_pass(msocl__engine *s)
+{
+  if (!s->wind_on)
+    return MSOCL_OK;
+  const int set = s->pl_set;
+  cl_kernel k = s->wind_k[0];
+  TRY(msocl__arg_mem(k, 0, s->pl_p[set]));
+  TRY(msocl__arg_mem(k, 1, s->pl_v[set]));
+  const size_t tris = ((size_t)s->wind_ntri / 64 + 1) * 64; /* buffers' */
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &tris, NULL, 0,
+                                   NULL, NULL));
+  k = s->wind_k[1];
+  TRY(msocl__arg_mem(k, 0, s->pl_v[set]));
+  const size_t local[3] = {s->pl_group, 1, 1};
+  const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 3, NULL, s->pl_global,
+                                   group, 0, NULL, NULL));
+  if (s->wind_nspill == 0)
+    return MSOCL_OK;
+  k = s->wind_k[2];
+  TRY(msocl__arg_mem(k, 0, s->pl_v[set]));
+  const size_t spill = ((size_t)s->wind_nspill + 63) / 64 * 64;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &spill, NULL, 0,
+                                   NULL, NULL));
+  return MSOCL_OK;
+}
+
+void msocl__wind_release(msocl__engine *s)
+{
+  for (int q = 0; q < 3; q++)
+    if (s->wind_k[q])
+      clReleaseKernel(s->wind_k[q]);
+  cl_mem b[5] = {s->wind_tri, s->wind_corner, s->wind_third, s->wind_slot,
+                 s->wind_list};
+  for (int q = 0; q < 5; q++)
+    if (b[q])
+      clReleaseMemObject(b[q]);
+  free(s->wind_host);
+}
