@@ -2,22 +2,24 @@
 # Renders a scene's final mesh (an OBJ the examples write) to an 800 x 600
 # PNG with gnuplot: the mesh's faces lit, with the scene's collider.
 #
-#   docs/render.sh tablecloth|jello|ball IN.obj OUT.png
+#   docs/render.sh tablecloth|jello|ball|flag IN.obj OUT.png
 #
 # tablecloth: the round table of examples/tablecloth.c (radius 0.35 m, top at
 # y = 0) under the cloth; jello, ball: the ground y = 0, darkened under the
-# body as if lit from above. The OBJ's y axis is up. Needs gnuplot 5.4
+# body as if lit from above; flag: the pole of examples/flag.c (x = z = 0,
+# 2.05 m tall), in a fixed frame so that frames make an animation. The
+# OBJ's y axis is up. Needs gnuplot 5.4
 # (apt-get install gnuplot-nox); uses pngcairo when there is one.
 set -eu
 
 usage() {
-  echo "usage: $0 tablecloth|jello|ball IN.obj OUT.png" >&2
+  echo "usage: $0 tablecloth|jello|ball|flag IN.obj OUT.png" >&2
   exit 2
 }
 [ $# -eq 3 ] || usage
 scene=$1 obj=$2 png=$3
 case $scene in
-tablecloth | jello | ball) ;;
+tablecloth | jello | ball | flag) ;;
 *) usage ;;
 esac
 [ -r "$obj" ] || { echo "$0: cannot read $obj" >&2; exit 1; }
@@ -87,6 +89,23 @@ if [ "$scene" = tablecloth ]; then
   view="64, 28, 1.5"
   palette='0 "#8a6a4a", 1 "#8a6a4a", 1 "#000000", 2 "#000000"'
   mesh_colour="#b8323a"
+elif [ "$scene" = flag ]; then
+  # The pole: a cylinder of radius 2 cm from the ground to 2.05 m.
+  awk "$quad"'
+    function at(a, h) { return 0.02 * cos(a) " " 0.02 * sin(a) " " h " 0.5" }
+    BEGIN {
+      pi = atan2(0, -1); m = 12; rows = 60
+      for (k = 0; k < m; k++)
+        for (j = 0; j < rows; j++)
+          quad(at(2 * pi * k / m, 2.05 * j / rows),
+               at(2 * pi * (k + 1) / m, 2.05 * j / rows),
+               at(2 * pi * (k + 1) / m, 2.05 * (j + 1) / rows),
+               at(2 * pi * k / m, 2.05 * (j + 1) / rows))
+    }' >"$tmp/collider.dat"
+  ranges="set xrange [-0.1:1.7]; set yrange [-1.2:1.2]; set zrange [0.6:2.2]"
+  view="72, 24, 2.1"
+  palette='0 "#7a7a7a", 1 "#7a7a7a", 1 "#000000", 2 "#000000"'
+  mesh_colour="#d9a21b"
 else
   # The ground: a square checkered in 2 cm tiles, in 1 cm pieces, each
   # darker the nearer its centre lies to the body's points seen from above
@@ -123,7 +142,11 @@ else
   fi
 fi
 
-if [ "$scene" = tablecloth ]; then
+if [ "$scene" = flag ]; then
+  plots="$ranges
+splot 'collider.dat' using 1:2:3:4 with pm3d, \\
+    'mesh.dat' using 1:2:3:4 with pm3d"
+elif [ "$scene" = tablecloth ]; then
   # The table hides part of the cloth and the cloth part of the table.
   plots="splot 'collider.dat' using 1:2:3:4 with pm3d, \\
     'mesh.dat' using 1:2:3:4 with pm3d"

@@ -69,8 +69,8 @@ output() {
 
 e=$(pwd)/examples
 t=$e/msocl-tablecloth j=$e/msocl-jello s=$e/msocl-solid
-d=$e/msocl-devices b=$e/msocl-bench
-for p in $t $j $s $d $b; do
+d=$e/msocl-devices b=$e/msocl-bench g=$e/msocl-flag
+for p in $t $j $s $d $b $g; do
   [ -x "$p" ] || fail "$p not built"
 done
 # (in $tmp: a run that should have been refused writes its mesh there)
@@ -82,6 +82,7 @@ help $j 'default 8' 'default 3' 'default 0.999' 'default jello.obj'
 help $s 'default 2' 'default 3' 'default 0.998' 'default ball.obj'
 help $d 'default: \$MSOCL_DEVICE'
 help $b 'default 2000' 'default 256'
+help $g 'default 32' 'default 4' 'default 12' 'default flag-frames'
 
 for p in $t $j $s; do
   refused $p -x
@@ -119,6 +120,11 @@ refused $s -n 8
 refused $d -x
 refused $d cpu gpu
 refused $b --bogus
+for a in -x --bogus "-n 3" "-n 513" "-n abc" "-t 0" "-t inf" "-F 0" "-F 241" extra \
+  "-o /nonexistent/dir/frames"; do
+  # shellcheck disable=SC2086
+  refused $g $a
+done
 refused $b table1 -s 0
 refused $b table1 -s abc
 
@@ -140,4 +146,10 @@ for p in "$t -n 4 -s 10" "$j -n 2 -t 0.01" "$s -n 0 -t 0.01"; do
     head -n 1 "$f" | grep -q "^$want" || fail "$p -o $f: not $ext: $(head -n 1 "$f")"
   done
 done
+# the flag: one OBJ a frame, each with the flag's points
+run $g -n 4 -t 0.25 -F 8 -o "$tmp/frames"
+[ "$rc" = 0 ] || fail "$g exited $rc: $(cat "$tmp/err")"
+[ "$(ls "$tmp/frames" | wc -l)" = 3 ] || fail "$g: frames $(ls "$tmp/frames")"
+[ "$(grep -c '^v ' "$tmp/frames/flag-0002.obj")" = 24 ] ||
+  fail "$g: not 6 x 4 points in the last frame"
 echo "PASS"
