@@ -96,6 +96,7 @@ void msocl_reference_destroy(msocl_reference *r)
   for (size_t q = 0; q < sizeof vecs / sizeof vecs[0]; q++)
     free(vecs[q]);
   free(r->pinned);
+  msocl__ref_controls_free(r);
   free(r);
 }
 

@@ -23,7 +23,16 @@ struct msocl_reference {
   double cg_residual;
   int cg_missed, cg_worst_iterations; /* as the engine's (sim.h) */
   double cg_worst_residual;
+  /* pins moving to targets in the next call (reference_controls.c) */
+  int tm;
+  int *tidx;
+  double *tstart, *ttarget;
 };
+
+/* reference_controls.c: the moving pins before step k of a call's n (and
+ * at its end, k = n); frees their lists. */
+void msocl__ref_pins(msocl_reference *r, int k, int n);
+void msocl__ref_controls_free(msocl_reference *r);
 
 static inline double msocl__dot3(const double *a, const double *b)
 {
