@@ -136,6 +136,38 @@ START_TEST(pins_reach_targets)
 }
 END_TEST
 
+/* A batch's call spends the targets as msocl_sim_step's does. */
+START_TEST(batch_reaches_targets)
+{
+  msocl_model *m = scene_hanging(N);
+  const msocl_model *ms[2] = {m, m};
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = dt_for(m, MSOCL_SYMPLECTIC_EULER);
+  o.tuning.planes = MSOCL_ON;
+  msocl_batch *b = NULL;
+  OK(msocl_batch_create(&b, rt, 2, ms, &o));
+  float t[6];
+  frame_targets(2, t);
+  for (int i = 0; i < 2; i++) {
+    msocl_sim *s = NULL;
+    OK(msocl_batch_sim(b, i, &s));
+    OK(msocl_sim_set_pin_targets(s, 2, NULL, t));
+  }
+  OK(msocl_batch_step(b, 8));
+  for (int i = 0; i < 2; i++) {
+    msocl_sim *s = NULL;
+    float p[6];
+    OK(msocl_batch_sim(b, i, &s));
+    OK(msocl_sim_read_list(s, 0, 2, (int[]){0, N - 1}, p));
+    ck_assert_msg(memcmp(p, t, sizeof t) == 0, "sim %d: pin at %.9g", i,
+                  p[0]);
+  }
+  msocl_batch_destroy(b);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 static void read_all(msocl_sim *s, float *p, float *v)
 {
   OK(msocl_sim_read_positions(s, p));
@@ -405,6 +437,7 @@ int main(void)
   tcase_add_loop_test(tc, layouts_bitwise, 0, 4);
   tcase_add_loop_test(tc, pins_vs_reference, 0, 4);
   tcase_add_loop_test(tc, partial_round_trip, 0, 2);
+  tcase_add_test(tc, batch_reaches_targets);
   tcase_add_test(tc, bad_input);
   suite_add_tcase(su, tc);
   return scene_run(su);
