@@ -168,6 +168,73 @@ START_TEST(batch_reaches_targets)
 }
 END_TEST
 
+/* A cloth numbered at random (point q is grid point (7 q) mod 64), which
+ * the simulation renumbers: partial access and targets keep the model's
+ * numbers. */
+START_TEST(renumbered_model_numbers)
+{
+  enum { S = 8, P = S * S };
+  msocl_model *m = NULL;
+  OK(msocl_model_create(&m));
+  float xyz[3 * P], mass[P];
+  int at[P]; /* model number of grid point g */
+  for (int q = 0; q < P; q++) {
+    const int g = 7 * q % P;
+    at[g] = q;
+    xyz[3 * q] = (float)(g % S) / (S - 1);
+    xyz[3 * q + 1] = -(float)(g / S) / (S - 1);
+    xyz[3 * q + 2] = 0.0f;
+    mass[q] = 1.0f / P;
+  }
+  OK(msocl_model_add_points(m, P, xyz, mass, NULL));
+  int ij[4 * P], ns = 0;
+  for (int g = 0; g < P; g++) {
+    if (g % S < S - 1) {
+      ij[2 * ns] = at[g];
+      ij[2 * ns++ + 1] = at[g + 1];
+    }
+    if (g / S < S - 1) {
+      ij[2 * ns] = at[g];
+      ij[2 * ns++ + 1] = at[g + S];
+    }
+  }
+  float k[4 * P];
+  for (int q = 0; q < ns; q++)
+    k[q] = 20.0f;
+  OK(msocl_model_add_springs(m, ns, ij, k, NULL, NULL));
+  OK(msocl_model_pin(m, at[0], 1));
+  OK(msocl_model_pin(m, at[S - 1], 1));
+  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_BUFFER,
+                      MSOCL_ON);
+  int order[P], moved = 0;
+  OK(msocl_sim_point_order(s, order));
+  for (int q = 0; q < P; q++)
+    moved |= order[q] != q;
+  ck_assert_msg(moved, "the model was not renumbered");
+  OK(msocl_sim_step(s, 10));
+  float all[3 * P], part[9];
+  OK(msocl_sim_read_positions(s, all));
+  const int idx[3] = {5, 40, 41};
+  OK(msocl_sim_read_list(s, 0, 3, idx, part));
+  for (int q = 0; q < 3; q++)
+    ck_assert(memcmp(part + 3 * q, all + 3 * idx[q], 3 * sizeof(float)) == 0);
+  OK(msocl_sim_read_range(s, 0, 40, 2, part));
+  ck_assert(memcmp(part, all + 120, 6 * sizeof(float)) == 0);
+  const float w[3] = {0.5f, 0.25f, 0.125f};
+  OK(msocl_sim_write_list(s, 0, 1, (int[]){41}, w));
+  OK(msocl_sim_read_positions(s, all));
+  ck_assert(memcmp(all + 123, w, sizeof w) == 0);
+  const float t[6] = {0.1f, 0.2f, 0.0f, 0.9f, 0.2f, 0.1f};
+  OK(msocl_sim_set_pin_targets(s, 2, (int[]){at[0], at[S - 1]}, t));
+  OK(msocl_sim_step(s, 4));
+  OK(msocl_sim_read_positions(s, all));
+  ck_assert(memcmp(all + 3 * at[0], t, 3 * sizeof(float)) == 0);
+  ck_assert(memcmp(all + 3 * at[S - 1], t + 3, 3 * sizeof(float)) == 0);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 static void read_all(msocl_sim *s, float *p, float *v)
 {
   OK(msocl_sim_read_positions(s, p));
@@ -438,6 +505,7 @@ int main(void)
   tcase_add_loop_test(tc, pins_vs_reference, 0, 4);
   tcase_add_loop_test(tc, partial_round_trip, 0, 2);
   tcase_add_test(tc, batch_reaches_targets);
+  tcase_add_test(tc, renumbered_model_numbers);
   tcase_add_test(tc, bad_input);
   suite_add_tcase(su, tc);
   return scene_run(su);
