@@ -439,6 +439,45 @@ MSOCL_EXTERN void msocl_wind_init(msocl_wind *w);
 /* From the next step, until set again; NULL: no wind. Needs triangles and
  * the planes engine on one device (else MSOCL_ERR_BAD_VALUE). */
 MSOCL_EXTERN int msocl_sim_set_wind(msocl_sim *s, const msocl_wind *w);
+/* Live controls, applied from the next step (docs/API.md, "Live
+ * controls"). The model's own setters (msocl_model_set_gravity, _pin, ...)
+ * return MSOCL_ERR_INVALID_ARG while a simulation made from the model
+ * lives: it copied the model and would not see them. Gravity in any
+ * direction; viscous damping c >= 0 and air resistance in (0, 1] only
+ * where the model had that term on when the simulation was created (its
+ * kernels leave a zero term out): MSOCL_ERR_BAD_VALUE otherwise. */
+MSOCL_EXTERN int msocl_sim_set_gravity(msocl_sim *s, float gx, float gy,
+                                       float gz);
+MSOCL_EXTERN int msocl_sim_set_viscous_damping(msocl_sim *s, float c);
+MSOCL_EXTERN int msocl_sim_set_air_resistance(msocl_sim *s, float factor);
+/* Pins (pinned != 0) or frees the model's points idx[0..count); the
+ * simulation must have been created with at least one pinned point. */
+MSOCL_EXTERN int msocl_sim_pin(msocl_sim *s, int count, const int *idx,
+                               int pinned);
+/* Targets xyz (3 count floats) for pinned points idx[0..count) (idx NULL:
+ * every pinned point, in index order, count their number), reached
+ * exactly at the end of the next msocl_sim_step(s, n): before step j the
+ * pin sits at (1 - f) start + f target, f = (float)j / (float)n, with
+ * the velocity of its motion over the step, so springs and dashpots feel
+ * it. k one-step calls given those points as targets give bitwise the
+ * steps of one k-step call. Planes engine only (MSOCL_ERR_BAD_VALUE on
+ * float4); a point not pinned or given twice: MSOCL_ERR_BAD_VALUE. */
+MSOCL_EXTERN int msocl_sim_set_pin_targets(msocl_sim *s, int count,
+                                           const int *idx, const float *xyz);
+/* Partial state access: 3 floats a point, of positions (velocities 0) or
+ * velocities (1), for points first..first+count-1 or idx[0..count);
+ * other points and the rest of the state are untouched (writes keep the
+ * pins and count as writes for the blow-up check). */
+MSOCL_EXTERN int msocl_sim_read_range(msocl_sim *s, int velocities,
+                                      int first, int count, float *xyz);
+MSOCL_EXTERN int msocl_sim_write_range(msocl_sim *s, int velocities,
+                                       int first, int count,
+                                       const float *xyz);
+MSOCL_EXTERN int msocl_sim_read_list(msocl_sim *s, int velocities, int count,
+                                     const int *idx, float *xyz);
+MSOCL_EXTERN int msocl_sim_write_list(msocl_sim *s, int velocities,
+                                      int count, const int *idx,
+                                      const float *xyz);
 
 typedef struct {
   /* joules; gravity: -sum m g . p, zero at the origin (for gravity along
@@ -558,6 +597,15 @@ MSOCL_EXTERN int msocl_reference_energy(const msocl_reference *r,
 /* As msocl_sim_set_wind, in double. */
 MSOCL_EXTERN int msocl_reference_set_wind(msocl_reference *r,
                                           const msocl_wind *w);
+/* The simulation's live controls on the reference (msocl_sim_set_gravity,
+ * msocl_sim_pin, msocl_sim_set_pin_targets), in double. */
+MSOCL_EXTERN int msocl_reference_set_gravity(msocl_reference *r, float gx,
+                                             float gy, float gz);
+MSOCL_EXTERN int msocl_reference_pin(msocl_reference *r, int count,
+                                     const int *idx, int pinned);
+MSOCL_EXTERN int msocl_reference_set_pin_targets(msocl_reference *r,
+                                                 int count, const int *idx,
+                                                 const float *xyz);
 
 /* ---------------------------------------------------------------- export */
 

@@ -1,5 +1,6 @@
 /* Kernel sources: MSOCL_KERNEL_PATH loads them from a folder, and a build
  * failure returns MSOCL_ERR_BUILD carrying the compiler's log. */
+#include "internal.h" /* the library's list of kernel files */
 #include "scenes.h"
 
 #include <check.h>
@@ -43,19 +44,15 @@ static int make_sim(void)
   return rc;
 }
 
-static const char *const files[] = {"common.cl",   "step.cl",
-                                    "integrators.cl", "implicit.cl",
-                                    "strain.cl",   "energy.cl",
-                                    "normals.cl",  "edges.cl",
-                                    "planes.cl",   "planes_implicit.cl",
-                                    "planes_rows.cl"};
-#define NFILES (sizeof files / sizeof files[0])
+/* Every kernel file the library embeds, in its order. */
+#define NFILES ((size_t)msocl__kernel_source_count)
+#define FILE_NAME(f) (msocl__kernel_sources[f].name)
 
 /* All kernel files into dir, with `extra` after the step file. */
 static void copy_all(const char *extra)
 {
   for (size_t f = 0; f < NFILES; f++)
-    copy_kernel(files[f], strcmp(files[f], "step.cl") ? "\n" : extra);
+    copy_kernel(FILE_NAME(f), strcmp(FILE_NAME(f), "step.cl") ? "\n" : extra);
 }
 
 START_TEST(kernel_path_loads_files)
@@ -108,7 +105,7 @@ int main(void)
   srunner_free(sr);
   for (size_t f = 0; f < NFILES; f++) {
     char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, files[f]);
+    snprintf(path, sizeof path, "%s/%s", dir, FILE_NAME(f));
     unlink(path);
   }
   rmdir(dir);

@@ -58,7 +58,22 @@ struct msocl__collider {
   float friction;
 };
 
+/* The simulations made from a model and not yet destroyed, in a block
+ * shared by the model and those simulations and freed with the last of
+ * them (either may go first), so that the model's setters can refuse a
+ * change that would not reach them (lib/model/live.c). */
+struct msocl__live;
+/* Called by msocl_sim_create (0 or an error) and msocl_sim_destroy. */
+int msocl__live_join(const msocl_model *m, struct msocl__live **out);
+void msocl__live_leave(struct msocl__live *l);
+void msocl__live_drop(msocl_model *m); /* msocl_model_destroy's part */
+/* MSOCL_ERR_INVALID_ARG naming `what` and the msocl_sim_ call to use when
+ * m has live simulations; else MSOCL_OK. */
+int msocl__live_refuse(const msocl_model *m, const char *what,
+                       const char *instead);
+
 struct msocl_model {
+  struct msocl__live *live; /* NULL until a simulation is made from it */
   int n, cap;            /* points */
   float *pos;            /* 3n */
   float *mass;           /* n */

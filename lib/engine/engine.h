@@ -149,6 +149,9 @@ void msocl__planes_step_done(msocl__engine *s);
 int msocl__planes_current(msocl__engine *s);
 void msocl__planes_written(msocl__engine *s);
 void msocl__planes_release(msocl__engine *s);
+/* The planes kernels' gravity, viscous damping and air resistance
+ * arguments again, from s->gravity, viscous and air (a live change). */
+int msocl__planes_forces(msocl__engine *s);
 /* Verlet: the acceleration at the current state into acc, over the whole
  * range, unless acc already holds it. */
 int msocl__verlet_accel(msocl__engine *s);

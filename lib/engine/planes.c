@@ -262,6 +262,28 @@ int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx)
   return arg(k, i + 2, sizeof(int), &s->pl_plane);
 }
 
+/* Gathering kernel k's gravity, viscous damping and air resistance, from
+ * argument a on (again when msocl__planes_forces changes them). */
+static int forces(msocl__engine *s, cl_kernel k, cl_uint a)
+{
+  TRY(arg(k, a, sizeof s->gravity, &s->gravity));
+  TRY(arg(k, a + 1, sizeof(float), &s->viscous));
+  return arg(k, a + 2, sizeof(float), &s->air);
+}
+
+int msocl__planes_forces(msocl__engine *s)
+{
+  const int gathers[7] = {PL_VELOCITY, PL_FUSED,   PL_EULER,   PL_KICK,
+                          PL_RK4,      PL_RK4_MID, PL_RK4_LAST};
+  for (int q = 0; q < 7; q++) {
+    const cl_uint a = s->pl_conn + (q == 0 ? 3 : q < 4 ? 4 : 8);
+    TRY(forces(s, s->pl_k[gathers[q]], a + 4));
+  }
+  if (s->o.integrator == MSOCL_IMPLICIT_EULER)
+    TRY(msocl__pl_implicit_args(s));
+  return msocl__pl_rows_forces(s);
+}
+
 /* The arguments that never change: all but the planes that ping-pong. */
 static int fixed_args(msocl__engine *s)
 {
@@ -280,9 +302,7 @@ static int fixed_args(msocl__engine *s)
     a += q == 0 ? 3 : q < 4 ? 4 : 8;
     TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
     TRY(shape(s, k, a + 1, 0));
-    TRY(arg(k, a + 4, sizeof s->gravity, &s->gravity));
-    TRY(arg(k, a + 5, sizeof(float), &s->viscous));
-    TRY(arg(k, a + 6, sizeof(float), &s->air));
+    TRY(forces(s, k, a + 4));
     TRY(arg(k, a + 7, sizeof(float), &s->o.dt));
     TRY(arg(k, a + 8, sizeof s->pl_col, &s->pl_col));
   }

@@ -33,6 +33,8 @@ int msocl__pl_implicit_args(msocl__engine *s);
  * from plane set r to w. */
 int msocl__pl_rows_create(msocl__engine *s, cl_program prog);
 int msocl__pl_rows_step(msocl__engine *s, int r, int w);
+/* Its gravity, viscous damping and air arguments again (msocl__planes_forces). */
+int msocl__pl_rows_forces(msocl__engine *s);
 void msocl__pl_rows_release(msocl__engine *s);
 
 #endif

@@ -75,6 +75,17 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   return arg(k, a + 9, sizeof(int), &ring_w);
 }
 
+int msocl__pl_rows_forces(msocl__engine *s)
+{
+  if (!s->pl_rows)
+    return MSOCL_OK;
+  cl_kernel k = s->pl_rows;
+  const cl_uint a = s->pl_conn + 3; /* as msocl__pl_rows_create's */
+  MSOCL__TRY(arg(k, a + 3, sizeof s->gravity, &s->gravity));
+  MSOCL__TRY(arg(k, a + 4, sizeof(float), &s->viscous));
+  return arg(k, a + 5, sizeof(float), &s->air);
+}
+
 int msocl__pl_rows_step(msocl__engine *s, int r, int w)
 {
   const cl_mem bufs[3] = {s->pl_p[r], s->pl_v[r], s->pl_p[w]};

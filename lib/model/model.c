@@ -283,6 +283,7 @@ int msocl_model_create(msocl_model **m) {
 
 void msocl_model_destroy(msocl_model *m) {
   if (!m) return;
+  msocl__live_drop(m);
   free(m->pos);
   free(m->mass);
   free(m->pinned);
@@ -374,6 +375,8 @@ int msocl_model_pin(msocl_model *m, int point, int pinned) {
   if (point < 0 || point >= m->n)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
                        "pin: point index %d out of range [0, %d)", point, m->n);
+  int rc = msocl__live_refuse(m, "msocl_model_pin", "msocl_sim_pin");
+  if (rc) return rc;
   m->pinned[point] = pinned != 0;
   return MSOCL_OK;
 }
@@ -388,6 +391,9 @@ int msocl_model_set_gravity(msocl_model *m, float gx, float gy, float gz) {
   g[1] = gy;
   g[2] = gz;
   if ((rc = check_gravity(g))) return rc;
+  if ((rc = msocl__live_refuse(m, "msocl_model_set_gravity",
+                               "msocl_sim_set_gravity")))
+    return rc;
   memcpy(m->gravity, g, sizeof g);
   return MSOCL_OK;
 }
@@ -408,6 +414,9 @@ int msocl_model_set_air_resistance(msocl_model *m, float factor) {
   msocl__clear_error();
   if (!m) return msocl__fail(MSOCL_ERR_NULL_HANDLE, "model is NULL");
   if ((rc = check_air(factor))) return rc;
+  if ((rc = msocl__live_refuse(m, "msocl_model_set_air_resistance",
+                               "msocl_sim_set_air_resistance")))
+    return rc;
   m->air = factor;
   return MSOCL_OK;
 }
@@ -418,6 +427,9 @@ int msocl_model_set_viscous_damping(msocl_model *m, float c) {
   msocl__clear_error();
   if (!m) return msocl__fail(MSOCL_ERR_NULL_HANDLE, "model is NULL");
   if ((rc = check_viscous(c))) return rc;
+  if ((rc = msocl__live_refuse(m, "msocl_model_set_viscous_damping",
+                               "msocl_sim_set_viscous_damping")))
+    return rc;
   m->viscous = c;
   return MSOCL_OK;
 }

@@ -275,6 +275,7 @@ int msocl__model_permuted(const msocl_model *m, const int *perm,
   p->pos = p->mass = p->k = p->rest = p->damp = NULL;
   p->pinned = NULL;
   p->ij = p->tri = NULL;
+  p->live = NULL; /* the copy's simulations are its own */
   p->pos = room((size_t)m->cap * 3, sizeof *p->pos, &failed);
   p->mass = room((size_t)m->cap, sizeof *p->mass, &failed);
   p->pinned = room((size_t)m->cap, sizeof *p->pinned, &failed);

@@ -176,7 +176,8 @@ static void rk4(msocl_reference *r)
       break;
     double *np = r->stage_p[q & 1], *nv = r->stage_v[q & 1];
     for (size_t i = 0; i < n3; i++) {
-      np[i] = r->pos[i] + c[q] * r->dt * sv[i];
+      /* a pinned point's stages stay where it is, as the kernels' */
+      np[i] = r->pinned[i / 3] ? r->pos[i] : r->pos[i] + c[q] * r->dt * sv[i];
       nv[i] = r->pinned[i / 3] ? 0.0 : r->vel[i] + c[q] * r->dt * r->a[i];
     }
     sp = np;
@@ -203,7 +204,15 @@ int msocl_reference_step(msocl_reference *r, int n)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "reference is NULL");
   if (n < 0)
     return msocl__fail(MSOCL_ERR_BAD_COUNT, "step count %d is negative", n);
+  /* Verlet's a at the state the call starts from, before pins move (the
+   * kernels take it when the state enters their planes) */
+  if (n > 0 && r->tm > 0 && r->o.integrator == MSOCL_VERLET &&
+      !r->acc_valid) {
+    accel(r, r->pos, r->vel, r->acc);
+    r->acc_valid = 1;
+  }
   for (int k = 0; k < n; k++) {
+    msocl__ref_pins(r, k, n);
     msocl__ref_wind(r);
     switch (r->o.integrator) {
     case MSOCL_SYMPLECTIC_EULER:
@@ -229,5 +238,7 @@ int msocl_reference_step(msocl_reference *r, int n)
     r->vel = r->vnew;
     r->vnew = t;
   }
+  if (n > 0)
+    msocl__ref_pins(r, n, n);
   return msocl__ref_cg_report(r, MSOCL_OK, n);
 }

@@ -104,6 +104,7 @@ void msocl_reference_destroy(msocl_reference *r)
     free(vecs[q]);
   free(r->pinned);
   free(r->tri);
+  msocl__ref_controls_free(r);
   free(r);
 }
 

@@ -26,7 +26,16 @@ struct msocl_reference {
   int nt, *tri;            /* the model's triangles, 3 a triangle */
   int wind_on;             /* reference_wind.c */
   double wind_air[3], wind_kd, wind_kl;
+  /* pins moving to targets in the next call (reference_controls.c) */
+  int tm;
+  int *tidx;
+  double *tstart, *ttarget;
 };
+
+/* reference_controls.c: the moving pins before step k of a call's n (and
+ * at its end, k = n); frees their lists. */
+void msocl__ref_pins(msocl_reference *r, int k, int n);
+void msocl__ref_controls_free(msocl_reference *r);
 
 static inline double msocl__dot3(const double *a, const double *b)
 {

@@ -106,7 +106,19 @@ struct msocl_sim {
   double blown_total;
   double total_mass, extent;
   double efloor;          /* the least energy scale, from the springs */
+  struct msocl__live *live;     /* the model's count of its simulations */
+  struct msocl__controls *ctl;  /* live controls (sim_controls.c), or NULL */
 };
+
+/* Live controls (sim_controls.c): frees them; before a stepping call of n
+ * steps; and `n` steps of a run that moves pins toward targets (steps()
+ * hands them over when msocl__pins_moving). */
+void msocl__controls_free(msocl_sim *s);
+void msocl__pins_call(msocl_sim *s, int n);
+int msocl__pins_moving(const msocl_sim *s);
+int msocl__pins_steps(msocl_sim *s, int n);
+/* The simulation's number *k of the model's point i (in range). */
+int msocl__sim_index(msocl_sim *s, int i, int *k);
 
 /* Halo exchange. plan (exchange_plan.c): the slices, spans, staging and
  * buffers, once the halos are known. exchange.c: gather: the slices of

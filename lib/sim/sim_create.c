@@ -331,6 +331,10 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
   if (!s)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
   s->o = o;
+  if ((rc = msocl__live_join(model, &s->live)) != MSOCL_OK) {
+    free(s);
+    return rc;
+  }
   msocl_model *renumbered = NULL;
   if ((rc = number_points(s, model, &renumbered)) != MSOCL_OK) {
     msocl_sim_destroy(s);
@@ -387,5 +391,7 @@ void msocl_sim_destroy(msocl_sim *s)
   free(s->stage);
   free(s->pinned);
   free(s->perm);
+  msocl__controls_free(s);
+  msocl__live_leave(s->live);
   free(s);
 }

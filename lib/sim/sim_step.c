@@ -222,6 +222,8 @@ static int steps(msocl_sim *s, int n)
 {
   if (s->nparts > 1)
     return split_steps(s, n);
+  if (msocl__pins_moving(s))
+    return msocl__pins_steps(s, n);
   /* msocl__integrate flushes the queue every 64 steps */
   int rc = msocl__integrate(s->part[0], n);
   if (rc == MSOCL_OK)
@@ -419,6 +421,7 @@ int msocl_sim_step(msocl_sim *s, int n)
   if (n < 0)
     return msocl__fail(MSOCL_ERR_BAD_COUNT, "step count %d is negative", n);
   int rc = MSOCL_OK;
+  msocl__pins_call(s, n);
   if (s->o.check_every <= 0)
     rc = steps(s, n);
   for (int done = 0; s->o.check_every > 0 && rc == MSOCL_OK && done < n;) {

@@ -1,0 +1,431 @@
+/* Controls on a running simulation (msocl.h's "live controls"): gravity,
+ * viscous damping and air resistance, applied from the next step; pins
+ * set and cleared; and pins moved to targets that they reach at the end of
+ * the next stepping call, along a straight path over its steps (kernels/
+ * planes_pins.cl, before each step and once after the last). */
+#include "config.h"
+#include "sim.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct msocl__controls {
+  int *inverse; /* model index -> the simulation's (NULL: the same) */
+  /* what the kernels were built with (engine.c leaves out a zero
+   * viscosity, an air factor of 1 and pins when the model has none) */
+  int viscous_built, air_built, pins_built;
+  int m;        /* pins given targets for the next call (0: none) */
+  int *at_host; /* their model indices, to refuse unpinning them */
+  cl_kernel pins;
+  cl_mem at, start, target;
+  int cap;      /* pins the buffers hold */
+  int call_n, call_j; /* the moving call's steps, and those done */
+};
+
+void msocl__controls_free(msocl_sim *s)
+{
+  struct msocl__controls *c = s->ctl;
+  if (!c)
+    return;
+  if (c->pins)
+    clReleaseKernel(c->pins);
+  cl_mem b[3] = {c->at, c->start, c->target};
+  for (int q = 0; q < 3; q++)
+    if (b[q])
+      clReleaseMemObject(b[q]);
+  free(c->inverse);
+  free(c->at_host);
+  free(c);
+  s->ctl = NULL;
+}
+
+/* The simulation's controls, made at the first call, while the engines
+ * still hold what they were built with. */
+static int controls(msocl_sim *s, struct msocl__controls **out)
+{
+  if (!s->ctl) {
+    struct msocl__controls *c = calloc(1, sizeof *c);
+    if (!c)
+      return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation controls");
+    const msocl__engine *e = s->part[0];
+    c->viscous_built = e->viscous != 0.0f;
+    c->air_built = e->air != 1.0f;
+    for (int i = 0; i < s->n; i++)
+      c->pins_built |= s->pinned[i];
+    if (s->perm) {
+      c->inverse = malloc((size_t)s->n * sizeof *c->inverse);
+      if (!c->inverse) {
+        free(c);
+        return msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation controls");
+      }
+      for (int k = 0; k < s->n; k++)
+        c->inverse[s->perm[k]] = k;
+    }
+    s->ctl = c;
+  }
+  *out = s->ctl;
+  return MSOCL_OK;
+}
+
+int msocl__sim_index(msocl_sim *s, int i, int *k)
+{
+  struct msocl__controls *c;
+  MSOCL__TRY(controls(s, &c));
+  *k = c->inverse ? c->inverse[i] : i;
+  return MSOCL_OK;
+}
+
+/* The engines' kernels take the changed gravity, viscosity or air factor;
+ * Verlet's stored acceleration held the old forces, so its state is
+ * copied out of the planes and in again, which recomputes it. */
+static int apply(msocl_sim *s)
+{
+  for (int d = 0; d < s->nparts; d++) {
+    msocl__engine *e = s->part[d];
+    if (e->o.integrator == MSOCL_VERLET) {
+      MSOCL__TRY(msocl__planes_current(e));
+      msocl__planes_written(e);
+      e->acc_valid = 0;
+    }
+    MSOCL__TRY(msocl__integrate_setup(e));
+    if (e->planes)
+      MSOCL__TRY(msocl__planes_forces(e));
+  }
+  return MSOCL_OK;
+}
+
+int msocl_sim_set_gravity(msocl_sim *s, float gx, float gy, float gz)
+{
+  msocl__clear_error();
+  if (!s)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
+  if (!isfinite(gx) || !isfinite(gy) || !isfinite(gz))
+    return msocl__fail(MSOCL_ERR_NOT_FINITE,
+                       "gravity (%g, %g, %g) is not finite", (double)gx,
+                       (double)gy, (double)gz);
+  /* gravity's potential is part of the blow-up check's energy: the change
+   * moves its baseline as a write does */
+  MSOCL__TRY(msocl__check_write(s));
+  for (int d = 0; d < s->nparts; d++) {
+    cl_float4 *g = &s->part[d]->gravity;
+    g->s[0] = gx;
+    g->s[1] = gy;
+    g->s[2] = gz;
+    g->s[3] = 0.0f;
+  }
+  return apply(s);
+}
+
+/* A damping value changed: refused where the kernels were built without
+ * that term (off at creation) and the new value would need it. */
+static int set_damping(msocl_sim *s, int air, float value)
+{
+  msocl__clear_error();
+  if (!s)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
+  const char *what = air ? "air resistance" : "viscous damping";
+  if (!isfinite(value))
+    return msocl__fail(MSOCL_ERR_NOT_FINITE, "%s %g is not finite", what,
+                       (double)value);
+  if (air ? !(value > 0.0f && value <= 1.0f) : value < 0.0f)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "%s %g must be %s", what,
+                       (double)value, air ? "in (0, 1]" : ">= 0");
+  struct msocl__controls *c;
+  MSOCL__TRY(controls(s, &c));
+  const int off = air ? value == 1.0f : value == 0.0f;
+  if (!(air ? c->air_built : c->viscous_built) && !off)
+    return msocl__fail(
+        MSOCL_ERR_BAD_VALUE,
+        "%s %g: the simulation was created without %s, so its kernels "
+        "leave the term out; give the model a %s before msocl_sim_create "
+        "to change it while it runs",
+        what, (double)value, what,
+        air ? "factor below 1" : "positive value");
+  for (int d = 0; d < s->nparts; d++)
+    *(air ? &s->part[d]->air : &s->part[d]->viscous) = value;
+  return apply(s);
+}
+
+int msocl_sim_set_viscous_damping(msocl_sim *s, float c)
+{
+  return set_damping(s, 0, c);
+}
+
+int msocl_sim_set_air_resistance(msocl_sim *s, float factor)
+{
+  return set_damping(s, 1, factor);
+}
+
+/* Checks count and the model indices idx[0..count). */
+static int check_indices(const msocl_sim *s, int count, const int *idx,
+                         const char *what)
+{
+  if (count < 0)
+    return msocl__fail(MSOCL_ERR_BAD_COUNT, "%s: count %d is negative", what,
+                       count);
+  if (count > 0 && !idx)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s: index list is NULL",
+                       what);
+  for (int q = 0; q < count; q++)
+    if (idx[q] < 0 || idx[q] >= s->n)
+      return msocl__fail(MSOCL_ERR_BAD_INDEX,
+                         "%s: index %d (entry %d) out of range [0, %d)", what,
+                         idx[q], q, s->n);
+  return MSOCL_OK;
+}
+
+int msocl_sim_pin(msocl_sim *s, int count, const int *idx, int pinned)
+{
+  msocl__clear_error();
+  if (!s)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
+  MSOCL__TRY(check_indices(s, count, idx, "msocl_sim_pin"));
+  struct msocl__controls *c;
+  MSOCL__TRY(controls(s, &c));
+  if (!c->pins_built && count > 0)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "msocl_sim_pin: the simulation was created with no "
+                       "pinned point, so its kernels leave pins out; pin at "
+                       "least one point of the model before msocl_sim_create");
+  for (int q = 0; !pinned && q < count; q++)
+    for (int t = 0; t < c->m; t++)
+      if (c->at_host[t] == idx[q])
+        return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                           "msocl_sim_pin: point %d has a target for the "
+                           "next call and cannot be unpinned before it",
+                           idx[q]);
+  const float w = pinned ? 1.0f : 0.0f;
+  for (int d = 0; d < s->nparts; d++) {
+    msocl__engine *e = s->part[d];
+    MSOCL__TRY(msocl__planes_current(e));
+    for (int q = 0; q < count; q++) {
+      int k;
+      MSOCL__TRY(msocl__sim_index(s, idx[q], &k));
+      MSOCL__CL(clEnqueueWriteBuffer(e->dev->queue, e->pos[e->r], CL_FALSE,
+                                     (4 * (size_t)k + 3) * sizeof(float),
+                                     sizeof w, &w, 0, NULL, NULL));
+    }
+    MSOCL__CL(clFinish(e->dev->queue)); /* w lives on this stack */
+    msocl__planes_written(e);
+    e->acc_valid = 0;
+  }
+  for (int q = 0; q < count; q++) {
+    int k;
+    MSOCL__TRY(msocl__sim_index(s, idx[q], &k));
+    s->pinned[k] = pinned != 0;
+  }
+  return MSOCL_OK;
+}
+
+/* Where the simulation's point k sits in each of the engine's planes
+ * (kernels/planes.cl's MSOCL_PLANES_AT). */
+static int plane_at(const msocl__engine *e, int k)
+{
+  if (e->lay.kind != MSOCL_LAYOUT_GRID)
+    return k;
+  const int nx = e->lay.grid_nx, ny = e->lay.grid_ny;
+  const int x = k % nx, y = k / nx % ny, z = k / nx / ny;
+  const int row = (y + 2) * e->pl_pitch + x + 2;
+  return e->lay.grid_nz > 0 ? (z + 2) * e->pl_slab + row : row;
+}
+
+/* Buffers for m pins, the kernel at first use. */
+static int pin_buffers(msocl__engine *e, struct msocl__controls *c, int m)
+{
+  if (!c->pins) {
+    cl_program prog;
+    cl_int err;
+    MSOCL__CL(clGetKernelInfo(e->pl_k[0], CL_KERNEL_PROGRAM, sizeof prog,
+                              &prog, NULL));
+    c->pins = clCreateKernel(prog, "msocl_planes_pins", &err);
+    if (err != CL_SUCCESS)
+      return msocl__fail(err, "clCreateKernel(msocl_planes_pins): %s",
+                         msocl_err_name(err));
+  }
+  if (m <= c->cap)
+    return MSOCL_OK;
+  cl_mem *b[3] = {&c->at, &c->start, &c->target};
+  const size_t bytes[3] = {(size_t)m * sizeof(cl_int),
+                           3 * (size_t)m * sizeof(float),
+                           3 * (size_t)m * sizeof(float)};
+  for (int q = 0; q < 3; q++) {
+    if (*b[q])
+      clReleaseMemObject(*b[q]);
+    cl_int err;
+    *b[q] = clCreateBuffer(e->dev->ctx, CL_MEM_READ_WRITE, bytes[q], NULL,
+                           &err);
+    if (err != CL_SUCCESS) {
+      c->cap = 0;
+      return msocl__fail(err, "clCreateBuffer(pin targets): %s",
+                         msocl_err_name(err));
+    }
+  }
+  int *h = realloc(c->at_host, (size_t)m * sizeof *h);
+  if (!h)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "pin targets");
+  c->at_host = h;
+  c->cap = m;
+  return MSOCL_OK;
+}
+
+int msocl_sim_set_pin_targets(msocl_sim *s, int count, const int *idx,
+                              const float *xyz)
+{
+  msocl__clear_error();
+  if (!s)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
+  if (count < 0)
+    return msocl__fail(MSOCL_ERR_BAD_COUNT,
+                       "msocl_sim_set_pin_targets: count %d is negative",
+                       count);
+  if (count > 0 && !xyz)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE,
+                       "msocl_sim_set_pin_targets: targets are NULL");
+  if (idx)
+    MSOCL__TRY(check_indices(s, count, idx, "msocl_sim_set_pin_targets"));
+  msocl__engine *e = s->part[0];
+  if (!e->planes || s->nparts > 1)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "msocl_sim_set_pin_targets needs the planes engine "
+                       "(tuning.planes, one device, GRID, BUFFER or IMAGE2D "
+                       "layout); this simulation runs the float4 engine");
+  struct msocl__controls *c;
+  MSOCL__TRY(controls(s, &c));
+  int npins = 0;
+  for (int k = 0; k < s->n; k++)
+    npins += s->pinned[k];
+  if (!idx && count != npins)
+    return msocl__fail(MSOCL_ERR_BAD_COUNT,
+                       "msocl_sim_set_pin_targets: %d targets for all %d "
+                       "pinned points",
+                       count, npins);
+  for (int q = 0; q < 3 * count; q++)
+    if (!isfinite(xyz[q]))
+      return msocl__fail(MSOCL_ERR_NOT_FINITE,
+                         "msocl_sim_set_pin_targets: target %d coordinate %d "
+                         "is %g",
+                         q / 3, q % 3, (double)xyz[q]);
+  int *model = malloc(((size_t)count + 1) * sizeof *model),
+      *at = malloc(((size_t)count + 1) * sizeof *at);
+  unsigned char *seen = calloc((size_t)s->n, 1);
+  int rc = model && at && seen ? MSOCL_OK
+                               : msocl__fail(MSOCL_ERR_NO_MEMORY,
+                                             "pin targets");
+  for (int q = 0, next = 0; rc == MSOCL_OK && q < count; q++) {
+    if (idx)
+      model[q] = idx[q];
+    else { /* the pinned points in the model's order */
+      int k;
+      for (;; next++) {
+        rc = msocl__sim_index(s, next, &k);
+        if (rc != MSOCL_OK || s->pinned[k])
+          break;
+      }
+      model[q] = next++;
+    }
+    int k = 0;
+    if (rc == MSOCL_OK)
+      rc = msocl__sim_index(s, model[q], &k);
+    if (rc == MSOCL_OK && !s->pinned[k])
+      rc = msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "msocl_sim_set_pin_targets: point %d is not pinned "
+                       "(msocl_sim_pin)",
+                       model[q]);
+    if (rc == MSOCL_OK && seen[model[q]])
+      rc = msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "msocl_sim_set_pin_targets: point %d given twice",
+                       model[q]);
+    if (rc == MSOCL_OK) {
+      seen[model[q]] = 1;
+      at[q] = plane_at(e, k);
+    }
+  }
+  free(seen);
+  if (rc == MSOCL_OK && count > 0)
+    rc = pin_buffers(e, c, count);
+  if (rc == MSOCL_OK && count > 0) {
+    cl_int err = clEnqueueWriteBuffer(e->dev->queue, c->at, CL_FALSE, 0,
+                                      (size_t)count * sizeof(cl_int), at, 0,
+                                      NULL, NULL);
+    if (err == CL_SUCCESS)
+      err = clEnqueueWriteBuffer(e->dev->queue, c->target, CL_TRUE, 0,
+                                 3 * (size_t)count * sizeof(float), xyz, 0,
+                                 NULL, NULL);
+    if (err != CL_SUCCESS)
+      rc = msocl__fail(err, "writing pin targets: %s", msocl_err_name(err));
+  }
+  if (rc == MSOCL_OK) {
+    if (count > 0)
+      memcpy(c->at_host, model, (size_t)count * sizeof *model);
+    c->m = count;
+  }
+  free(model);
+  free(at);
+  return rc;
+}
+
+void msocl__pins_call(msocl_sim *s, int n)
+{
+  if (s->ctl && s->ctl->m > 0 && n > 0) {
+    s->ctl->call_n = n;
+    s->ctl->call_j = 0;
+  }
+}
+
+int msocl__pins_moving(const msocl_sim *s)
+{
+  return s->ctl && s->ctl->m > 0 && s->ctl->call_n > 0;
+}
+
+/* The pins at their path's point fp, moving from f0 to f1 in a step. */
+static int place(msocl__engine *e, struct msocl__controls *c, float fp,
+                 float f0, float f1, int capture)
+{
+  cl_kernel k = c->pins;
+  const cl_mem p = e->pl_p[e->pl_set], v = e->pl_v[e->pl_set];
+  MSOCL__TRY(msocl__arg_mem(k, 0, p));
+  MSOCL__TRY(msocl__arg_mem(k, 1, v));
+  MSOCL__TRY(msocl__arg_mem(k, 2, c->at));
+  MSOCL__TRY(msocl__arg_mem(k, 3, c->start));
+  MSOCL__TRY(msocl__arg_mem(k, 4, c->target));
+  MSOCL__TRY(msocl__arg_int(k, 5, c->m));
+  MSOCL__TRY(msocl__arg_int(k, 6, e->pl_plane));
+  MSOCL__TRY(msocl__arg_float(k, 7, fp));
+  MSOCL__TRY(msocl__arg_float(k, 8, f0));
+  MSOCL__TRY(msocl__arg_float(k, 9, f1));
+  MSOCL__TRY(msocl__arg_float(k, 10, e->o.dt));
+  MSOCL__TRY(msocl__arg_int(k, 11, capture));
+  const size_t global = (size_t)c->m;
+  MSOCL__CL(clEnqueueNDRangeKernel(e->dev->queue, k, 1, NULL, &global, NULL,
+                                   0, NULL, NULL));
+  return MSOCL_OK;
+}
+
+/* Before step j of the call's N the pins sit at j / N of their path and
+ * move toward (j + 1) / N; after the last, at the target, keeping the
+ * last step's velocity. The fractions are computed here, in float, as
+ * (float)j / (float)N, so that a caller can give the same points as
+ * targets of N one-step calls and get the same steps. */
+int msocl__pins_steps(msocl_sim *s, int n)
+{
+  struct msocl__controls *c = s->ctl;
+  msocl__engine *e = s->part[0];
+  MSOCL__TRY(msocl__planes_enter(e));
+  const float N = (float)c->call_n;
+  for (int q = 0; q < n && c->call_j < c->call_n; q++) {
+    const float f0 = (float)c->call_j / N, f1 = (float)(c->call_j + 1) / N;
+    MSOCL__TRY(place(e, c, f0, f0, f1, c->call_j == 0));
+    MSOCL__TRY(msocl__integrate(e, 1));
+    s->steps++;
+    c->call_j++;
+    if (c->call_j % 64 == 0)
+      MSOCL__CL(clFlush(e->dev->queue));
+  }
+  if (c->call_j == c->call_n) {
+    MSOCL__TRY(place(e, c, 1.0f, (float)(c->call_n - 1) / N, 1.0f, 0));
+    c->m = 0;
+    c->call_n = 0;
+  }
+  return MSOCL_OK;
+}

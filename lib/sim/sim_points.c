@@ -1,0 +1,134 @@
+/* Partial state access: the positions or velocities of an index range or
+ * list of points, read or written without moving the whole state between
+ * host and device (each run of consecutive points is one copy) and without
+ * touching any other point. A write, like msocl_sim_write_positions, keeps
+ * the pins and counts as a write for the blow-up check; in planes the
+ * state is copied out of the planes and in again on the device. */
+#include "config.h"
+#include "sim.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The simulation's numbers of points idx[0..count) (idx NULL: first on). */
+static int numbers(msocl_sim *s, int first, int count, const int *idx,
+                   int *k)
+{
+  for (int q = 0; q < count; q++)
+    MSOCL__TRY(msocl__sim_index(s, idx ? idx[q] : first + q, &k[q]));
+  return MSOCL_OK;
+}
+
+/* Reads (or writes) the float4s at the simulation's points k[0..count)
+ * of engine e's current buffer b into (from) f4, a copy for each run of
+ * consecutive points; reads only those of the engine's own range. */
+static int copy_runs(msocl__engine *e, cl_mem b, int write, const int *k,
+                     int count, cl_float4 *f4)
+{
+  for (int q = 0; q < count;) {
+    int r = q + 1;
+    while (r < count && k[r] == k[r - 1] + 1 &&
+           (write || k[r] < e->hi))
+      r++;
+    if (!write && (k[q] < e->lo || k[q] >= e->hi)) {
+      q++;
+      continue;
+    }
+    const size_t off = (size_t)k[q] * sizeof(cl_float4),
+                 len = (size_t)(r - q) * sizeof(cl_float4);
+    MSOCL__CL(write ? clEnqueueWriteBuffer(e->dev->queue, b, CL_FALSE, off,
+                                           len, f4 + q, 0, NULL, NULL)
+                    : clEnqueueReadBuffer(e->dev->queue, b, CL_FALSE, off,
+                                          len, f4 + q, 0, NULL, NULL));
+    q = r;
+  }
+  MSOCL__CL(clFinish(e->dev->queue));
+  return MSOCL_OK;
+}
+
+static int points_io(msocl_sim *s, int velocities, int write, int list,
+                  int first, int count, const int *idx, float *out,
+                  const float *in)
+{
+  msocl__clear_error();
+  const char *what = write ? "write" : "read";
+  if (!s || (count > 0 && !(write ? (const void *)in : (void *)out)))
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s: %s is NULL", what,
+                       s ? "the array" : "sim");
+  if (count < 0)
+    return msocl__fail(MSOCL_ERR_BAD_COUNT, "%s: count %d is negative", what,
+                       count);
+  if (count > 0 && list && !idx)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s: index list is NULL",
+                       what);
+  if (!list && (first < 0 || first > s->n - count))
+    return msocl__fail(MSOCL_ERR_BAD_INDEX,
+                       "%s: range [%d, %d + %d) is not within [0, %d)", what,
+                       first, first, count, s->n);
+  for (int q = 0; list && q < count; q++)
+    if (idx[q] < 0 || idx[q] >= s->n)
+      return msocl__fail(MSOCL_ERR_BAD_INDEX,
+                         "%s: index %d (entry %d) out of range [0, %d)", what,
+                         idx[q], q, s->n);
+  for (int q = 0; write && q < 3 * count; q++)
+    if (!isfinite(in[q]))
+      return msocl__fail(MSOCL_ERR_NOT_FINITE,
+                         "%s: point %d coordinate %d is %g", what,
+                         idx ? idx[q / 3] : first + q / 3, q % 3,
+                         (double)in[q]);
+  if (count == 0)
+    return MSOCL_OK;
+  int *k = malloc((size_t)count * sizeof *k);
+  cl_float4 *f4 = malloc((size_t)count * sizeof *f4);
+  int rc = k && f4 ? numbers(s, first, count, idx, k)
+                   : msocl__fail(MSOCL_ERR_NO_MEMORY, "%s of %d points",
+                                 what, count);
+  if (rc == MSOCL_OK && write) {
+    rc = msocl__check_write(s);
+    for (int q = 0; q < count; q++) {
+      memcpy(f4[q].s, in + 3 * q, 3 * sizeof(float));
+      f4[q].s[3] = !velocities && s->pinned[k[q]] ? 1.0f : 0.0f;
+    }
+  }
+  for (int d = 0; rc == MSOCL_OK && d < s->nparts; d++) {
+    msocl__engine *e = s->part[d];
+    rc = msocl__planes_current(e);
+    if (rc == MSOCL_OK)
+      rc = copy_runs(e, velocities ? e->vel[e->r] : e->pos[e->r], write, k,
+                     count, f4);
+    if (rc == MSOCL_OK && write) {
+      msocl__planes_written(e);
+      e->acc_valid = 0;
+    }
+  }
+  for (int q = 0; rc == MSOCL_OK && !write && q < count; q++)
+    memcpy(out + 3 * q, f4[q].s, 3 * sizeof(float));
+  free(k);
+  free(f4);
+  return rc;
+}
+
+int msocl_sim_read_range(msocl_sim *s, int velocities, int first, int count,
+                         float *xyz)
+{
+  return points_io(s, velocities, 0, 0, first, count, NULL, xyz, NULL);
+}
+
+int msocl_sim_write_range(msocl_sim *s, int velocities, int first, int count,
+                          const float *xyz)
+{
+  return points_io(s, velocities, 1, 0, first, count, NULL, NULL, xyz);
+}
+
+int msocl_sim_read_list(msocl_sim *s, int velocities, int count,
+                        const int *idx, float *xyz)
+{
+  return points_io(s, velocities, 0, 1, 0, count, idx, xyz, NULL);
+}
+
+int msocl_sim_write_list(msocl_sim *s, int velocities, int count,
+                         const int *idx, const float *xyz)
+{
+  return points_io(s, velocities, 1, 1, 0, count, idx, NULL, xyz);
+}
