@@ -129,8 +129,8 @@ int msocl__planes_would(const struct msocl__device *dev,
                         int lo, int hi);
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m);
 /* MSOCL_ERR_BAD_VALUE, before anything is allocated, where planes are
- * forced (tuning.planes ON) on a grid the kernels' int indices cannot address
- * or on a split; else MSOCL_OK. */
+ * forced (tuning.planes ON) on a grid the kernels' int indices cannot
+ * address; else MSOCL_OK. */
 int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
                           int lo, int hi);
 /* Device bytes the planes of model m's grid take under options o
@@ -159,6 +159,12 @@ int msocl__verlet_accel(msocl__engine *s);
 void msocl__step_done(msocl__engine *s);
 /* The buffer an exchange bit names, at this point of the step. */
 cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit);
+/* exchange_slices.c: the planes' buffer a bit names; and where points
+ * [a, b) lie in such a buffer: n slices (returned; float4 1, planes 3,
+ * one a plane), each *len bytes at off[c]. */
+cl_mem msocl__planes_exchange_buffer(const msocl__engine *s, unsigned bit);
+int msocl__exchange_slices(const msocl__engine *s, int a, int b,
+                           size_t off[3], size_t *len);
 /* Enqueues `n` whole steps on one engine (no wait, no exchange), float4
  * or planes. */
 int msocl__integrate(msocl__engine *s, int n);

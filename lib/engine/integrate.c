@@ -134,6 +134,8 @@ int msocl__float4_pass(msocl__engine *s, enum msocl__pass p)
 
 cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit)
 {
+  if (s->planes)
+    return msocl__planes_exchange_buffer(s, bit);
   switch (bit) {
   case MSOCL__X_POS_W: return s->pos[1 - s->r];
   case MSOCL__X_VEL_W: return s->vel[1 - s->r];

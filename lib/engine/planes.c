@@ -121,8 +121,8 @@ size_t msocl__planes_bytes(const msocl_model *m, const msocl_sim_options *o)
  * (every integrator and strain limit can); NULL: it can. */
 static const char *unfit(const msocl_model *m, int lo, int hi)
 {
-  if (lo != 0 || hi != m->n)
-    return "runs a whole model on one device (not a split)";
+  (void)lo; /* a split's engines run the whole grid (exchange_slices.c) */
+  (void)hi;
   /* the kernels index all three planes with an int */
   if (3 * geometry_of(m).plane > (size_t)INT_MAX)
     return "index at most 2^31 floats (the grid and its padding are too "
@@ -191,8 +191,6 @@ static int row_auto(const msocl__engine *s)
  * can. */
 static const char *unfit_row(const msocl__engine *s)
 {
-  if (s->lo != 0 || s->hi != s->n)
-    return "runs a whole model on one device (not a split)";
   if (3 * geometry_row(s->n).plane > (size_t)INT_MAX)
     return "index at most 2^31 floats (too many points)";
   /* a wide table's unrolled slots would bloat the kernels */
@@ -575,14 +573,41 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
   return msocl__pl_rows_create(s, prog);
 }
 
+/* A split engine's passes: the rows (a lattice's layers; BUFFER's and
+ * IMAGE2D's work-groups) that hold its points, into off and size. The
+ * few points of a neighbour's range this covers are computed from stale
+ * inputs and never read: what others read of them arrives by the
+ * exchange. The copies in and out of the planes cover everything. */
+static void own_part(const msocl__engine *s, int k, size_t off[3],
+                     size_t size[3])
+{
+  for (int d = 0; d < 3; d++) {
+    off[d] = 0;
+    size[d] = s->pl_global[d];
+  }
+  if ((s->lo == 0 && s->hi == s->n) || k == PL_PACK || k == PL_UNPACK ||
+      k == PL_IN || k == PL_OUT)
+    return;
+  const int grid = s->lay.kind == MSOCL_LAYOUT_GRID,
+            dim = !grid ? 0 : s->lay.grid_nz > 0 ? 2 : 1;
+  const size_t per = !grid ? s->pl_group
+                     : dim == 2 ? (size_t)s->lay.grid_nx * s->lay.grid_ny
+                                : (size_t)s->lay.grid_nx,
+               a = (size_t)s->lo / per, b = ((size_t)s->hi - 1) / per + 1;
+  off[dim] = !grid ? a * per : a;
+  size[dim] = !grid ? (b - a) * per : b - a;
+}
+
 /* A pass over the padded grid; CPU devices in work-groups of a row's
  * pl_group points (launch.c's reason). */
 int msocl__pl_launch(msocl__engine *s, int k)
 {
   const size_t local[3] = {s->pl_group, 1, 1};
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 3, NULL,
-                                   s->pl_global, group, 0, NULL, NULL));
+  size_t off[3], size[3];
+  own_part(s, k, off, size);
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 3, off, size,
+                                   group, 0, NULL, NULL));
   if (s->pl_ks[k]) {
     const size_t spilled = (size_t)s->pl_nspill;
     MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_ks[k], 1, NULL,

@@ -65,13 +65,14 @@ int msocl__pl_implicit_args(msocl__engine *s)
   return msocl__pl_arg(s, k, 2, sizeof(int), &s->n);
 }
 
-/* Kernel k over the planes, then the points' terms summed as float4's
- * work-groups of 64 would, for the CG to collect. */
+/* Kernel k over the planes, then the terms of the engine's own points
+ * (a split's start at multiples of 64) summed as float4's work-groups of
+ * 64 would, for the CG to collect. */
 static int reduce(msocl__engine *s, int k)
 {
   TRY(msocl__pl_launch(s, k));
-  const size_t group = 64, global = 64 * s->groups;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[PL_SUM], 1, NULL,
+  const size_t group = 64, global = 64 * s->groups, from = (size_t)s->lo;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[PL_SUM], 1, &from,
                                    &global, &group, 0, NULL, NULL));
   return MSOCL_OK;
 }

@@ -23,7 +23,10 @@ static int arg(cl_kernel k, cl_uint i, size_t size, const void *v)
 
 static int applies(const msocl__engine *s)
 {
+  /* its blocks sweep the whole grid: a split's engine runs the two
+   * passes over its own rows instead */
   return s->planes && s->dev->info.type == MSOCL_DEVICE_CPU &&
+         s->lo == 0 && s->hi == s->n &&
          s->lay.grid_nz == 0 && s->lay.grid_nx >= ROWS_W &&
          s->o.integrator == MSOCL_SYMPLECTIC_EULER &&
          s->o.strain == MSOCL_STRAIN_NONE && s->lay.grid_k.s[3] == 0.0f;

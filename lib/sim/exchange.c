@@ -5,7 +5,8 @@
  * engine then writes its halos from those slices (scatter). The staging
  * areas alternate between two sets, so one exchange's writes may still be
  * in flight on one device while the next exchange's reads fill the other
- * set. */
+ * set. A slice of a buffer is one copy for the float4 engine, three (one
+ * a plane) for the planes (exchange_slices.c). */
 #include "config.h"
 #include "sim.h"
 
@@ -69,23 +70,32 @@ int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask)
 {
   struct msocl__exchange *x = &s->x;
   msocl__engine *e = s->part[d];
-  cl_event ev[MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
+  cl_event ev[MSOCL__X_COPIES];
   unsigned bit[MSOCL__X_SLOTS];
   int nk, nev = 0, rc = slots(mask, bit, &nk);
   if (rc != MSOCL_OK)
     return rc;
   for (int k = 0; k < nk; k++) {
-    cl_float4 *area = x->area[x->parity][k];
+    unsigned char *area = x->area[x->parity][k];
     cl_mem buf = msocl__exchange_buffer(e, bit[k]);
-    /* the slice of d's points each other engine r reads */
+    /* the slices of d's points each other engine r reads */
     for (int r = 0; r < s->nparts; r++) {
       const int *h = s->halo[r][d];
       if (r == d || h[0] >= h[1])
         continue;
-      MSOCL__CL(clEnqueueReadBuffer(
-          e->dev->queue, buf, CL_FALSE, (size_t)h[0] * sizeof(cl_float4),
-          (size_t)(h[1] - h[0]) * sizeof(cl_float4), area + x->base[r][d], 0,
-          NULL, &ev[nev++]));
+      size_t off[MSOCL__X_SLICES], len;
+      const int nc = msocl__exchange_slices(e, h[0], h[1], off, &len);
+      for (int c = 0; c < nc; c++) {
+        cl_int err = clEnqueueReadBuffer(
+            e->dev->queue, buf, CL_FALSE, off[c], len,
+            area + x->base[r][d] + (size_t)c * len, 0, NULL, &ev[nev]);
+        if (err != CL_SUCCESS) {
+          clWaitForEvents((cl_uint)nev, ev);
+          book(s, d, ev, nev);
+          MSOCL__CL(err);
+        }
+        nev++;
+      }
     }
     /* what this engine receives into its own buffer, bound now: the
      * buffer a bit names changes when the step's ping-pong swaps */
@@ -117,10 +127,12 @@ int msocl__exchange_send(msocl_sim *s, int d, unsigned mask)
       const int *h = s->halo[r][d];
       if (r == d || h[0] >= h[1])
         continue;
-      MSOCL__CL(clEnqueueCopyBuffer(
-          q, buf, x->send[d][k], (size_t)h[0] * sizeof(cl_float4),
-          (size_t)x->base[r][d] * sizeof(cl_float4),
-          (size_t)(h[1] - h[0]) * sizeof(cl_float4), 0, NULL, NULL));
+      size_t off[MSOCL__X_SLICES], len;
+      const int nc = msocl__exchange_slices(e, h[0], h[1], off, &len);
+      for (int c = 0; c < nc; c++)
+        MSOCL__CL(clEnqueueCopyBuffer(q, buf, x->send[d][k], off[c],
+                                      x->base[r][d] + (size_t)c * len, len,
+                                      0, NULL, NULL));
     }
     x->pend[d][k].buf = buf;
     x->pend[d][k].area = x->area[x->parity][k];
@@ -134,12 +146,13 @@ int msocl__exchange_send(msocl_sim *s, int d, unsigned mask)
       const int *h = s->halo[r][d];
       if (r == d || h[0] >= h[1])
         continue;
-      const size_t at = (size_t)x->base[r][d];
-      err = clEnqueueReadBuffer(x->xq[d], x->send[d][k], CL_FALSE,
-                                at * sizeof(cl_float4),
-                                (size_t)(h[1] - h[0]) * sizeof(cl_float4),
-                                x->area[x->parity][k] + at, 1, &ready,
-                                &x->rev[d][x->nrev[d]++]);
+      /* the slices lie one after another: one read */
+      size_t off[MSOCL__X_SLICES], len;
+      const int nc = msocl__exchange_slices(e, h[0], h[1], off, &len);
+      const size_t at = x->base[r][d];
+      err = clEnqueueReadBuffer(x->xq[d], x->send[d][k], CL_FALSE, at,
+                                (size_t)nc * len, x->area[x->parity][k] + at,
+                                1, &ready, &x->rev[d][x->nrev[d]++]);
       if (err != CL_SUCCESS)
         x->nrev[d]--;
     }
@@ -184,28 +197,28 @@ int msocl__exchange_scatter(msocl_sim *s, int d)
       const int *h = s->halo[d][e];
       if (e == d || h[0] >= h[1])
         continue;
-      const size_t len = (size_t)(h[1] - h[0]) * sizeof(cl_float4),
-                   to = (size_t)h[0] * sizeof(cl_float4),
-                   at = (size_t)x->base[d][e] * sizeof(cl_float4);
-      cl_event *w = &x->wev[d][x->nwev[d]];
-      /* its time is booked once it is done (settle) */
-      if (!x->overlap) {
-        MSOCL__CL(clEnqueueWriteBuffer(dst->dev->queue, p->buf, CL_FALSE, to,
-                                       len, p->area + x->base[d][e], 0, NULL,
-                                       w));
-        x->nwev[d]++;
-      } else {
-        MSOCL__CL(clEnqueueWriteBuffer(x->xq[d], x->recv[d][k], CL_FALSE, at,
-                                       len, p->area + x->base[d][e], 0, NULL,
-                                       w));
-        MSOCL__CL(clEnqueueCopyBuffer(dst->dev->queue, x->recv[d][k], p->buf,
-                                      at, to, len, 1, w, NULL));
-        if (m) /* booked with the mark, not settled */
-          m->copy[m->ncopy++] = *w;
-        else
+      size_t off[MSOCL__X_SLICES], len;
+      const int nc = msocl__exchange_slices(dst, h[0], h[1], off, &len);
+      for (int c = 0; c < nc; c++) {
+        const size_t to = off[c], at = x->base[d][e] + (size_t)c * len;
+        cl_event *w = &x->wev[d][x->nwev[d]];
+        /* its time is booked once it is done (settle) */
+        if (!x->overlap) {
+          MSOCL__CL(clEnqueueWriteBuffer(dst->dev->queue, p->buf, CL_FALSE,
+                                         to, len, p->area + at, 0, NULL, w));
           x->nwev[d]++;
+        } else {
+          MSOCL__CL(clEnqueueWriteBuffer(x->xq[d], x->recv[d][k], CL_FALSE,
+                                         at, len, p->area + at, 0, NULL, w));
+          MSOCL__CL(clEnqueueCopyBuffer(dst->dev->queue, x->recv[d][k],
+                                        p->buf, at, to, len, 1, w, NULL));
+          if (m) /* booked with the mark, not settled */
+            m->copy[m->ncopy++] = *w;
+          else
+            x->nwev[d]++;
+        }
+        x->stat[d].bytes += (double)len;
       }
-      x->stat[d].bytes += (double)len;
     }
   }
   x->npend[d] = 0;

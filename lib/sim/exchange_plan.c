@@ -87,10 +87,16 @@ int msocl__exchange_plan(msocl_sim *s)
     for (int e = 0; e < s->nparts; e++) {
       const int *h = s->halo[d][e];
       x->base[d][e] = x->packed;
-      if (d != e && h[0] < h[1])
-        x->packed += h[1] - h[0];
+      if (d != e && h[0] < h[1]) {
+        size_t off[MSOCL__X_SLICES], len;
+        const int nc = msocl__exchange_slices(s->part[e], h[0], h[1], off,
+                                              &len);
+        x->packed += (size_t)nc * len;
+      }
     }
-  size_t one = (size_t)(x->packed > 0 ? x->packed : 1) * sizeof(cl_float4);
+  /* whole float4s, so that every area stays aligned for them */
+  const size_t one = ((x->packed > 0 ? x->packed : 1) + sizeof(cl_float4) -
+                      1) & ~(sizeof(cl_float4) - 1);
   /* Pinned (page-locked) host memory makes a GPU's transfers direct
    * rather than staged through the driver's own bounce buffer; it belongs
    * to one context, so a GPU's. CPU devices read host memory in place. */
@@ -118,9 +124,12 @@ int msocl__exchange_plan(msocl_sim *s)
                        all);
   for (int p = 0; p < 2; p++)
     for (int k = 0; k < MSOCL__X_SLOTS; k++)
-      x->area[p][k] = (cl_float4 *)((char *)x->host +
-                                    (size_t)(p * MSOCL__X_SLOTS + k) * one);
-  x->overlap = s->o.tuning.overlap != MSOCL_OFF;
+      x->area[p][k] = (unsigned char *)x->host +
+                      (size_t)(p * MSOCL__X_SLOTS + k) * one;
+  /* Boundary first runs a phase once a span; the planes' passes cover the
+   * whole grid and some update in place (Verlet's drift), so they run
+   * each phase once. */
+  x->overlap = s->o.tuning.overlap != MSOCL_OFF && !s->part[0]->planes;
   for (int d = 0; x->overlap && d < s->nparts; d++) {
     plan_spans(s, d);
     int rc = plan_copies(s, d, one);

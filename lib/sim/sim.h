@@ -10,12 +10,16 @@
 
 /* The largest number of engines and of exchange buffers a step names. */
 #define MSOCL__MAX_PARTS MSOCL__MAX_DEVICES
+/* The most slices one buffer's halo is copied in (planes: x, y, z). */
+#define MSOCL__X_SLICES 3
+/* The most copies one engine queues for one exchange. */
+#define MSOCL__X_COPIES (MSOCL__X_SLOTS * MSOCL__MAX_PARTS * MSOCL__X_SLICES)
 
 /* A write an engine will receive into its halos: the buffer (bound when
  * the phase that filled the staging area ended) and the staging area. */
 struct msocl__pending {
   cl_mem buf;
-  const cl_float4 *area;
+  const unsigned char *area;
 };
 
 /* What the exchange cost one engine. */
@@ -33,7 +37,7 @@ struct msocl__xstat {
  * its interior, booked with them: its reads, and the next job's writes. */
 struct msocl__mark {
   cl_event ev[2];
-  cl_event copy[2 * MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
+  cl_event copy[2 * MSOCL__X_COPIES];
   int ncopy;
 };
 
@@ -43,24 +47,25 @@ struct msocl__mark {
 
 /* The exchange plan and its staging (exchange_plan.c, exchange.c). */
 struct msocl__exchange {
-  /* where the slice of e's points that d reads (halo[d][e]) sits in an
-   * area, and an area's length, in points */
-  int base[MSOCL__MAX_PARTS][MSOCL__MAX_PARTS];
-  int packed;
-  cl_float4 *area[2][MSOCL__X_SLOTS]; /* [parity][slot] */
+  /* where the slices of e's points that d reads (halo[d][e]) sit in an
+   * area, one after another (exchange_slices.c), and an area's length,
+   * in bytes */
+  size_t base[MSOCL__MAX_PARTS][MSOCL__MAX_PARTS];
+  size_t packed;
+  unsigned char *area[2][MSOCL__X_SLOTS]; /* [parity][slot] */
   int parity;                    /* the set the next gather fills */
   void *host, *heap;             /* the areas' memory: pinned or heap */
   cl_mem pinned;
   cl_command_queue map_queue;
   struct msocl__pending pend[MSOCL__MAX_PARTS][MSOCL__X_SLOTS];
   int npend[MSOCL__MAX_PARTS];
-  cl_event wev[MSOCL__MAX_PARTS][MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
+  cl_event wev[MSOCL__MAX_PARTS][MSOCL__X_COPIES];
   int nwev[MSOCL__MAX_PARTS];    /* writes queued, not yet settled */
   struct msocl__xstat stat[MSOCL__MAX_PARTS];
   /* Boundary first (tuning.overlap): an engine's range as spans, those
    * other engines read (nbound) first, then the interior; the slices
    * leave through `send` and arrive through `recv` (buffers of `packed`
-   * points, at the slices' area offsets), copied on a second queue `xq`
+   * bytes, at the slices' area offsets), copied on a second queue `xq`
    * while the first runs the interior: OpenCL leaves two queues' commands
    * on one buffer object undefined, so they never share one. */
   int overlap;
@@ -69,7 +74,7 @@ struct msocl__exchange {
   cl_command_queue xq[MSOCL__MAX_PARTS];
   cl_mem send[MSOCL__MAX_PARTS][MSOCL__X_SLOTS];
   cl_mem recv[MSOCL__MAX_PARTS][MSOCL__X_SLOTS];
-  cl_event rev[MSOCL__MAX_PARTS][MSOCL__X_SLOTS * MSOCL__MAX_PARTS];
+  cl_event rev[MSOCL__MAX_PARTS][MSOCL__X_COPIES];
   int nrev[MSOCL__MAX_PARTS];    /* reads in flight */
   struct msocl__mark mark[MSOCL__MAX_PARTS][MSOCL__MARKS];
   int nmark[MSOCL__MAX_PARTS];   /* compute spans not yet booked */

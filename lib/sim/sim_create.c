@@ -159,11 +159,11 @@ static double now(void)
 
 /* Weighs each device by its speed: the whole model for `steps` steps on
  * it alone (after one untimed step, which builds and warms up). */
-static int calibrate(msocl_sim *s, msocl_runtime *rt, const msocl_model *m)
+static int calibrate(msocl_sim *s, msocl_runtime *rt, const msocl_model *m,
+                     const msocl_sim_options *split)
 {
-  msocl_sim_options o = s->o;
+  msocl_sim_options o = *split; /* as the split's engines will run */
   o.check_every = 0;
-  o.tuning.planes = MSOCL_OFF; /* as the split's engines will run */
   for (int d = 0; d < s->nparts; d++) {
     msocl__engine *e = NULL;
     struct msocl__device *dev = &rt->dev[o.tuning.device + d];
@@ -345,6 +345,20 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
   const msocl_tuning *t = &o.tuning;
   s->nparts = t->ndevices < 0 ? rt->ndev - t->device
                               : t->ndevices == 0 ? 1 : t->ndevices;
+  /* Boundary first (tuning.overlap; AUTO: on) runs a phase span by span;
+   * the planes' passes cover the whole grid, so a split runs in planes
+   * only without it: AUTO then takes float4, and planes forced on refuse
+   * overlap forced on. */
+  if (s->nparts > 1 && t->planes == MSOCL_ON && t->overlap == MSOCL_ON) {
+    msocl_model_destroy(renumbered);
+    msocl_sim_destroy(s);
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "a split in planes runs without boundary first: "
+                       "tuning.overlap must be AUTO or OFF where "
+                       "tuning.planes is ON");
+  }
+  if (s->nparts > 1 && t->planes == MSOCL_AUTO && t->overlap != MSOCL_OFF)
+    o.tuning.planes = MSOCL_OFF;
   scene_scale(s, m);
   s->stage = malloc(4 * (size_t)m->n * sizeof(float));
   s->pinned = malloc((size_t)m->n);
@@ -358,15 +372,22 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
   for (int d = 0; d < s->nparts; d++)
     weighed |= t->weights[d] > 0.0f;
   if (s->nparts > 1 && !weighed && t->calibrate_steps > 0)
-    rc = calibrate(s, rt, m);
+    rc = calibrate(s, rt, m, &o);
   if (rc == MSOCL_OK)
     rc = partition(s, m);
   if (rc == MSOCL_OK)
     plan_halos(s, m);
-  for (int d = 0; rc == MSOCL_OK && d < s->nparts; d++)
+  for (int d = 0; rc == MSOCL_OK && d < s->nparts; d++) {
     rc = msocl__engine_create(&s->part[d],
                               (struct msocl__device *)&rt->dev[t->device + d],
                               m, &o, s->halo[d][d][0], s->halo[d][d][1]);
+    /* the exchange copies one state layout: every engine runs the first
+     * one's engine and connectivity */
+    if (rc == MSOCL_OK && d == 0 && s->nparts > 1 && s->part[0]->planes) {
+      o.tuning.planes = MSOCL_ON;
+      o.tuning.layout = s->part[0]->lay.kind;
+    }
+  }
   if (rc == MSOCL_OK && s->nparts > 1)
     rc = msocl__exchange_plan(s);
   if (rc == MSOCL_OK && s->nparts > 1)

@@ -187,6 +187,12 @@ static int split_steps(msocl_sim *s, int n)
 {
   const struct msocl__schedule *t = msocl__schedule_of(&s->part[0]->o);
   struct job j = {s, 0, 0, 0};
+  /* planes: the state into them, halos and all, unless they hold it */
+  for (int d = 0; d < s->nparts; d++) {
+    int rc = s->part[d]->planes ? msocl__planes_enter(s->part[d]) : MSOCL_OK;
+    if (rc != MSOCL_OK)
+      return rc;
+  }
   for (int q = 0; q < n; q++) {
     for (int ph = 0; ph < t->nphases;) {
       if (t->phase[ph].pass[0] == MSOCL__P_CG) {
