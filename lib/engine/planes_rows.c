@@ -23,7 +23,8 @@ static int arg(cl_kernel k, cl_uint i, size_t size, const void *v)
 
 static int applies(const msocl__engine *s)
 {
-  return s->planes && s->dev->info.type == MSOCL_DEVICE_CPU &&
+  /* capsules and boxes: the other planes kernels (rows has no gap for them) */
+  return s->planes && !s->pl_shapes && s->dev->info.type == MSOCL_DEVICE_CPU &&
          s->lay.grid_nz == 0 && s->lay.grid_nx >= ROWS_W &&
          s->o.integrator == MSOCL_SYMPLECTIC_EULER &&
          s->o.strain == MSOCL_STRAIN_NONE && s->lay.grid_k.s[3] == 0.0f;
