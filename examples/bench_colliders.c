@@ -11,11 +11,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { ENGINES = 3, SCENES = 4 };
+enum { ENGINES = 3, SCENES = 6, FLOAT4_SCENES = 4 };
 static const char *const engine_names[ENGINES] = {"grid-planes",
                                                   "grid-float4", "buffer"};
-static const char *const scene_names[SCENES] = {"none", "plane", "sphere",
-                                                "table"};
+static const char *const scene_names[SCENES] = {"none",  "plane",   "sphere",
+                                                "table", "capsule", "box"};
 
 static msocl_model *build(int n, int scene)
 {
@@ -44,6 +44,16 @@ static msocl_model *build(int n, int scene)
     rc = msocl_model_add_sphere(m, centre, TC_RADIUS, TC_FRICTION);
   if (rc == MSOCL_OK && scene == 3)
     rc = msocl_model_add_table(m, top, TC_RADIUS, TC_FRICTION);
+  /* planes engine only: a capsule along x and a box turned 30 degrees
+   * about y, their tops at y = 0 */
+  const float a[3] = {-0.3f, -TC_RADIUS, 0.0f}, b[3] = {0.3f, -TC_RADIUS, 0.0f};
+  const float bc[3] = {0.0f, -0.05f, 0.0f}, q[4] = {0.0f, 0.258819f, 0.0f,
+                                                    0.9659258f},
+              h[3] = {TC_RADIUS, 0.05f, TC_RADIUS};
+  if (rc == MSOCL_OK && scene == 4)
+    rc = msocl_model_add_capsule(m, a, b, TC_RADIUS, TC_FRICTION);
+  if (rc == MSOCL_OK && scene == 5)
+    rc = msocl_model_add_box(m, bc, q, h, TC_FRICTION);
   if (rc != MSOCL_OK) {
     msocl_model_destroy(m);
     return NULL;
@@ -59,7 +69,9 @@ static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
   msocl_sim *s[SCENES] = {0};
   double best[SCENES];
   int rc = MSOCL_OK;
-  for (int c = 0; c < SCENES && rc == MSOCL_OK; c++) {
+  /* the float4 engine has no capsule or box */
+  const int scenes = engine == 0 ? SCENES : FLOAT4_SCENES;
+  for (int c = 0; c < scenes && rc == MSOCL_OK; c++) {
     msocl_model *m = build(n, c);
     msocl_sim_options so;
     msocl_sim_options_init(&so);
@@ -74,7 +86,7 @@ static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
     best[c] = INFINITY;
   }
   for (int rep = 0; rc == MSOCL_OK && rep < o->repeat; rep++)
-    for (int c = 0; c < SCENES && rc == MSOCL_OK; c++) {
+    for (int c = 0; c < scenes && rc == MSOCL_OK; c++) {
       double t0 = bench_now();
       rc = msocl_sim_step(s[c], steps);
       double t = bench_now() - t0;
@@ -86,7 +98,7 @@ static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
     printf("%4d^2 %-12s failed\n", n, engine_names[engine]);
     return bench_fail(engine_names[engine], rc);
   }
-  for (int c = 0; c < SCENES; c++) {
+  for (int c = 0; c < scenes; c++) {
     struct bench_row r;
     bench_row_init(&r);
     bench_row_device(&r, rt);

@@ -29,6 +29,8 @@
 #define MSOCL_PLANE_KIND 1
 #define MSOCL_SPHERE_KIND 2
 #define MSOCL_TABLE_KIND 3
+#define MSOCL_CAPSULE_KIND 4 /* planes.cl only */
+#define MSOCL_BOX_KIND 5
 
 #ifdef MSOCL_PINS
 #define MSOCL_PINNED(p4) ((p4).w != 0.0f)

@@ -70,10 +70,23 @@
 #endif
 
 /* Value k of collider c (0: kind, 1: friction, 4-7: msocl_collider_gap's
- * prm) in the planes' collider table (lib/engine/planes.c), where each value
+ * prm, 8-15: a capsule's or box's msocl__collider.x) in the planes' collider table (lib/engine/planes.c), where each value
  * has a float4 to itself: adjacent ones would be loaded as a pair into a
  * <2 x float>, which stops PoCL vectorising the kernel. */
-#define MSOCL_PLANES_COL(cf, c, k) ((cf)[4 * (8 * (c) + (k))])
+#define MSOCL_PLANES_COL(cf, c, k) ((cf)[4 * (16 * (c) + (k))])
+
+/* v rotated by the unit quaternion (x, y, z, w): v + 2u x (u x v + w v). */
+static MSOCL_PLANES_INLINE void msocl_planes_qrot(float x, float y, float z,
+                                                  float w, float vx, float vy,
+                                                  float vz, float *ox,
+                                                  float *oy, float *oz)
+{
+  const float cx = y * vz - z * vy + w * vx, cy = z * vx - x * vz + w * vy,
+              cz = x * vy - y * vx + w * vz;
+  *ox = vx + 2.0f * (y * cz - z * cy);
+  *oy = vy + 2.0f * (z * cx - x * cz);
+  *oz = vz + 2.0f * (x * cy - y * cx);
+}
 
 /* msocl_collider_gap in scalars for collider c: g, and the unit gradient
  * in *nx.. */
@@ -116,6 +129,47 @@ static MSOCL_PLANES_INLINE float msocl_planes_gap(float px, float py, float pz,
     *ny = top ? 1.0f : 0.0f;
     *nz = top ? 0.0f : dz / rr;
     g = top ? gtop : gside;
+  }
+#endif
+#ifdef MSOCL_CAPSULE
+  /* the closest point of segment a-b, then a sphere's gap from it */
+  if (kind == MSOCL_CAPSULE_KIND) {
+    const float ex = cf(8) - cf(4), ey = cf(9) - cf(5), ez = cf(10) - cf(6);
+    const float ax = px - cf(4), ay = py - cf(5), az = pz - cf(6);
+    const float ee = MSOCL_DOT3(ex, ey, ez, ex, ey, ez);
+    float t = ee > 0.0f ? MSOCL_DIV(MSOCL_DOT3(ax, ay, az, ex, ey, ez), ee)
+                        : 0.0f;
+    t = fmin(fmax(t, 0.0f), 1.0f);
+    const float dx = ax - t * ex, dy = ay - t * ey, dz = az - t * ez;
+    const float len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+    const bool out = len > 0.0f;
+    *nx = out ? dx / len : 0.0f;
+    *ny = out ? dy / len : 1.0f;
+    *nz = out ? dz / len : 0.0f;
+    g = len - cf(7);
+  }
+#endif
+#ifdef MSOCL_BOX
+  /* p in the box's frame (q = (x, y, z, w) unit), the signed distance to
+   * the box of half extents h there, its gradient rotated back */
+  if (kind == MSOCL_BOX_KIND) {
+    const float qx = cf(8), qy = cf(9), qz = cf(10), qw = cf(11);
+    float lx, ly, lz, mx, my, mz;
+    msocl_planes_qrot(-qx, -qy, -qz, qw, px - cf(4), py - cf(5), pz - cf(6),
+                      &lx, &ly, &lz);
+    const float hx = cf(12), hy = cf(13), hz = cf(14);
+    const float dx = fabs(lx) - hx, dy = fabs(ly) - hy, dz = fabs(lz) - hz;
+    const float ox = fmax(dx, 0.0f), oy = fmax(dy, 0.0f), oz = fmax(dz, 0.0f);
+    const float olen = MSOCL_SQRT(MSOCL_DOT3(ox, oy, oz, ox, oy, oz));
+    const bool outside = olen > 0.0f;
+    const bool xm = dx >= dy && dx >= dz, ym = !xm && dy >= dz;
+    const float sx = lx < 0.0f ? -1.0f : 1.0f, sy = ly < 0.0f ? -1.0f : 1.0f,
+                sz = lz < 0.0f ? -1.0f : 1.0f;
+    mx = outside ? sx * ox / olen : xm ? sx : 0.0f;
+    my = outside ? sy * oy / olen : ym ? sy : 0.0f;
+    mz = outside ? sz * oz / olen : (!xm && !ym) ? sz : 0.0f;
+    g = outside ? olen : xm ? dx : ym ? dy : dz;
+    msocl_planes_qrot(qx, qy, qz, qw, mx, my, mz, nx, ny, nz);
   }
 #endif
 #undef cf

@@ -175,6 +175,16 @@ MSOCL_EXTERN int msocl_model_add_sphere(msocl_model *m, const float centre[3],
  * the given centre and radius; it reaches down without end. */
 MSOCL_EXTERN int msocl_model_add_table(msocl_model *m, const float top[3],
                                        float radius, float friction);
+/* A capsule: the points within `radius` > 0 of segment a-b. An oriented
+ * box: half extents (all > 0) along the axes of the frame at `centre`
+ * turned by the quaternion rotation = (x, y, z, w), normalised here.
+ * Both need the planes engine (else msocl_sim_create: MSOCL_ERR_BAD_VALUE). */
+MSOCL_EXTERN int msocl_model_add_capsule(msocl_model *m, const float a[3],
+                                         const float b[3], float radius,
+                                         float friction);
+MSOCL_EXTERN int msocl_model_add_box(msocl_model *m, const float centre[3],
+                                     const float rotation[4],
+                                     const float half[3], float friction);
 
 MSOCL_EXTERN int msocl_model_point_count(const msocl_model *m, int *n);
 MSOCL_EXTERN int msocl_model_spring_count(const msocl_model *m, int *n);

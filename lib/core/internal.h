@@ -48,7 +48,10 @@ int msocl__wind_check(const msocl_wind *w, double *kd, double *kl);
 
 /* ------------------------------------------------------------------ model */
 
-enum { MSOCL__PLANE = 1, MSOCL__SPHERE = 2, MSOCL__TABLE = 3 };
+enum { MSOCL__PLANE = 1, MSOCL__SPHERE = 2, MSOCL__TABLE = 3,
+       MSOCL__CAPSULE = 4, MSOCL__BOX = 5 };
+/* Kinds only the planes engine runs (model/collider_shapes.c). */
+#define MSOCL__PLANES_ONLY_KIND(k) ((k) >= MSOCL__CAPSULE)
 
 /* One collider: kind, then p = (normal xyz, offset) for a plane,
  * (centre xyz, radius) for a sphere, (top centre xyz, radius) for a table. */
@@ -56,6 +59,9 @@ struct msocl__collider {
   int kind;
   float p[4];
   float friction;
+  /* capsule: p = (end a, radius), x = end b; box: p = (centre, 0),
+   * x = (unit quaternion xyzw, half extents xyz) */
+  float x[8];
 };
 
 /* The simulations made from a model and not yet destroyed, in a block

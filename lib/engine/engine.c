@@ -12,7 +12,7 @@
 static int build_options(const msocl__engine *s, const msocl_model *m,
                          char *buf, size_t cap)
 {
-  int any_pin = 0, damped = 0, kinds[4] = {0};
+  int any_pin = 0, damped = 0, kinds[6] = {0};
   for (int i = 0; i < m->n; i++)
     any_pin |= m->pinned[i];
   for (int i = 0; m->damp && i < m->ns; i++)
@@ -37,7 +37,7 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
   /* EDGES shares the BUFFER macros with no slots: the gathering kernels
    * it does not use still compile, to nothing. */
   int len = snprintf(
-      buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s%s",
+      buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s%s%s%s",
       s->lay.kind == MSOCL_LAYOUT_IMAGE2D ? "-DMSOCL_LAYOUT_IMAGE2D"
       : s->lay.kind == MSOCL_LAYOUT_GRID
           ? (s->lay.grid_nz > 0 ? "-DMSOCL_LAYOUT_GRID -DMSOCL_GRID_3D"
@@ -54,6 +54,8 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
       kinds[MSOCL__PLANE] ? " -DMSOCL_PLANE" : "",
       kinds[MSOCL__SPHERE] ? " -DMSOCL_SPHERE" : "",
       kinds[MSOCL__TABLE] ? " -DMSOCL_TABLE" : "",
+      kinds[MSOCL__CAPSULE] ? " -DMSOCL_CAPSULE" : "",
+      kinds[MSOCL__BOX] ? " -DMSOCL_BOX" : "",
       planes,
       s->o.math == MSOCL_MATH_RELAXED
           ? " -DMSOCL_RELAXED -cl-fast-relaxed-math"
@@ -105,6 +107,8 @@ static int make_buffers(msocl__engine *s, const msocl_model *m)
     col[8 * c] = (float)m->col[c].kind;
     col[8 * c + 1] = m->col[c].friction;
     memcpy(col + 8 * c + 4, m->col[c].p, 4 * sizeof(float));
+    memcpy(s->pl_colx + 8 * c, m->col[c].x, sizeof m->col[c].x);
+    s->pl_shapes |= MSOCL__PLANES_ONLY_KIND(m->col[c].kind);
   }
   /* Each triangle (a, b, c) lists (b, c) at a, (c, a) at b, (a, b) at c:
    * the same winding at every corner. */
@@ -311,6 +315,10 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     rc = make_buffers(s, m);
   if (rc == MSOCL_OK)
     rc = msocl__planes_choose(s, m);
+  if (rc == MSOCL_OK && s->pl_shapes && !s->planes)
+    rc = msocl__fail(MSOCL_ERR_BAD_VALUE,
+                     "capsule and box colliders need the planes engine "
+                     "(tuning.planes, one device, not EDGES)");
   char opt[512];
   cl_program prog = NULL;
   if (rc == MSOCL_OK)

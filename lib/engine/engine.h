@@ -70,6 +70,8 @@ struct msocl__engine {
   cl_mem pl_sp[2], pl_sv[2], pl_sum[2]; /* RK4: stage states, sums */
   cl_mem pl_s[2];         /* strain sweeps (velocity: pl_s[0]) */
   cl_mem pl_col;          /* the colliders, a float4 a value (planes.c) */
+  float pl_colx[8 * MSOCL__MAX_COLLIDERS]; /* their msocl__collider.x */
+  int pl_shapes;          /* a capsule or box: planes only, not rows */
   struct msocl__layout pl_lay; /* the planes kernels' connectivity: lay,
                              BUFFER's table copied with a plane's stride */
   cl_mem pl_table[4];     /* that copy's nbr, rk, dashpots, spill (owned) */

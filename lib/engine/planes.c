@@ -373,14 +373,18 @@ static int fixed_args(msocl__engine *s)
  * kernel unvectorised (planes.cl's header says why). */
 static int collider_table(msocl__engine *s)
 {
-  enum { VALUES = 8 * MSOCL__MAX_COLLIDERS };
-  float packed[VALUES], spread[4 * VALUES] = {0};
+  enum { VALUES = 16 * MSOCL__MAX_COLLIDERS };
+  float packed[8 * MSOCL__MAX_COLLIDERS], spread[4 * VALUES] = {0};
   const size_t used = 8 * (size_t)s->ncol * sizeof(float);
   if (used > 0)
     MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->col, CL_TRUE, 0, used,
                                   packed, 0, NULL, NULL));
-  for (int i = 0; i < 8 * s->ncol; i++)
-    spread[4 * i] = packed[i];
+  /* 16 values a collider: the float4 engine's 8, then msocl__collider.x */
+  for (int c = 0; c < s->ncol; c++)
+    for (int k = 0; k < 8; k++) {
+      spread[4 * (16 * c + k)] = packed[8 * c + k];
+      spread[4 * (16 * c + 8 + k)] = s->pl_colx[8 * c + k];
+    }
   cl_int e;
   s->pl_col = clCreateBuffer(s->dev->ctx,
                              CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,

@@ -23,6 +23,10 @@ static double gap(const struct msocl__collider *k, const double *p, double *n)
         n[e] = d[e] / len;
     return len - k->p[3];
   }
+  if (k->kind == MSOCL__CAPSULE)
+    return msocl__ref_capsule_gap(k, p, n);
+  if (k->kind == MSOCL__BOX)
+    return msocl__ref_box_gap(k, p, n);
   double dx = p[0] - k->p[0], dz = p[2] - k->p[2];
   double rr = sqrt(dx * dx + dz * dz), gside = rr - k->p[3],
          gtop = p[1] - k->p[1];

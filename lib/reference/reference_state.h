@@ -45,6 +45,12 @@ static inline double msocl__dot3(const double *a, const double *b)
 /* reference_force.c: internal and viscous force on point i; collisions. */
 void msocl__ref_force(const msocl_reference *r, const double *pos,
                       const double *vel, int i, double *f);
+/* A capsule's and a box's gap at p and unit gradient n
+ * (reference_shapes.c; kernels/planes.cl msocl_planes_gap). */
+double msocl__ref_capsule_gap(const struct msocl__collider *k, const double *p,
+                              double *n);
+double msocl__ref_box_gap(const struct msocl__collider *k, const double *p,
+                          double *n);
 void msocl__ref_collide(const msocl_reference *r, const double *p, double *v,
                         double fscale);
 /* Pushes p out of the colliders it is inside, with v's normal part. */

@@ -1,0 +1,98 @@
+/* Capsule and oriented-box colliders of a model (planes engine only):
+ * checked, and stored in msocl__collider's p and x as the kernels read
+ * them (kernels/planes.cl msocl_planes_gap). */
+#include <math.h>
+
+#include "internal.h"
+
+static int finite3(const float *v)
+{
+  return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+static int check(const msocl_model *m, const char *kind, float friction)
+{
+  if (!m)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "model is NULL");
+  if (!isfinite(friction))
+    return msocl__fail(MSOCL_ERR_NOT_FINITE, "%s %d: friction %g is not finite",
+                       kind, m->ncol, friction);
+  if (friction < 0 || friction > 1)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "%s %d: friction %g is outside [0, 1]", kind, m->ncol,
+                       friction);
+  if (m->ncol >= MSOCL__MAX_COLLIDERS)
+    return msocl__fail(MSOCL_ERR_TOO_MANY,
+                       "%s: a model holds at most %d colliders", kind,
+                       MSOCL__MAX_COLLIDERS);
+  return MSOCL_OK;
+}
+
+int msocl_model_add_capsule(msocl_model *m, const float a[3], const float b[3],
+                            float radius, float friction)
+{
+  int rc;
+  msocl__clear_error();
+  if ((rc = check(m, "capsule", friction)))
+    return rc;
+  if (!a || !b)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "capsule %d: an end is NULL",
+                       m->ncol);
+  if (!finite3(a) || !finite3(b) || !isfinite(radius))
+    return msocl__fail(MSOCL_ERR_NOT_FINITE,
+                       "capsule %d: an end or the radius %g is not finite",
+                       m->ncol, radius);
+  if (!(radius > 0))
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "capsule %d: radius %g must be > 0", m->ncol, radius);
+  struct msocl__collider *c = &m->col[m->ncol++];
+  *c = (struct msocl__collider){.kind = MSOCL__CAPSULE, .friction = friction};
+  for (int d = 0; d < 3; d++) {
+    c->p[d] = a[d];
+    c->x[d] = b[d];
+  }
+  c->p[3] = radius;
+  return MSOCL_OK;
+}
+
+int msocl_model_add_box(msocl_model *m, const float centre[3],
+                        const float rotation[4], const float half[3],
+                        float friction)
+{
+  int rc;
+  msocl__clear_error();
+  if ((rc = check(m, "box", friction)))
+    return rc;
+  if (!centre || !rotation || !half)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "box %d: a vector is NULL",
+                       m->ncol);
+  if (!finite3(centre) || !finite3(rotation) || !isfinite(rotation[3]) ||
+      !finite3(half))
+    return msocl__fail(MSOCL_ERR_NOT_FINITE,
+                       "box %d: centre, rotation or half extents not finite",
+                       m->ncol);
+  for (int d = 0; d < 3; d++)
+    if (!(half[d] > 0))
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "box %d: half extent %d is %g, must be > 0", m->ncol,
+                         d, half[d]);
+  /* in double: a float's square of a tiny or huge quaternion under- or
+   * overflows */
+  double len = 0;
+  for (int d = 0; d < 4; d++)
+    len += (double)rotation[d] * rotation[d];
+  len = sqrt(len);
+  if (!(len > 0) || !isfinite(len))
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "box %d: rotation quaternion has length %g", m->ncol,
+                       len);
+  struct msocl__collider *c = &m->col[m->ncol++];
+  *c = (struct msocl__collider){.kind = MSOCL__BOX, .friction = friction};
+  for (int d = 0; d < 3; d++) {
+    c->p[d] = centre[d];
+    c->x[4 + d] = half[d];
+  }
+  for (int d = 0; d < 4; d++)
+    c->x[d] = (float)(rotation[d] / len);
+  return MSOCL_OK;
+}
