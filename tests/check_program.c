@@ -46,7 +46,7 @@ static int make_sim(void)
 static const char *const files[] = {"common.cl",   "step.cl",
                                     "integrators.cl", "implicit.cl",
                                     "strain.cl",   "energy.cl",
-                                    "normals.cl",  "edges.cl",
+                                    "normals.cl",
                                     "planes.cl",   "planes_implicit.cl",
                                     "planes_rows.cl"};
 #define NFILES (sizeof files / sizeof files[0])
