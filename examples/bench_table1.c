@@ -30,21 +30,16 @@ static const char *const paper_cols[4] = {"CPU 1", "CPU 2", "GPU 1",
  * neighbour index and a class byte - or 12 B with the values; IMAGE2D: 16
  * texels of 16 B), neighbour positions counted as cached (0), and writes
  * vel (16 B).
- * EDGES: the spring pass reads 9 B a spring (ends and a class byte), end
- * positions cached, and writes its coefficient (4 B); the point pass reads
- * a table entry and a coefficient for each end of a spring (2 x 8 B), pos,
- * vel and inv_mass (36 B) and writes pos and vel (32 B): no position pass.
  * GRID: as BUFFER with no connectivity at all. The others: the
- * position pass reads pos and vel (32 B) and writes pos (16 B). GRID in
- * planes: 12 B a state, 4 B inverse mass, 4 B pinned flag: the velocity
- * pass moves 12 + 12 + 8 + 12, the position pass 12 + 12 + 4 + 12. */
+ * position pass reads pos and vel (32 B) and writes pos (16 B). In
+ * planes (GRID, BUFFER, and EDGES, which always runs there): 12 B a state,
+ * 4 B inverse mass, 4 B pinned flag: the velocity pass moves 12 + 12 + 8 + 12, the position pass 12 + 12 + 4 + 12. */
 static double bytes_model(int layout, int slots, int classes,
                           double springs_per_point, int fused, int planes)
 {
+  (void)springs_per_point;
   if (planes)
     return 44 + 40;
-  if (layout == MSOCL_LAYOUT_EDGES)
-    return (9.0 + 4.0 + 16.0) * springs_per_point + 36 + 32;
   double conn = layout == MSOCL_LAYOUT_IMAGE2D ? 16.0 * 16.0
                 : layout == MSOCL_LAYOUT_GRID  ? 0.0
                                                : (classes ? 5.0 : 12.0) * slots;
@@ -514,10 +509,9 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
   printf("bytes per vertex-step: velocity pass reads pos 16 + vel 16 + "
          "inv_mass 4 + connectivity\n(BUFFER: table slots x 5 B with spring "
          "classes, x 12 B with values; IMAGE2D:\n16 x 16 B), neighbours "
-         "cached (0), writes vel 16; EDGES:\n29 B a "
-         "spring + point pass 68, no position pass; position pass reads "
-         "pos + vel 32,\nwrites pos 16; GRID in planes (library's choice on a "
-         "CPU, or grid-planes): 84 (12 B a state, 8 B mass and pin).\n"
+         "cached (0), writes vel 16; position pass reads pos + vel 32,\n"
+         "writes pos 16; in planes (EDGES always; GRID and BUFFER as the "
+         "library chooses on a CPU, or grid-planes): 84 (12 B a state, 8 B mass and pin).\n"
          "GB/s = bytes x vertex-steps/s; %%copy = GB/s over the copy "
          "bandwidth.\n\n");
   printf("%-9s %-28s %6s %8s %8s %9s %9s %6s %6s %6s %9s\n", "grid",

@@ -284,10 +284,10 @@ typedef enum {
   MSOCL_LAYOUT_AUTO = 0, /* GRID for a cloth grid as built, else BUFFER */
   MSOCL_LAYOUT_IMAGE2D,  /* the paper's connectivity texture, 16 slots */
   MSOCL_LAYOUT_BUFFER,   /* slot-major buffers, max-degree slots */
-  MSOCL_LAYOUT_EDGES,    /* seed 2: a work-item per spring computes its
-                            force once, then each point sums its springs'
-                            in BUFFER's order, no atomics: bitwise BUFFER
-                            (symplectic Euler only, one device) */
+  MSOCL_LAYOUT_EDGES,    /* seed 2's spring list, gathered per point in
+                            BUFFER's order in the planes engine, no
+                            atomics: bitwise BUFFER (symplectic Euler
+                            only, one device, planes not OFF) */
   MSOCL_LAYOUT_GRID      /* no stored springs: a cloth from
                             msocl_model_cloth_grid (or a lattice from
                             msocl_model_lattice) recomputes its 12 (32)
@@ -373,7 +373,8 @@ typedef struct {
    * +18, a strain limit +3, Provot's +3. AUTO: GRID and BUFFER on a CPU
    * device, unless GRID's P is over 4 points a point and its planes over
    * 64 MiB; not IMAGE2D, whose texel reads PoCL does not vectorise; not
-   * a split with overlap on. */
+   * a split with overlap on. EDGES always (as BUFFER; OFF is refused for
+   * it). */
   msocl_choice planes;
 } msocl_tuning;
 

@@ -28,20 +28,6 @@ int msocl__energy(msocl__engine *s, msocl_energy *e)
     e->spring += s->partial_host[g].s[1];
     e->gravity += s->partial_host[g].s[2];
   }
-  if (s->lay.kind == MSOCL_LAYOUT_EDGES) {
-    /* the springs' part, a work-item a spring */
-    cl_kernel ke = s->k[MSOCL__K_EDGES_ENERGY];
-    rc = msocl__arg_mem(ke, 3, s->pos[s->r]);
-    if (rc != MSOCL_OK)
-      return rc;
-    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, ke, 1, NULL,
-                                     &s->edge_global, &local, 0, NULL, NULL));
-    MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->partial, CL_TRUE, 0,
-                                  s->edge_groups * sizeof(cl_float4),
-                                  s->partial_host, 0, NULL, NULL));
-    for (size_t g = 0; g < s->edge_groups; g++)
-      e->spring += s->partial_host[g].s[1];
-  }
   e->total = e->kinetic + e->spring + e->gravity;
   return MSOCL_OK;
 }

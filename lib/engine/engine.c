@@ -34,8 +34,7 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
              " -DMSOCL_PLANES -DMSOCL_NCOL=%d -DMSOCL_GRID_KINDS=%d", m->ncol,
              kinds);
   }
-  /* EDGES shares the BUFFER macros with no slots: the gathering kernels
-   * it does not use still compile, to nothing. */
+  /* EDGES holds BUFFER's table (layout.c) */
   int len = snprintf(
       buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s%s%s%s",
       s->lay.kind == MSOCL_LAYOUT_IMAGE2D ? "-DMSOCL_LAYOUT_IMAGE2D"
@@ -43,8 +42,7 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
           ? (s->lay.grid_nz > 0 ? "-DMSOCL_LAYOUT_GRID -DMSOCL_GRID_3D"
                                 : "-DMSOCL_LAYOUT_GRID")
                                           : "-DMSOCL_LAYOUT_BUFFER",
-      s->lay.kind == MSOCL_LAYOUT_EDGES ? 0
-                                        : s->lay.slots > 0 ? s->lay.slots : 1,
+      s->lay.slots > 0 ? s->lay.slots : 1,
       s->lay.degree, s->lay.spill ? " -DMSOCL_SPILL" : "",
       s->lay.classes ? " -DMSOCL_CLASSES" : "",
       damped ? " -DMSOCL_DAMPING" : "",
@@ -161,11 +159,8 @@ static int make_buffers(msocl__engine *s, const msocl_model *m)
     s->backup_p = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
     s->backup_v = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
   }
-  if (rc == MSOCL_OK && s->lay.kind == MSOCL_LAYOUT_EDGES)
-    rc = msocl__edges_buffers(s);
-  size_t parts = s->groups > s->edge_groups ? s->groups : s->edge_groups;
-  s->partial = buffer(s, CL_MEM_READ_WRITE, parts * sizeof(cl_float4), NULL,
-                      &rc);
+  s->partial = buffer(s, CL_MEM_READ_WRITE, s->groups * sizeof(cl_float4),
+                      NULL, &rc);
   if (rc == MSOCL_OK) {
     /* Velocities start at zero: a pattern fill, no host transfer. */
     float zero = 0.0f;
@@ -190,8 +185,7 @@ static const char *const kernel_names[MSOCL__K_COUNT] = {
     "msocl_verlet_kick", "msocl_rk4_stage", "msocl_energy",
     "msocl_ie_rhs",     "msocl_ie_apply",   "msocl_cg_step",
     "msocl_cg_direction", "msocl_ie_finish", "msocl_strain_velocity",
-    "msocl_strain_position", "msocl_strain_commit", "msocl_edges_force",
-    "msocl_edges_velocity", "msocl_edges_energy", "msocl_fused"};
+    "msocl_strain_position", "msocl_strain_commit", "msocl_fused"};
 
 /* Kernels that read a point's springs take the connectivity first. */
 static const unsigned char gathers[MSOCL__K_COUNT] = {
@@ -208,10 +202,7 @@ static int make_kernels(msocl__engine *s, cl_program prog)
   want[MSOCL__K_NORMALS] = want[MSOCL__K_ENERGY] = 1;
   switch (s->o.integrator) {
   case MSOCL_SYMPLECTIC_EULER:
-    if (s->lay.kind == MSOCL_LAYOUT_EDGES) {
-      want[MSOCL__K_EDGES_FORCE] = want[MSOCL__K_EDGES_VEL] = 1;
-      want[MSOCL__K_EDGES_ENERGY] = 1;
-    } else if (s->o.tuning.fused == MSOCL_ON) {
+    if (s->o.tuning.fused == MSOCL_ON) {
       want[MSOCL__K_FUSED] = 1;
     } else {
       want[MSOCL__K_VELOCITY] = 1;
@@ -295,9 +286,8 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
   for (int i = 0; m->damp && i < m->ns && !s->damped; i++)
     s->damped = m->damp[i] != 0.0f;
   s->stage = malloc(4 * (size_t)m->n * sizeof(float));
-  /* room for the larger of the point and (EDGES) spring reductions */
-  s->partial_host = malloc((s->full_global / 64 + (size_t)m->ns / 64 + 1) *
-                           sizeof *s->partial_host);
+  s->partial_host =
+      malloc((s->full_global / 64 + 1) * sizeof *s->partial_host);
   if (!s->stage || !s->partial_host) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
     goto fail;
@@ -363,8 +353,7 @@ void msocl__engine_destroy(msocl__engine *s)
                    s->inv_mass,   s->col,        s->normal,     s->tri_off,
                    s->tri_ab,     s->acc,        s->stage_p[0], s->stage_p[1],
                    s->stage_v[0], s->stage_v[1], s->sum_p,      s->sum_v,
-                   s->backup_p,   s->backup_v,   s->partial,    s->edge_coef[0],
-                   s->edge_coef[1]};
+                   s->backup_p,   s->backup_v,   s->partial};
   for (size_t q = 0; q < sizeof mems / sizeof mems[0]; q++)
     if (mems[q])
       clReleaseMemObject(mems[q]);

@@ -1,6 +1,6 @@
 /* An engine: a whole copy of the model on one device, advancing the points
  * of its own range. Shared by the files that set it up (engine.c), step it
- * (schedule.c, integrate*.c, strain.c, edges.c, planes*.c, cg.c) and
+ * (schedule.c, integrate*.c, strain.c, planes*.c, cg.c) and
  * measure it (energy.c); the simulation (sim.h) joins engines. */
 #ifndef MSOCL_ENGINE_H
 #define MSOCL_ENGINE_H
@@ -13,8 +13,7 @@ enum {
   MSOCL__K_ACCEL, MSOCL__K_DRIFT, MSOCL__K_KICK, MSOCL__K_RK4,
   MSOCL__K_ENERGY, MSOCL__K_IE_RHS, MSOCL__K_IE_APPLY, MSOCL__K_CG_STEP,
   MSOCL__K_CG_DIR, MSOCL__K_IE_FINISH, MSOCL__K_STRAIN_VEL,
-  MSOCL__K_STRAIN_POS, MSOCL__K_STRAIN_COMMIT, MSOCL__K_EDGES_FORCE,
-  MSOCL__K_EDGES_VEL, MSOCL__K_EDGES_ENERGY, MSOCL__K_FUSED, MSOCL__K_COUNT
+  MSOCL__K_STRAIN_POS, MSOCL__K_STRAIN_COMMIT, MSOCL__K_FUSED, MSOCL__K_COUNT
 };
 
 typedef struct msocl__engine msocl__engine;
@@ -31,11 +30,6 @@ struct msocl__engine {
   cl_mem stage_p[2], stage_v[2], sum_p, sum_v; /* RK4 stages; CG vectors */
   cl_mem backup_p, backup_v; /* last state that passed the blow-up check */
   cl_mem partial;         /* one float4 per work-group of reductions */
-  cl_mem edge_coef[2];    /* EDGES: per spring, the spring's and the
-                             dashpot's force over its length vector */
-  size_t edge_global, edge_groups; /* EDGES: springs rounded up to 64 */
-  size_t edge_work, edge_points; /* EDGES: the passes' blocks of 8
-                             springs, of 8 points, rounded up to 64 */
   cl_kernel k[MSOCL__K_COUNT];
   int r;
   int acc_valid;          /* acc matches the current state */
@@ -214,11 +208,5 @@ int msocl__strain_position(msocl__engine *s, cl_mem vel);
 int msocl__launch(msocl__engine *s, int k);
 int msocl__launch_range(msocl__engine *s, int k);
 int msocl__launch_all(msocl__engine *s, int k);
-/* EDGES (edges.c): the coefficient buffers; the kernels' fixed arguments;
- * the whole step (the spring pass, then the point pass, which writes
- * pos[1 - r] and vel[1 - r]). */
-int msocl__edges_buffers(msocl__engine *s);
-int msocl__edges_setup(msocl__engine *s);
-int msocl__edges_velocity(msocl__engine *s);
 
 #endif

@@ -6,14 +6,11 @@
 
 #define TRY MSOCL__TRY
 
-/* Fixed arguments: everything but the state buffers that ping-pong; the
- * float4 kernels' by name (kernel_args.c), the EDGES kernels' in edges.c. */
+/* Fixed arguments: everything but the state buffers that ping-pong, by
+ * name (kernel_args.c). */
 int msocl__integrate_setup(msocl__engine *s)
 {
-  TRY(msocl__set_fixed(s));
-  if (s->lay.kind == MSOCL_LAYOUT_EDGES)
-    TRY(msocl__edges_setup(s));
-  return MSOCL_OK;
+  return msocl__set_fixed(s);
 }
 
 /* The position pass of the symplectic and implicit steps: pos[w] from
@@ -115,9 +112,7 @@ int msocl__float4_pass(msocl__engine *s, enum msocl__pass p)
   case MSOCL__P_VELOCITY: return symplectic_velocity(s);
   case MSOCL__P_STRAIN_VEL: return msocl__strain_velocity(s);
   case MSOCL__P_POSITION: return position_pass(s);
-  case MSOCL__P_FUSED: /* EDGES: its whole step */
-    return s->lay.kind == MSOCL_LAYOUT_EDGES ? msocl__edges_velocity(s)
-                                             : one_pass(s, MSOCL__K_FUSED);
+  case MSOCL__P_FUSED: return one_pass(s, MSOCL__K_FUSED);
   case MSOCL__P_EULER: return one_pass(s, MSOCL__K_EULER);
   case MSOCL__P_DRIFT: return verlet_drift(s);
   case MSOCL__P_KICK: return verlet_kick(s);

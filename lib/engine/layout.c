@@ -1,8 +1,9 @@
 /* Turns a model's adjacency into device connectivity: the paper's tiled
  * connectivity texture (IMAGE2D) or slot-major buffers (BUFFER) - both list
  * a point's springs in the same slot order, so both sum forces identically -
- * the second seed's per-spring list (EDGES), or nothing at all for a cloth
- * grid whose neighbours follow from its position (GRID). */
+ * EDGES, the second seed's spring list, holds BUFFER's table (its springs
+ * are gathered per point in the planes engine) - or nothing at all for a
+ * cloth grid whose neighbours follow from its position (GRID). */
 #include "config.h"
 #include "layout.h"
 
@@ -275,102 +276,6 @@ out:
   return rc;
 }
 
-/* One entry per spring, in the model's order: the second seed's list; and
- * each point's springs as the adjacency lists them, for the point pass. */
-static int build_edges(struct msocl__device *dev, const msocl_model *m,
-                       const struct msocl__adjacency *adj, int damped,
-                       msocl_choice classes, struct msocl__layout *l)
-{
-  /* padded to whole blocks of the spring pass's eight with springs of no
-   * length (zeros), at least one: spring m->ns pads the table */
-  const size_t ns = ((size_t)m->ns / 8 + 1) * 8;
-  const int w = msocl__table_slots(adj, 0), nb = (m->n + 7) / 8;
-  const size_t ntab = 16 * (size_t)nb * (size_t)w + 1;
-  int *ij = calloc(2 * ns, sizeof *ij);
-  float *rk = calloc(2 * ns, sizeof *rk);
-  float *dmp = calloc(damped ? ns : 1, sizeof *dmp);
-  int *inc = calloc(4 * ns, sizeof *inc);
-  int *tab = calloc(ntab, sizeof *tab);
-  unsigned char *run = calloc((size_t)nb + 1, 1);
-  /* a byte a spring where the values fit 256 classes (the padding's: 0,
-   * the zeros), as BUFFER's, unless tuning.classes is OFF: the spring pass
-   * then reads 1 B a spring, not 8-12 */
-  cl_float4 ctab[256];
-  unsigned char *sc = calloc(ns, 1);
-  int rc = MSOCL_OK;
-  if (!ij || !rk || !dmp || !inc || !tab || !run || !sc) {
-    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "spring list");
-    goto out;
-  }
-  for (int s = 0; s < m->ns; s++) {
-    ij[2 * s] = m->ij[2 * s];
-    ij[2 * s + 1] = m->ij[2 * s + 1];
-    rk[2 * s] = m->rest[s];
-    rk[2 * s + 1] = m->k[s];
-    if (damped)
-      dmp[s] = m->damp[s];
-  }
-  for (int e = 0; e < adj->off[m->n]; e++) {
-    inc[2 * e] = adj->other[e];
-    inc[2 * e + 1] = adj->spring[e];
-  }
-  for (int b = 0; b < nb; b++)
-    for (int s = 0; s < w; s++)
-      for (int q = 0; q < 8; q++) {
-        const int i = 8 * b + q, at = adj->off[i < m->n ? i : m->n] + s;
-        const int in = i < m->n && at < adj->off[i + 1];
-        int *slot = tab + 16 * ((size_t)b * w + s) + q;
-        slot[0] = in ? adj->other[at] : i < m->n ? i : m->n - 1;
-        slot[8] = in ? adj->spring[at] : m->ns;
-      }
-  /* blocks inside the model whose other ends are consecutive points in
-   * every slot (a grid's rows, away from its edges) */
-  for (int b = 0; b < nb; b++) {
-    int in = 8 * b + 7 < m->n;
-    for (int s = 0; s < w && in; s++) {
-      const int *e = tab + 16 * ((size_t)b * w + s);
-      for (int q = 1; q < 8; q++)
-        in &= e[q] == e[0] + q;
-    }
-    run[b] = (unsigned char)in;
-  }
-  l->width = w;
-  l->nsprings = m->ns;
-  l->nblocks = (int)(ns / 8);
-  l->classes =
-      classes != MSOCL_OFF ? spring_classes(m, damped, ctab, sc) : 0;
-  l->con = make_buffer(dev, 2 * ns * sizeof *ij, ij, &rc);
-  if (rc == MSOCL_OK && l->classes) {
-    l->rk = make_buffer(dev, ns, sc, &rc);
-    if (rc == MSOCL_OK)
-      l->damp =
-          make_buffer(dev, (size_t)l->classes * sizeof *ctab, ctab, &rc);
-  } else if (rc == MSOCL_OK) {
-    l->rk = make_buffer(dev, 2 * ns * sizeof *rk, rk, &rc);
-    if (rc == MSOCL_OK)
-      l->damp = make_buffer(dev, (damped ? ns : 1) * sizeof *dmp, dmp, &rc);
-  }
-  if (rc == MSOCL_OK)
-    l->inc_off = make_buffer(dev, ((size_t)m->n + 1) * sizeof *adj->off,
-                             adj->off, &rc);
-  if (rc == MSOCL_OK)
-    l->inc = make_buffer(dev, 4 * ns * sizeof *inc, inc, &rc);
-  if (rc == MSOCL_OK)
-    l->tab = make_buffer(dev, ntab * sizeof *tab, tab, &rc);
-  if (rc == MSOCL_OK)
-    l->run = make_buffer(dev, (size_t)nb + 1, run, &rc);
-out:
-  free(run);
-  free(sc);
-  free(tab);
-  free(inc);
-  free(ij);
-  free(rk);
-  free(dmp);
-  return rc;
-}
-
-
 /* The connectivity texture holds MSOCL__IMAGE_SLOTS springs a point:
  * refuses IMAGE2D for a model with a point of more, naming the first. */
 int msocl__layout_fits(const msocl_model *m, msocl_layout kind)
@@ -414,7 +319,10 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
     if ((rc = msocl__layout_fits(m, MSOCL_LAYOUT_IMAGE2D)) != MSOCL_OK)
       return rc;
     rc = build_image(dev, m, adj, has_damping(m), out);
-  } else if (out->kind == MSOCL_LAYOUT_BUFFER) {
+  } else if (out->kind == MSOCL_LAYOUT_BUFFER ||
+             out->kind == MSOCL_LAYOUT_EDGES) {
+    /* EDGES: a point's springs in BUFFER's table, read by the planes
+     * engine's gather as BUFFER's are (planes.c) */
     out->degree = adj->max_degree;
     out->slots = msocl__table_slots(adj, table_slots);
     rc = build_buffers(dev, m, adj, has_damping(m), classes, out);
@@ -440,9 +348,6 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
     if (lattice)
       out->grid_rest.s[4] = m->grid.damp;
     rc = MSOCL_OK;
-  } else if (out->kind == MSOCL_LAYOUT_EDGES) {
-    out->slots = 0;
-    rc = build_edges(dev, m, adj, has_damping(m), classes, out);
   } else {
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d", (int)kind);
   }
@@ -461,16 +366,7 @@ void msocl__layout_release(struct msocl__layout *l)
     clReleaseMemObject(l->damp);
   if (l->spill)
     clReleaseMemObject(l->spill);
-  if (l->inc_off)
-    clReleaseMemObject(l->inc_off);
-  if (l->inc)
-    clReleaseMemObject(l->inc);
-  if (l->tab)
-    clReleaseMemObject(l->tab);
-  if (l->run)
-    clReleaseMemObject(l->run);
   l->con = l->rk = l->damp = l->spill = NULL;
-  l->inc_off = l->inc = l->tab = l->run = NULL;
 }
 
 int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,

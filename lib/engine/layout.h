@@ -6,24 +6,12 @@
 
 struct msocl__layout {
   msocl_layout kind; /* IMAGE2D, BUFFER, EDGES or GRID, never AUTO */
-  int slots;         /* springs a point can hold (EDGES: 0); BUFFER with
+  int slots;         /* springs a point can hold (BUFFER, EDGES); with
                         a spill: in the table */
   int degree;        /* BUFFER: the most springs any point has */
   cl_mem spill;      /* BUFFER: per point, where its springs past the
                         table start in the list after it (n + 1 ints);
                         NULL: none spill */
-  int nsprings;      /* EDGES */
-  int nblocks;       /* EDGES: its lists' blocks of 8 springs (the last
-                        padded with springs of no length) */
-  cl_mem inc_off;    /* EDGES: per point, where its springs start in inc
-                        (n + 1 ints) */
-  cl_mem inc;        /* EDGES: int2 (other end, spring) per spring end, a
-                        point's in BUFFER's slot order (the adjacency's) */
-  cl_mem tab;        /* EDGES: the first `width` of them, blocks of eight
-                        points slot by slot (kernels/edges.cl) */
-  cl_mem run;        /* EDGES: a byte a block of eight points, 1 where
-                        its slots hold runs of consecutive points */
-  int width;         /* EDGES: BUFFER's table width for this model */
   int grid_nx, grid_ny;    /* GRID */
   int grid_nz;             /* GRID: a lattice's layers; 0: a cloth */
   cl_float4 grid_k;        /* cloth: stretch, shear, bend stiffness,
@@ -31,9 +19,9 @@ struct msocl__layout {
   cl_float8 grid_rest;     /* cloth: the six kinds' rest lengths; lattice:
                               the four kinds', then the dashpot */
   int tex_w, tex_h;  /* IMAGE2D: point i is texel (i % tex_w, i / tex_w) */
-  cl_mem con;        /* IMAGE2D: (4W)x(4H) RGBA image; BUFFER: int slots;
-                        EDGES: int2 end points per spring */
-  cl_mem rk;         /* BUFFER, EDGES: float2 (rest, k) per slot/spring;
+  cl_mem con;        /* IMAGE2D: (4W)x(4H) RGBA image; BUFFER, EDGES: int
+                        slots */
+  cl_mem rk;         /* BUFFER, EDGES: float2 (rest, k) per slot;
                         BUFFER with classes: a uchar class per slot */
   cl_mem damp;       /* dashpot coefficients per slot (or a 1-item dummy);
                         BUFFER with classes: the classes' float4 (rest, k,

@@ -183,12 +183,13 @@ int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
  * float4. */
 static int row_auto(const msocl__engine *s)
 {
-  return s->lay.kind == MSOCL_LAYOUT_BUFFER &&
-         s->dev->info.type == MSOCL_DEVICE_CPU;
+  return s->lay.kind == MSOCL_LAYOUT_EDGES ||
+         (s->lay.kind == MSOCL_LAYOUT_BUFFER &&
+          s->dev->info.type == MSOCL_DEVICE_CPU);
 }
 
-/* Why BUFFER's or IMAGE2D's connectivity cannot run in planes; NULL: it
- * can. */
+/* Why BUFFER's, EDGES's or IMAGE2D's connectivity cannot run in planes;
+ * NULL: it can. */
 static const char *unfit_row(const msocl__engine *s)
 {
   if (3 * geometry_row(s->n).plane > (size_t)INT_MAX)
@@ -202,13 +203,17 @@ static const char *unfit_row(const msocl__engine *s)
 int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
 {
   const msocl_layout kind = s->lay.kind;
-  const char *why = kind == MSOCL_LAYOUT_GRID ? unfit(m, s->lo, s->hi)
-                    : kind == MSOCL_LAYOUT_BUFFER ||
-                            kind == MSOCL_LAYOUT_IMAGE2D
-                        ? unfit_row(s)
-                        : "need the GRID, BUFFER or IMAGE2D layout, not EDGES";
+  const char *why =
+      kind == MSOCL_LAYOUT_GRID ? unfit(m, s->lo, s->hi) : unfit_row(s);
   if (s->o.tuning.planes == MSOCL_ON && why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "planes %s", why);
+  /* EDGES has no float4 kernels: it runs in planes or not at all */
+  if (kind == MSOCL_LAYOUT_EDGES &&
+      (why || s->o.tuning.planes == MSOCL_OFF))
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "the EDGES layout runs in the planes engine, which %s "
+                       "(use BUFFER)",
+                       why ? why : "tuning.planes OFF turns off");
   s->planes = kind == MSOCL_LAYOUT_GRID
                   ? chosen(s->dev, &s->o, m, why)
                   : !why && (s->o.tuning.planes == MSOCL_ON ||
@@ -448,7 +453,8 @@ static int spill_list(msocl__engine *s, size_t n, size_t P, int *nsp)
 static int padded_table(msocl__engine *s)
 {
   s->pl_lay = s->lay;
-  if (s->lay.kind != MSOCL_LAYOUT_BUFFER)
+  if (s->lay.kind != MSOCL_LAYOUT_BUFFER &&
+      s->lay.kind != MSOCL_LAYOUT_EDGES)
     return MSOCL_OK;
   /* a model without springs still has one (free) slot, as layout.c's */
   const size_t n = (size_t)s->n,

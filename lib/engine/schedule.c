@@ -88,7 +88,8 @@ static const struct msocl__schedule fused[3] = {
 
 const struct msocl__schedule *msocl__schedule_of(const msocl_sim_options *o)
 {
-  /* EDGES: its spring pass and point pass are the whole step, as fused */
+  /* EDGES: symplectic Euler's two passes in one, as fused (its result is
+   * the same, bit for bit) */
   const int one = o->tuning.fused == MSOCL_ON ||
                   o->tuning.layout == MSOCL_LAYOUT_EDGES;
   return one ? &fused[o->strain] : &table[o->integrator][o->strain];

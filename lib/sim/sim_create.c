@@ -90,8 +90,7 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
        o->strain != MSOCL_STRAIN_NONE))
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "the EDGES layout runs symplectic Euler without strain "
-                       "limiting (its per-spring pass feeds one velocity "
-                       "update); use BUFFER for other methods");
+                       "limiting; use BUFFER for other methods");
   int rc = check_choice(t->fused, "fused");
   if (rc == MSOCL_OK)
     rc = check_choice(t->overlap, "overlap");
