@@ -55,6 +55,18 @@ __kernel void msocl_wind_triangles(__global const float *p,
   third[2 * ntri + k] = real ? fma(l, fma(-nu, uz, uu * nz), d * uz) : 0.0f;
 }
 
+/* The corners' sum f into the point's velocity at a: dt f / m, nothing
+ * for a pinned point. */
+static inline void msocl_wind_kick(__global float *v, __global const float *aux,
+                                   int a, int plane, float dt, float fx,
+                                   float fy, float fz)
+{
+  const float s = MSOCL_PLANES_PINNED(aux[plane + a]) ? 0.0f : dt * aux[a];
+  v[a] += s * fx;
+  v[plane + a] += s * fy;
+  v[2 * plane + a] += s * fz;
+}
+
 /* Each point's corners into its velocity, in place: dt times the inverse
  * mass, nothing for a pinned point. Corner slot c of the point at a is
  * triangle slot[c plane + a] (a zero-force one past the last where the
@@ -79,10 +91,7 @@ __kernel void msocl_wind_points(__global float *v, __global const float *aux,
     fy += third[ntri + k];
     fz += third[2 * ntri + k];
   }
-  const float s = MSOCL_PLANES_PINNED(aux[plane + a]) ? 0.0f : dt * aux[a];
-  v[a] += s * fx;
-  v[plane + a] += s * fy;
-  v[2 * plane + a] += s * fz;
+  msocl_wind_kick(v, aux, a, plane, dt, fx, fy, fz);
 }
 
 /* Points on more triangles than the slots (listed: point i at a): their
@@ -106,10 +115,7 @@ __kernel void msocl_wind_spill(__global float *v, __global const float *aux,
     fy += third[ntri + k];
     fz += third[2 * ntri + k];
   }
-  const float s = MSOCL_PLANES_PINNED(aux[plane + a]) ? 0.0f : dt * aux[a];
-  v[a] += s * fx;
-  v[plane + a] += s * fy;
-  v[2 * plane + a] += s * fz;
+  msocl_wind_kick(v, aux, a, plane, dt, fx, fy, fz);
 }
 
 #endif
