@@ -75,19 +75,6 @@
  * <2 x float>, which stops PoCL vectorising the kernel. */
 #define MSOCL_PLANES_COL(cf, c, k) ((cf)[4 * (16 * (c) + (k))])
 
-/* v rotated by the unit quaternion (x, y, z, w): v + 2u x (u x v + w v). */
-static MSOCL_PLANES_INLINE void msocl_planes_qrot(float x, float y, float z,
-                                                  float w, float vx, float vy,
-                                                  float vz, float *ox,
-                                                  float *oy, float *oz)
-{
-  const float cx = y * vz - z * vy + w * vx, cy = z * vx - x * vz + w * vy,
-              cz = x * vy - y * vx + w * vz;
-  *ox = vx + 2.0f * (y * cz - z * cy);
-  *oy = vy + 2.0f * (z * cx - x * cz);
-  *oz = vz + 2.0f * (x * cy - y * cx);
-}
-
 /* msocl_collider_gap in scalars for collider c: g, and the unit gradient
  * in *nx.. */
 static MSOCL_PLANES_INLINE float msocl_planes_gap(float px, float py, float pz,
@@ -153,23 +140,45 @@ static MSOCL_PLANES_INLINE float msocl_planes_gap(float px, float py, float pz,
   /* p in the box's frame (q = (x, y, z, w) unit), the signed distance to
    * the box of half extents h there, its gradient rotated back */
   if (kind == MSOCL_BOX_KIND) {
+    /* The rotation's matrix R (q = (x, y, z, w) unit); p in the box's
+     * frame, l = R^T (p - centre); the signed distance to the box of half
+     * extents h there, and its gradient m, rotated back (R m). Each of
+     * the three components is written in its own shape: three alike
+     * would be paired into a vector by -O3's SLP vectorizer, and PoCL
+     * then leaves the whole kernel scalar. */
     const float qx = cf(8), qy = cf(9), qz = cf(10), qw = cf(11);
-    float lx, ly, lz, mx, my, mz;
-    msocl_planes_qrot(-qx, -qy, -qz, qw, px - cf(4), py - cf(5), pz - cf(6),
-                      &lx, &ly, &lz);
+    const float r00 = 1.0f - 2.0f * (qy * qy + qz * qz),
+                r01 = 2.0f * (qx * qy - qz * qw),
+                r02 = 2.0f * (qx * qz + qy * qw);
+    const float r10 = 2.0f * (qx * qy + qz * qw),
+                r11 = 1.0f - 2.0f * (qx * qx + qz * qz),
+                r12 = 2.0f * (qy * qz - qx * qw);
+    const float r20 = 2.0f * (qx * qz - qy * qw),
+                r21 = 2.0f * (qy * qz + qx * qw),
+                r22 = 1.0f - 2.0f * (qx * qx + qy * qy);
+    const float ex = px - cf(4), ey = py - cf(5), ez = pz - cf(6);
+    const float lx = r00 * ex + r10 * ey + r20 * ez;
+    const float ly = fma(r01, ex, fma(r11, ey, r21 * ez));
+    const float lz = fma(r22, ez, r02 * ex) + r12 * ey;
     const float hx = cf(12), hy = cf(13), hz = cf(14);
-    const float dx = fabs(lx) - hx, dy = fabs(ly) - hy, dz = fabs(lz) - hz;
-    const float ox = fmax(dx, 0.0f), oy = fmax(dy, 0.0f), oz = fmax(dz, 0.0f);
+    /* |l| - h: fabs, a max and the sign bit cleared */
+    const float dx = fabs(lx) - hx, dy = fmax(ly, -ly) - hy,
+                dz = as_float(as_uint(lz) & 0x7fffffffu) - hz;
+    const float ox = fmax(dx, 0.0f), oy = dy > 0.0f ? dy : 0.0f,
+                oz = 0.5f * (dz + fabs(dz));
     const float olen = MSOCL_SQRT(MSOCL_DOT3(ox, oy, oz, ox, oy, oz));
     const bool outside = olen > 0.0f;
     const bool xm = dx >= dy && dx >= dz, ym = !xm && dy >= dz;
-    const float sx = lx < 0.0f ? -1.0f : 1.0f, sy = ly < 0.0f ? -1.0f : 1.0f,
-                sz = lz < 0.0f ? -1.0f : 1.0f;
-    mx = outside ? sx * ox / olen : xm ? sx : 0.0f;
-    my = outside ? sy * oy / olen : ym ? sy : 0.0f;
-    mz = outside ? sz * oz / olen : (!xm && !ym) ? sz : 0.0f;
+    const float sx = lx < 0.0f ? -1.0f : 1.0f, sy = copysign(1.0f, ly),
+                sz = 1.0f - 2.0f * (float)(lz < 0.0f);
+    const float inv = outside ? 1.0f / olen : 0.0f;
+    const float mx = outside ? sx * ox * inv : xm ? sx : 0.0f;
+    const float my = outside ? fma(sy * oy, inv, 0.0f) : ym ? sy : 0.0f;
+    const float mz = outside ? sz * oz / olen : (!xm && !ym) ? sz : 0.0f;
     g = outside ? olen : xm ? dx : ym ? dy : dz;
-    msocl_planes_qrot(qx, qy, qz, qw, mx, my, mz, nx, ny, nz);
+    *nx = r00 * mx + r01 * my + r02 * mz;
+    *ny = fma(r10, mx, fma(r11, my, r12 * mz));
+    *nz = fma(r22, mz, r20 * mx) + r21 * my;
   }
 #endif
 #undef cf
