@@ -85,7 +85,8 @@ int msocl_reference_create(msocl_reference **out, const msocl_model *m,
     msocl_reference_destroy(r);
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "reference triangles");
   }
-  memcpy(r->tri, m->tri, 3 * (size_t)m->nt * sizeof *r->tri);
+  if (m->nt > 0) /* a model without triangles has no array */
+    memcpy(r->tri, m->tri, 3 * (size_t)m->nt * sizeof *r->tri);
   *out = r;
   return MSOCL_OK;
 }
