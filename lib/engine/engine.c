@@ -364,3 +364,11 @@ void msocl__engine_destroy(msocl__engine *s)
   free(s->partial_host);
   free(s);
 }
+
+int msocl__planes_forces(msocl__engine *s)
+{
+  int rc = msocl__pl_forces(s);
+  if (rc == MSOCL_OK && s->o.integrator == MSOCL_IMPLICIT_EULER)
+    rc = msocl__pl_implicit_args(s);
+  return rc;
+}

@@ -266,7 +266,7 @@ int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx)
 }
 
 /* Gathering kernel k's gravity, viscous damping and air resistance, from
- * argument a on (again when msocl__planes_forces changes them). */
+ * argument a on (again when msocl__pl_forces changes them). */
 static int forces(msocl__engine *s, cl_kernel k, cl_uint a)
 {
   TRY(arg(k, a, sizeof s->gravity, &s->gravity));
@@ -274,7 +274,7 @@ static int forces(msocl__engine *s, cl_kernel k, cl_uint a)
   return arg(k, a + 2, sizeof(float), &s->air);
 }
 
-int msocl__planes_forces(msocl__engine *s)
+int msocl__pl_forces(msocl__engine *s)
 {
   const int gathers[7] = {PL_VELOCITY, PL_FUSED,   PL_EULER,   PL_KICK,
                           PL_RK4,      PL_RK4_MID, PL_RK4_LAST};
@@ -282,8 +282,6 @@ int msocl__planes_forces(msocl__engine *s)
     const cl_uint a = s->pl_conn + (q == 0 ? 3 : q < 4 ? 4 : 8);
     TRY(forces(s, s->pl_k[gathers[q]], a + 4));
   }
-  if (s->o.integrator == MSOCL_IMPLICIT_EULER)
-    TRY(msocl__pl_implicit_args(s));
   return msocl__pl_rows_forces(s);
 }
 

@@ -27,13 +27,16 @@ int msocl__pl_launch(msocl__engine *s, int k);
 /* planes_implicit.c: its kernels' fixed arguments (its CG operations:
  * schedule.h). */
 int msocl__pl_implicit_args(msocl__engine *s);
+/* The gathering kernels' gravity, viscous damping and air arguments again
+ * (planes.c; msocl__planes_forces adds the implicit kernels'). */
+int msocl__pl_forces(msocl__engine *s);
 
 /* planes_rows.c: symplectic Euler in one sweep a step with each spring
  * computed once, where it applies (s->pl_rows then set), and its step
  * from plane set r to w. */
 int msocl__pl_rows_create(msocl__engine *s, cl_program prog);
 int msocl__pl_rows_step(msocl__engine *s, int r, int w);
-/* Its gravity, viscous damping and air arguments again (msocl__planes_forces). */
+/* Its gravity, viscous damping and air arguments again (msocl__pl_forces). */
 int msocl__pl_rows_forces(msocl__engine *s);
 void msocl__pl_rows_release(msocl__engine *s);
 

@@ -87,7 +87,7 @@ int msocl_batch_step(msocl_batch *b, int n)
   memset(b->bad, 0, (size_t)b->count * sizeof *b->bad);
   const int every = b->sims[0]->o.check_every;
   for (int i = 0; i < b->count; i++) /* the call's pin targets */
-    msocl__pins_call(b->sims[i], n);
+    msocl__motion_call(b->sims[i], n);
   for (int done = 0; done < n;) {
     /* up to the first check due (the simulations' counts can differ: a
      * restore after a blow-up starts one's count again) */

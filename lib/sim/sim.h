@@ -113,15 +113,23 @@ struct msocl_sim {
   double efloor;          /* the least energy scale, from the springs */
   struct msocl__live *live;     /* the model's count of its simulations */
   struct msocl__controls *ctl;  /* live controls (sim_controls.c), or NULL */
+  int call_n, call_j;     /* a moving call's steps, and those done (motion.c) */
 };
 
-/* Live controls (sim_controls.c): frees them; before a stepping call of n
- * steps; and `n` steps of a run that moves pins toward targets (steps()
- * hands them over when msocl__pins_moving). */
+/* Live controls (sim_controls.c): frees them; whether pins have targets
+ * for the next call; the pins at their path's point fp, moving from f0 to
+ * f1 in a step (capture: take their start from the state); their targets
+ * reached. */
 void msocl__controls_free(msocl_sim *s);
-void msocl__pins_call(msocl_sim *s, int n);
-int msocl__pins_moving(const msocl_sim *s);
-int msocl__pins_steps(msocl_sim *s, int n);
+int msocl__pins_pending(const msocl_sim *s);
+int msocl__pins_place(msocl_sim *s, float fp, float f0, float f1,
+                      int capture);
+void msocl__pins_done(msocl_sim *s);
+/* A call that moves things over its steps (motion.c): begun before a
+ * stepping call of n steps; whether it moves anything; `n` of its steps. */
+void msocl__motion_call(msocl_sim *s, int n);
+int msocl__motion_moving(const msocl_sim *s);
+int msocl__motion_steps(msocl_sim *s, int n);
 /* The simulation's number *k of the model's point i (in range). */
 int msocl__sim_index(msocl_sim *s, int i, int *k);
 
@@ -165,7 +173,12 @@ int msocl__sim_energy(msocl_sim *s, msocl_energy *e);
 int msocl__batch_room(const msocl_sim *s);
 int msocl__batch_begin(msocl_sim *s, int batch);
 int msocl__batch_end(msocl_sim *s);
-/* Before a write replaces the state (sim_io.c): the check's part of it. */
+/* The blow-up check's measures (check.c): the bound on the energy; the
+ * baseline taken (or moved, after writes); the state saved (to_backup) or
+ * restored; and, before a write replaces the state, the check's part. */
+double msocl__check_bound(const msocl_sim *s);
+int msocl__check_baseline(msocl_sim *s);
+int msocl__check_backup(msocl_sim *s, int to_backup);
 int msocl__check_write(msocl_sim *s);
 int msocl__sim_steps(msocl_sim *s, int n);
 int msocl__sim_finish(msocl_sim *s);

@@ -20,7 +20,6 @@ struct msocl__controls {
   cl_kernel pins;
   cl_mem at, start, target;
   int cap;      /* pins the buffers hold */
-  int call_n, call_j; /* the moving call's steps, and those done */
 };
 
 void msocl__controls_free(msocl_sim *s)
@@ -365,17 +364,14 @@ int msocl_sim_set_pin_targets(msocl_sim *s, int count, const int *idx,
   return rc;
 }
 
-void msocl__pins_call(msocl_sim *s, int n)
+int msocl__pins_pending(const msocl_sim *s)
 {
-  if (s->ctl && s->ctl->m > 0 && n > 0) {
-    s->ctl->call_n = n;
-    s->ctl->call_j = 0;
-  }
+  return s->ctl && s->ctl->m > 0;
 }
 
-int msocl__pins_moving(const msocl_sim *s)
+void msocl__pins_done(msocl_sim *s)
 {
-  return s->ctl && s->ctl->m > 0 && s->ctl->call_n > 0;
+  s->ctl->m = 0;
 }
 
 /* The pins at their path's point fp, moving from f0 to f1 in a step. */
@@ -402,30 +398,8 @@ static int place(msocl__engine *e, struct msocl__controls *c, float fp,
   return MSOCL_OK;
 }
 
-/* Before step j of the call's N the pins sit at j / N of their path and
- * move toward (j + 1) / N; after the last, at the target, keeping the
- * last step's velocity. The fractions are computed here, in float, as
- * (float)j / (float)N, so that a caller can give the same points as
- * targets of N one-step calls and get the same steps. */
-int msocl__pins_steps(msocl_sim *s, int n)
+int msocl__pins_place(msocl_sim *s, float fp, float f0, float f1,
+                      int capture)
 {
-  struct msocl__controls *c = s->ctl;
-  msocl__engine *e = s->part[0];
-  MSOCL__TRY(msocl__planes_enter(e));
-  const float N = (float)c->call_n;
-  for (int q = 0; q < n && c->call_j < c->call_n; q++) {
-    const float f0 = (float)c->call_j / N, f1 = (float)(c->call_j + 1) / N;
-    MSOCL__TRY(place(e, c, f0, f0, f1, c->call_j == 0));
-    MSOCL__TRY(msocl__integrate(e, 1));
-    s->steps++;
-    c->call_j++;
-    if (c->call_j % 64 == 0)
-      MSOCL__CL(clFlush(e->dev->queue));
-  }
-  if (c->call_j == c->call_n) {
-    MSOCL__TRY(place(e, c, 1.0f, (float)(c->call_n - 1) / N, 1.0f, 0));
-    c->m = 0;
-    c->call_n = 0;
-  }
-  return MSOCL_OK;
+  return place(s->part[0], s->ctl, fp, f0, f1, capture);
 }

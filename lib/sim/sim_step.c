@@ -228,96 +228,13 @@ static int steps(msocl_sim *s, int n)
 {
   if (s->nparts > 1)
     return split_steps(s, n);
-  if (msocl__pins_moving(s))
-    return msocl__pins_steps(s, n);
+  if (msocl__motion_moving(s))
+    return msocl__motion_steps(s, n);
   /* msocl__integrate flushes the queue every 64 steps */
   int rc = msocl__integrate(s->part[0], n);
   if (rc == MSOCL_OK)
     s->steps += n;
   return rc;
-}
-
-/* Energy of the whole state: each engine sums its own points. */
-int msocl__sim_energy(msocl_sim *s, msocl_energy *e)
-{
-  memset(e, 0, sizeof *e);
-  for (int d = 0; d < s->nparts; d++) {
-    msocl_energy p;
-    int rc = msocl__energy(s->part[d], &p);
-    if (rc != MSOCL_OK)
-      return rc;
-    e->kinetic += p.kinetic;
-    e->spring += p.spring;
-    e->gravity += p.gravity;
-  }
-  e->total = e->kinetic + e->spring + e->gravity;
-  return MSOCL_OK;
-}
-
-/* The blow-up check's scale for a state of energy e: its kinetic and
- * spring energy, the work gravity could do across the scene's extent, and
- * a floor from its springs: their energy with each one stretched by 1e-3
- * of its rest length. A scene at rest without gravity holds only
- * round-off (which grows with the steps); the floor keeps its bound above
- * that, and at energy_factor 100 allows every spring 1% strain, which a
- * blow-up passes within a few steps. */
-static double scale(const msocl_sim *s, const msocl_energy *e)
-{
-  const cl_float4 *g = &s->part[0]->gravity;
-  double gn = sqrt((double)g->s[0] * g->s[0] + (double)g->s[1] * g->s[1] +
-                   (double)g->s[2] * g->s[2]);
-  return e->kinetic + e->spring + s->total_mass * gn * s->extent + s->efloor;
-}
-
-static double bound(const msocl_sim *s)
-{
-  return s->e0 + s->o.energy_factor * s->escale;
-}
-
-/* The baseline: energy at the start and its scale; after writes, the
- * written state's energy added to e0 (which the first write took the
- * replaced state's off), and the scale kept at the larger. */
-static int baseline(msocl_sim *s)
-{
-  msocl_energy e;
-  int rc = msocl__sim_energy(s, &e);
-  if (rc != MSOCL_OK)
-    return rc;
-  const double sc = scale(s, &e);
-  if (s->e0_valid && s->moved) {
-    s->e0 += e.total;
-    s->escale = sc > s->escale ? sc : s->escale;
-    s->wrote = 1;
-  } else {
-    s->e0 = e.total;
-    s->escale = sc;
-  }
-  s->e0_valid = 1;
-  s->moved = 0;
-  return MSOCL_OK;
-}
-
-/* Saves (to_backup) or restores each engine's whole state. */
-static int backup(msocl_sim *s, int to_backup)
-{
-  for (int d = 0; d < s->nparts; d++) {
-    msocl__engine *e = s->part[d];
-    const size_t bytes = 4 * (size_t)e->n * sizeof(float);
-    cl_mem st[2] = {e->pos[e->r], e->vel[e->r]}, bk[2] = {e->backup_p,
-                                                          e->backup_v};
-    int rc = to_backup ? msocl__planes_current(e) : MSOCL_OK;
-    if (rc != MSOCL_OK)
-      return rc;
-    for (int k = 0; k < 2; k++)
-      MSOCL__CL(clEnqueueCopyBuffer(e->dev->queue, to_backup ? st[k] : bk[k],
-                                    to_backup ? bk[k] : st[k], 0, 0, bytes,
-                                    0, NULL, NULL));
-    if (!to_backup) {
-      msocl__planes_written(e);
-      e->acc_valid = 0;
-    }
-  }
-  return MSOCL_OK;
 }
 
 /* A checked batch, in two halves so that many simulations can run theirs
@@ -337,41 +254,16 @@ int msocl__batch_begin(msocl_sim *s, int batch)
   int rc = MSOCL_OK;
   const int save = (s->since_check == 0 || s->moved) && !s->blown;
   if (!s->e0_valid || s->moved)
-    rc = baseline(s);
+    rc = msocl__check_baseline(s);
   if (rc == MSOCL_OK && save) {
     s->check_first = s->steps;
-    rc = backup(s, 1);
+    rc = msocl__check_backup(s, 1);
   }
   if (rc == MSOCL_OK)
     rc = steps(s, batch);
   if (rc == MSOCL_OK)
     s->since_check += batch;
   return rc;
-}
-
-/* A write replaces the state: the work it does moves the baseline (the
- * replaced state's energy comes off e0 here, the written state's goes on
- * at the next step, which saves it as the state to restore), so the check
- * judges only what the steps did. A replaced state already past the bound
- * blew up in the steps since the last save; the check reports that and
- * restores the saved state, undoing the writes since. */
-int msocl__check_write(msocl_sim *s)
-{
-  if (s->o.check_every <= 0 || !s->e0_valid || s->moved || s->blown)
-    return MSOCL_OK;
-  msocl_energy e;
-  int rc = msocl__sim_energy(s, &e);
-  if (rc != MSOCL_OK)
-    return rc;
-  if (s->since_check > 0 && !(isfinite(e.total) && e.total <= bound(s))) {
-    s->blown = 1;
-    s->blown_step = s->steps;
-    s->blown_total = e.total;
-  } else {
-    s->e0 -= e.total;
-    s->moved = 1;
-  }
-  return MSOCL_OK;
 }
 
 int msocl__batch_end(msocl_sim *s)
@@ -385,14 +277,14 @@ int msocl__batch_end(msocl_sim *s)
     int rc = msocl__sim_energy(s, &e);
     if (rc != MSOCL_OK)
       return rc;
-    if (isfinite(e.total) && e.total <= bound(s))
+    if (isfinite(e.total) && e.total <= msocl__check_bound(s))
       return MSOCL_OK;
   }
   const int at_write = s->blown;
   const long long last = at_write ? s->blown_step : s->steps;
   const double total = at_write ? s->blown_total : e.total;
   s->blown = 0;
-  int rc = backup(s, 0);
+  int rc = msocl__check_backup(s, 0);
   s->steps = first;
   if (rc == MSOCL_OK)
     rc = finish_all(s);
@@ -406,7 +298,7 @@ int msocl__batch_end(msocl_sim *s)
       "(docs/STABILITY.md)",
       first, last, (double)s->o.dt, total,
       at_write ? " where it was written" : "", s->e0,
-      s->wrote ? " with the writes' work" : "", bound(s), first);
+      s->wrote ? " with the writes' work" : "", msocl__check_bound(s), first);
 }
 
 int msocl__sim_steps(msocl_sim *s, int n)
@@ -427,7 +319,7 @@ int msocl_sim_step(msocl_sim *s, int n)
   if (n < 0)
     return msocl__fail(MSOCL_ERR_BAD_COUNT, "step count %d is negative", n);
   int rc = MSOCL_OK;
-  msocl__pins_call(s, n);
+  msocl__motion_call(s, n);
   if (s->o.check_every <= 0)
     rc = steps(s, n);
   for (int done = 0; s->o.check_every > 0 && rc == MSOCL_OK && done < n;) {
