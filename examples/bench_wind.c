@@ -1,7 +1,8 @@
 /* msocl-bench wind: a flag (an n x n cloth, 1 m a side, hanging from its
- * two top corners) with no wind and in a 5 m/s wind with lift, side by
- * side in each repeat, on the default engine (AUTO: GRID in planes on a
- * CPU); the ratio is wind's cost a step. */
+ * two top corners) with no wind, in a 5 m/s wind with lift, and under a
+ * user's field of forces, side by side in each repeat, on the default
+ * engine (AUTO: GRID in planes on a CPU); the ratios are wind's and the
+ * field's cost a step. */
 #include "bench.h"
 
 #include <math.h>
@@ -30,14 +31,17 @@ static msocl_model *flag(int n)
   return m;
 }
 
-/* Both sims' best time of o->steps over o->repeat rounds, one after the
+enum { KINDS = 3 }; /* none, wind, field */
+
+/* Each sim's best time of o->steps over o->repeat rounds, one after the
  * other in each round. */
-static int time_pair(const struct bench_opts *o, msocl_sim *const s[2],
-                     double best[2])
+static int time_all(const struct bench_opts *o, msocl_sim *const s[KINDS],
+                    double best[KINDS])
 {
-  best[0] = best[1] = INFINITY;
+  for (int w = 0; w < KINDS; w++)
+    best[w] = INFINITY;
   for (int rep = 0; rep < o->repeat; rep++)
-    for (int w = 0; w < 2; w++) {
+    for (int w = 0; w < KINDS; w++) {
       const double t0 = bench_now();
       const int rc = msocl_sim_step(s[w], o->steps);
       const double t = bench_now() - t0;
@@ -70,25 +74,35 @@ int bench_wind(const struct bench_opts *o, FILE *csv)
     msocl_sim_options_init(&so);
     so.dt = 1e-4f;
     so.check_every = 0;
-    msocl_sim *s[2] = {NULL, NULL};
+    msocl_sim *s[KINDS] = {NULL, NULL, NULL};
     int rc = m ? MSOCL_OK : MSOCL_ERR_BAD_VALUE;
-    for (int w = 0; rc == MSOCL_OK && w < 2; w++)
+    for (int w = 0; rc == MSOCL_OK && w < KINDS; w++)
       rc = msocl_sim_create(&s[w], rt, m, &so);
     if (rc == MSOCL_OK)
       rc = msocl_sim_set_wind(s[1], &wind);
-    for (int w = 0; rc == MSOCL_OK && w < 2; w++)
-      rc = msocl_sim_step(s[w], 1); /* warm-up */
-    double best[2];
+    float *field = rc == MSOCL_OK ? malloc(3 * (size_t)n * n * sizeof *field)
+                                  : NULL;
+    if (rc == MSOCL_OK && !field)
+      rc = MSOCL_ERR_NO_MEMORY;
+    for (int i = 0; rc == MSOCL_OK && i < 3 * n * n; i++)
+      field[i] = i % 3 == 2 ? 1e-3f * (float)(i % 7) / (float)(n * n) : 0.0f;
     if (rc == MSOCL_OK)
-      rc = time_pair(o, s, best);
+      rc = msocl_sim_set_forces(s[2], field);
+    free(field);
+    for (int w = 0; rc == MSOCL_OK && w < KINDS; w++)
+      rc = msocl_sim_step(s[w], 1); /* warm-up */
+    double best[KINDS];
+    if (rc == MSOCL_OK)
+      rc = time_all(o, s, best);
     if (rc != MSOCL_OK) {
       failed = bench_fail("wind", rc);
     } else {
-      for (int w = 0; w < 2; w++) {
+      const char *kinds[KINDS] = {"none", "wind", "field"};
+      for (int w = 0; w < KINDS; w++) {
         struct bench_row r;
         bench_row_init(&r);
         bench_row_device(&r, rt);
-        r.layout = w ? "wind" : "none";
+        r.layout = kinds[w];
         r.integrator = bench_integrator_names[0];
         r.math = "precise";
         r.grid = n;
@@ -103,7 +117,7 @@ int bench_wind(const struct bench_opts *o, FILE *csv)
       }
       fflush(stdout);
     }
-    for (int w = 0; w < 2; w++)
+    for (int w = 0; w < KINDS; w++)
       msocl_sim_destroy(s[w]);
     msocl_model_destroy(m);
   }

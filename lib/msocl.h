@@ -452,6 +452,14 @@ MSOCL_EXTERN void msocl_wind_init(msocl_wind *w);
 /* From the next step, until set again; NULL: no wind. Needs triangles and
  * the planes engine on one device (else MSOCL_ERR_BAD_VALUE). */
 MSOCL_EXTERN int msocl_sim_set_wind(msocl_sim *s, const msocl_wind *w);
+/* A user's field: xyz holds 3 floats a point in the model's order, an
+ * acceleration (m/s^2) or a force (N, divided by the point's mass), added
+ * to each free point's velocity as dt a before each step from the next
+ * one (first order, as wind), until set again; NULL: none. Planes engine
+ * on one device (else MSOCL_ERR_BAD_VALUE); a non-finite value:
+ * MSOCL_ERR_NOT_FINITE. */
+MSOCL_EXTERN int msocl_sim_set_accelerations(msocl_sim *s, const float *xyz);
+MSOCL_EXTERN int msocl_sim_set_forces(msocl_sim *s, const float *xyz);
 /* Live controls, applied from the next step (docs/API.md, "Live
  * controls"). The model's own setters (msocl_model_set_gravity, _pin, ...)
  * return MSOCL_ERR_INVALID_ARG while a simulation made from the model
@@ -610,6 +618,11 @@ MSOCL_EXTERN int msocl_reference_energy(const msocl_reference *r,
 /* As msocl_sim_set_wind, in double. */
 MSOCL_EXTERN int msocl_reference_set_wind(msocl_reference *r,
                                           const msocl_wind *w);
+/* As msocl_sim_set_accelerations and msocl_sim_set_forces, in double. */
+MSOCL_EXTERN int msocl_reference_set_accelerations(msocl_reference *r,
+                                                   const float *xyz);
+MSOCL_EXTERN int msocl_reference_set_forces(msocl_reference *r,
+                                            const float *xyz);
 /* The simulation's live controls on the reference (msocl_sim_set_gravity,
  * msocl_sim_pin, msocl_sim_set_pin_targets), in double. */
 MSOCL_EXTERN int msocl_reference_set_gravity(msocl_reference *r, float gx,

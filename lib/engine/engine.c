@@ -321,6 +321,8 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     rc = msocl__planes_create(s, prog);
   if (rc == MSOCL_OK)
     rc = msocl__wind_create(s, m, prog);
+  if (rc == MSOCL_OK)
+    rc = msocl__field_create(s, prog);
   if (rc == MSOCL_OK && s->planes && s->o.integrator == MSOCL_IMPLICIT_EULER)
     rc = msocl__pl_implicit_args(s); /* planes_implicit.c's kernels */
   if (rc == MSOCL_OK)
@@ -359,6 +361,7 @@ void msocl__engine_destroy(msocl__engine *s)
       clReleaseMemObject(mems[q]);
   msocl__planes_release(s);
   msocl__wind_release(s);
+  msocl__field_release(s);
   msocl__layout_release(&s->lay);
   free(s->stage);
   free(s->partial_host);

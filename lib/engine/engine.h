@@ -87,6 +87,10 @@ struct msocl__engine {
   cl_kernel wind_k[3];    /* a triangle's force; a point's sum; the sum of
                              a point on more triangles than the slots */
   cl_mem wind_tri, wind_slot, wind_third, wind_corner, wind_list;
+  /* a user's acceleration field, planes only (field.c, kernels/field.cl) */
+  int field_on;
+  cl_kernel field_k;
+  cl_mem field_acc;       /* three planes, laid out as the state's */
 };
 
 /* What a phase of a step leaves that other engines' next phase reads. */
@@ -172,6 +176,15 @@ int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog);
 int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl);
 int msocl__wind_pass(msocl__engine *s);
 void msocl__wind_release(msocl__engine *s);
+/* A user's field (field.c): create: its kernel, where the engine runs in
+ * planes; set: xyz (3 floats a point, the engine's order) as accelerations
+ * or, `forces`, as forces divided by the points' masses, from the next
+ * step (xyz NULL: none); pass: its velocity change, before a step's
+ * phases; release: frees it. */
+int msocl__field_create(msocl__engine *s, cl_program prog);
+int msocl__field_set(msocl__engine *s, const float *xyz, int forces);
+int msocl__field_pass(msocl__engine *s);
+void msocl__field_release(msocl__engine *s);
 /* Energy of the engine's points (waits for the device). */
 int msocl__energy(msocl__engine *s, msocl_energy *e);
 /* Sets argument i of kernel k to a buffer, a float, an int (launch.c). */

@@ -255,6 +255,17 @@ int msocl__pl_conn(msocl__engine *s, cl_kernel k, cl_uint *next)
 #define launch msocl__pl_launch
 #define TRY MSOCL__TRY
 
+/* Where point j sits in each plane (planes.cl's MSOCL_PLANES_AT). */
+int msocl__pl_address(const msocl__engine *s, int j)
+{
+  if (s->lay.kind != MSOCL_LAYOUT_GRID)
+    return j;
+  const int nx = s->lay.grid_nx, ny = s->lay.grid_ny;
+  const int x = j % nx, y = (j / nx) % ny, z = j / (nx * ny);
+  const int a = (y + 2) * s->pl_pitch + x + 2;
+  return s->lay.grid_nz > 0 ? a + (z + 2) * s->pl_slab : a;
+}
+
 int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx)
 {
   const int nx = s->lay.kind == MSOCL_LAYOUT_GRID ? s->lay.grid_nx : s->n;

@@ -140,8 +140,10 @@ int msocl__integrate(msocl__engine *s, int n)
     TRY(msocl__planes_enter(s));
   const int phases = msocl__phase_count(s);
   for (int q = 0; q < n; q++) {
-    if (s->planes)
+    if (s->planes) {
       TRY(msocl__wind_pass(s));
+      TRY(msocl__field_pass(s));
+    }
     for (int ph = 0; ph < phases; ph++) {
       unsigned x;
       TRY(msocl__phase(s, ph, &x));

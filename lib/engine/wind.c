@@ -9,17 +9,6 @@
 
 #define TRY MSOCL__TRY
 
-/* Where point j sits in each plane (planes.cl's MSOCL_PLANES_AT). */
-static int address(const msocl__engine *s, int j)
-{
-  if (s->lay.kind != MSOCL_LAYOUT_GRID)
-    return j;
-  const int nx = s->lay.grid_nx, ny = s->lay.grid_ny;
-  const int x = j % nx, y = (j / nx) % ny, z = j / (nx * ny);
-  const int a = (y + 2) * s->pl_pitch + x + 2;
-  return s->lay.grid_nz > 0 ? a + (z + 2) * s->pl_slab : a;
-}
-
 int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog)
 {
   if (!s->planes || m->nt == 0)
@@ -74,7 +63,7 @@ static int buffers(msocl__engine *s)
   for (int t = 0; rc == MSOCL_OK && t < s->wind_ntri; t++) {
     const int *c = s->wind_host + 3 * t;
     for (int k = 0; k < 3; k++) {
-      tri[k * nt + t] = address(s, c[k]);
+      tri[k * nt + t] = msocl__pl_address(s, c[k]);
       off[c[k] + 1]++;
     }
   }
@@ -89,7 +78,7 @@ static int buffers(msocl__engine *s)
   for (size_t q = 0; rc == MSOCL_OK && q < SLOTS * P; q++)
     slot[q] = zero;
   for (int i = 0; rc == MSOCL_OK && i < n; i++) {
-    const int a = address(s, i), count = off[i + 1] - off[i];
+    const int a = msocl__pl_address(s, i), count = off[i + 1] - off[i];
     if (count > SLOTS) {
       list[2 * nspill] = i;
       list[2 * nspill++ + 1] = a;

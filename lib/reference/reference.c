@@ -214,6 +214,7 @@ int msocl_reference_step(msocl_reference *r, int n)
   for (int k = 0; k < n; k++) {
     msocl__ref_pins(r, k, n);
     msocl__ref_wind(r);
+    msocl__ref_field(r);
     switch (r->o.integrator) {
     case MSOCL_SYMPLECTIC_EULER:
     case MSOCL_IMPLICIT_EULER:

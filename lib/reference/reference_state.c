@@ -100,7 +100,7 @@ void msocl_reference_destroy(msocl_reference *r)
                     r->a,          r->acc,        r->tmp,        r->sum_p,
                     r->sum_v,      r->stage_p[0], r->stage_p[1], r->stage_v[0],
                     r->stage_v[1], r->inv_mass,   r->mass,       r->k,
-                    r->rest,       r->damp};
+                    r->rest,       r->damp,       r->field};
   for (size_t q = 0; q < sizeof vecs / sizeof vecs[0]; q++)
     free(vecs[q]);
   free(r->pinned);

@@ -26,6 +26,7 @@ struct msocl_reference {
   int nt, *tri;            /* the model's triangles, 3 a triangle */
   int wind_on;             /* reference_wind.c */
   double wind_air[3], wind_kd, wind_kl;
+  double *field;           /* accelerations, 3n, or NULL (reference_field.c) */
   /* pins moving to targets in the next call (reference_controls.c) */
   int tm;
   int *tidx;
@@ -59,6 +60,8 @@ void msocl__ref_project(const msocl_reference *r, double *p, double *v);
 void msocl__ref_implicit_velocity(msocl_reference *r);
 /* Wind's velocity change before a step (reference_wind.c). */
 void msocl__ref_wind(msocl_reference *r);
+/* The user's field's velocity change before a step (reference_field.c). */
+void msocl__ref_field(msocl_reference *r);
 /* As msocl__cg_report, for msocl_reference_step. */
 int msocl__ref_cg_report(msocl_reference *r, int rc, int n);
 
