@@ -10,25 +10,15 @@
  * Needs planes.cl before it (MSOCL_PLANES_POINT). */
 #if defined(MSOCL_PLANES)
 
-/* A third of the force on triangle k (its corners at tri[k],
- * tri[ntri + k], tri[2 ntri + k] of the planes: ints, as an int4 would
- * keep PoCL from vectorising) of air at velocity air.xyz, with coef.x = rho Cd / 2 and
- * coef.y = rho Cl / 2, into plane `c` of `third` at triangle index k
- * (three planes of `ntri` floats). */
-__kernel void msocl_wind_triangles(__global const float *p,
-                                   __global const float *v,
-                                   __global const int *tri,
-                                   __global float *third, float4 air,
-                                   float4 coef, int plane, int ntri,
-                                   int nreal)
+/* A third of the force on the triangle with corners at tx, ty, tz of the
+ * planes (q floats a plane) from air at velocity air.xyz, with coef.x =
+ * rho Cd / 2 and coef.y = rho Cl / 2: every wind kernel's one arithmetic,
+ * so that each layout gets the same bits. */
+static inline void msocl_wind_third(__global const float *p,
+                                    __global const float *v, int q, int tx,
+                                    int ty, int tz, float4 air, float4 coef,
+                                    float *fx, float *fy, float *fz)
 {
-  /* past nreal, triangles with every corner at 0 up to ntri, whose
-   * force is selected away (the padding they read holds anything): no
-   * branch */
-  const int k = get_global_id(0);
-  const bool real = k < nreal;
-  const int tx = tri[k], ty = tri[ntri + k], tz = tri[2 * ntri + k];
-  const int q = plane;
   const float e1x = p[ty] - p[tx], e1y = p[q + ty] - p[q + tx],
               e1z = p[2 * q + ty] - p[2 * q + tx];
   const float e2x = p[tz] - p[tx], e2y = p[q + tz] - p[q + tx],
@@ -50,9 +40,33 @@ __kernel void msocl_wind_triangles(__global const float *p,
   const float root = sqrt((nx * nx + ny * ny + nz * nz) * uu);
   const float d = 0.5f * third_of * coef.x * fabs(nu);
   const float l = root > 0.0f ? 0.5f * third_of * coef.y * nu / root : 0.0f;
-  third[k] = real ? d * ux + l * (uu * nx - nu * ux) : 0.0f;
-  third[ntri + k] = real ? fma(d, uy, l * fma(uu, ny, -(nu * uy))) : 0.0f;
-  third[2 * ntri + k] = real ? fma(l, fma(-nu, uz, uu * nz), d * uz) : 0.0f;
+  *fx = d * ux + l * (uu * nx - nu * ux);
+  *fy = fma(d, uy, l * fma(uu, ny, -(nu * uy)));
+  *fz = fma(l, fma(-nu, uz, uu * nz), d * uz);
+}
+
+/* A third of the force on triangle k (its corners at tri[k],
+ * tri[ntri + k], tri[2 ntri + k] of the planes: ints, as an int4 would
+ * keep PoCL from vectorising), into plane `c` of `third` at triangle
+ * index k (three planes of `ntri` floats). */
+__kernel void msocl_wind_triangles(__global const float *p,
+                                   __global const float *v,
+                                   __global const int *tri,
+                                   __global float *third, float4 air,
+                                   float4 coef, int plane, int ntri,
+                                   int nreal)
+{
+  /* past nreal, triangles with every corner at 0 up to ntri, whose
+   * force is selected away (the padding they read holds anything): no
+   * branch */
+  const int k = get_global_id(0);
+  const bool real = k < nreal;
+  float fx, fy, fz;
+  msocl_wind_third(p, v, plane, tri[k], tri[ntri + k], tri[2 * ntri + k],
+                   air, coef, &fx, &fy, &fz);
+  third[k] = real ? fx : 0.0f;
+  third[ntri + k] = real ? fy : 0.0f;
+  third[2 * ntri + k] = real ? fz : 0.0f;
 }
 
 /* The corners' sum f into the point's velocity at a: dt f / m, nothing
@@ -117,5 +131,61 @@ __kernel void msocl_wind_spill(__global float *v, __global const float *aux,
   }
   msocl_wind_kick(v, aux, a, plane, dt, fx, fy, fz);
 }
+
+#if defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_GRID_3D)
+/* The cloth builder's triangles on GRID (lib/engine/wind.c checks the
+ * model has them): quad (x, y) holds A = (p, p+1, p+nx+1) and
+ * B = (p, p+nx+1, p+nx); work-item (x, y, 0) writes A's third into
+ * planes 0-2 of `cell` at a, (x, y, 1) B's into planes 3-5 (zero past the
+ * last quad; the padding stays zero). Fixed offsets: no corner table, no
+ * gather; one triangle a work-item, as two alike would be paired into a
+ * vector and PoCL would leave the kernel scalar. */
+__kernel void msocl_wind_quads(__global const float *p,
+                               __global const float *v,
+                               __global float *cell, float4 air, float4 coef,
+                               int nx, int ny, int pitch, int slab, int plane)
+{
+  const int x = get_global_id(0), y = get_global_id(1);
+  const bool b = get_global_id(2) == 1;
+  const int a = MSOCL_PLANES_AT(x, y, 0);
+  (void)slab;
+  const bool real = x + 1 < nx && y + 1 < ny;
+  float fx, fy, fz;
+  msocl_wind_third(p, v, plane, a, b ? a + pitch + 1 : a + 1,
+                   b ? a + pitch : a + pitch + 1, air, coef, &fx, &fy, &fz);
+  const int o = b ? 3 * plane + a : a;
+  cell[o] = real ? fx : 0.0f;
+  cell[plane + o] = real ? fy : 0.0f;
+  cell[2 * plane + o] = real ? fz : 0.0f;
+}
+
+/* Each point's six triangles in triangle order - A and B of the quad
+ * below-left, B of the one below, A of the one left, A and B of its own
+ * - into its velocity, as msocl_wind_points sums them. */
+__kernel void msocl_wind_quad_points(__global float *v,
+                                     __global const float *aux,
+                                     __global const float *cell, float dt,
+                                     int nx, int pitch, int slab, int plane,
+                                     int n)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)nx; (void)slab; (void)n;
+  const int below = a - pitch;
+  float fx = 0.0f, fy = 0.0f, fz = 0.0f;
+#define MSOCL_WIND_ADD(k)                                                     \
+  fx += cell[k];                                                              \
+  fy += cell[plane + (k)];                                                    \
+  fz += cell[2 * plane + (k)]
+  MSOCL_WIND_ADD(below - 1);
+  MSOCL_WIND_ADD(3 * plane + below - 1);
+  MSOCL_WIND_ADD(3 * plane + below);
+  MSOCL_WIND_ADD(a - 1);
+  MSOCL_WIND_ADD(a);
+  MSOCL_WIND_ADD(3 * plane + a);
+#undef MSOCL_WIND_ADD
+  msocl_wind_kick(v, aux, a, plane, dt, fx, fy, fz);
+}
+#endif
 
 #endif

@@ -83,9 +83,11 @@ struct msocl__engine {
   size_t pl_blocks;       /* its work-items: blocks of rows */
   /* wind on the triangles, planes only (wind.c, kernels/wind.cl) */
   int wind_on, wind_ntri, wind_nspill;
+  int wind_quads;         /* the cloth builder's triangles on GRID */
   int *wind_host;         /* the model's triangles, 3 a triangle */
-  cl_kernel wind_k[3];    /* a triangle's force; a point's sum; the sum of
-                             a point on more triangles than the slots */
+  cl_kernel wind_k[5];    /* a triangle's force; a point's sum; the sum of
+                             a point on more triangles than the slots; the
+                             quads' forces and a point's sum of them */
   cl_mem wind_tri, wind_slot, wind_third, wind_corner, wind_list;
   /* a user's acceleration field, planes only (field.c, kernels/field.cl) */
   int field_on;

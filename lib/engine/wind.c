@@ -9,6 +9,28 @@
 
 #define TRY MSOCL__TRY
 
+/* Whether the model's triangles are the cloth builder's on GRID, in its
+ * order (model_cloth.c add_triangles): then kernels/wind.cl's quad kernels
+ * read the corners at fixed offsets. */
+static int quads(const msocl__engine *s, const msocl_model *m)
+{
+  if (s->lay.kind != MSOCL_LAYOUT_GRID || s->lay.grid_nz > 0)
+    return 0;
+  const int nx = s->lay.grid_nx, ny = s->lay.grid_ny;
+  if (m->nt != 2 * (nx - 1) * (ny - 1))
+    return 0;
+  const int *c = m->tri;
+  for (int j = 0; j + 1 < ny; j++)
+    for (int i = 0; i + 1 < nx; i++, c += 6) {
+      const int p = j * nx + i;
+      const int want[6] = {p, p + 1, p + nx + 1, p, p + nx + 1, p + nx};
+      for (int k = 0; k < 6; k++)
+        if (c[k] != want[k])
+          return 0;
+    }
+  return 1;
+}
+
 int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog)
 {
   if (!s->planes || m->nt == 0)
@@ -18,9 +40,11 @@ int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "wind's triangles");
   memcpy(s->wind_host, m->tri, 3 * (size_t)m->nt * sizeof *s->wind_host);
   s->wind_ntri = m->nt;
-  const char *names[3] = {"msocl_wind_triangles", "msocl_wind_points",
-                          "msocl_wind_spill"};
-  for (int q = 0; q < 3; q++) {
+  const char *names[5] = {"msocl_wind_triangles", "msocl_wind_points",
+                          "msocl_wind_spill", "msocl_wind_quads",
+                          "msocl_wind_quad_points"};
+  s->wind_quads = quads(s, m);
+  for (int q = s->wind_quads ? 3 : 0; q < (s->wind_quads ? 5 : 3); q++) {
     cl_int e;
     s->wind_k[q] = clCreateKernel(prog, names[q], &e);
     if (e != CL_SUCCESS)
@@ -48,9 +72,35 @@ static cl_mem upload(msocl__engine *s, size_t bytes, void *host, int *rc)
  * in its slots (in triangle order, as engine.c fills tri_off's CSR), the
  * points with more listed for the spill kernel, and the fixed arguments;
  * once, at the first wind. */
+/* The quads' planes (zero, so the padding adds nothing) and the quad
+ * kernels' fixed arguments. */
+static int quad_buffers(msocl__engine *s)
+{
+  int rc = MSOCL_OK;
+  const size_t bytes = 6 * (size_t)s->pl_plane * sizeof(float);
+  s->wind_third = upload(s, bytes, NULL, &rc);
+  TRY(rc);
+  const float zero = 0.0f;
+  MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->wind_third, &zero,
+                                sizeof zero, 0, bytes, 0, NULL, NULL));
+  cl_kernel k = s->wind_k[3];
+  TRY(msocl__arg_mem(k, 2, s->wind_third));
+  TRY(msocl__arg_int(k, 5, s->lay.grid_nx));
+  TRY(msocl__arg_int(k, 6, s->lay.grid_ny));
+  TRY(msocl__pl_shape(s, k, 7, 0));
+  k = s->wind_k[4];
+  TRY(msocl__arg_mem(k, 1, s->pl_aux));
+  TRY(msocl__arg_mem(k, 2, s->wind_third));
+  TRY(msocl__arg_float(k, 3, s->o.dt));
+  TRY(msocl__pl_shape(s, k, 4, 1));
+  return msocl__arg_int(k, 8, s->n);
+}
+
 enum { SLOTS = 8 };
 static int buffers(msocl__engine *s)
 {
+  if (s->wind_quads)
+    return quad_buffers(s);
   const int n = s->n, nt = (s->wind_ntri / 64 + 1) * 64, zero = s->wind_ntri;
   const size_t P = (size_t)s->pl_plane;
   int *tri = calloc(3 * (size_t)nt, sizeof *tri);
@@ -146,12 +196,14 @@ int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "wind pushes on triangles, and the model has none "
                        "(msocl_model_add_triangles)");
-  if (!s->wind_tri)
+  if (!s->wind_third)
     TRY(buffers(s));
   const cl_float4 a = {{air[0], air[1], air[2], 0.0f}},
                   c = {{kd, kl, 0.0f, 0.0f}};
-  MSOCL__CL(clSetKernelArg(s->wind_k[0], 4, sizeof a, &a));
-  MSOCL__CL(clSetKernelArg(s->wind_k[0], 5, sizeof c, &c));
+  cl_kernel k = s->wind_k[s->wind_quads ? 3 : 0];
+  const cl_uint at = s->wind_quads ? 3 : 4;
+  MSOCL__CL(clSetKernelArg(k, at, sizeof a, &a));
+  MSOCL__CL(clSetKernelArg(k, at + 1, sizeof c, &c));
   s->wind_on = 1;
   return MSOCL_OK;
 }
@@ -161,6 +213,21 @@ int msocl__wind_pass(msocl__engine *s)
   if (!s->wind_on)
     return MSOCL_OK;
   const int set = s->pl_set;
+  const size_t local[3] = {s->pl_group, 1, 1};
+  const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
+  if (s->wind_quads) {
+    cl_kernel q = s->wind_k[3];
+    TRY(msocl__arg_mem(q, 0, s->pl_p[set]));
+    TRY(msocl__arg_mem(q, 1, s->pl_v[set]));
+    const size_t two[3] = {s->pl_global[0], s->pl_global[1], 2}; /* A, B */
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, q, 3, NULL, two, group,
+                                     0, NULL, NULL));
+    q = s->wind_k[4];
+    TRY(msocl__arg_mem(q, 0, s->pl_v[set]));
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, q, 3, NULL, s->pl_global,
+                                     group, 0, NULL, NULL));
+    return MSOCL_OK;
+  }
   cl_kernel k = s->wind_k[0];
   TRY(msocl__arg_mem(k, 0, s->pl_p[set]));
   TRY(msocl__arg_mem(k, 1, s->pl_v[set]));
@@ -169,8 +236,6 @@ int msocl__wind_pass(msocl__engine *s)
                                    NULL, NULL));
   k = s->wind_k[1];
   TRY(msocl__arg_mem(k, 0, s->pl_v[set]));
-  const size_t local[3] = {s->pl_group, 1, 1};
-  const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 3, NULL, s->pl_global,
                                    group, 0, NULL, NULL));
   if (s->wind_nspill == 0)
@@ -185,7 +250,7 @@ int msocl__wind_pass(msocl__engine *s)
 
 void msocl__wind_release(msocl__engine *s)
 {
-  for (int q = 0; q < 3; q++)
+  for (int q = 0; q < 5; q++)
     if (s->wind_k[q])
       clReleaseKernel(s->wind_k[q]);
   cl_mem b[5] = {s->wind_tri, s->wind_corner, s->wind_third, s->wind_slot,
