@@ -32,11 +32,14 @@
 #if MSOCL_ROWS_W == 16
 typedef float16 msocl_rows_f;
 typedef int16 msocl_rows_m;
+#define MSOCL_ROWS_LANES                                                      \
+  ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
 #define MSOCL_ROWS_LOAD(q) vload16(0, (q))
 #define MSOCL_ROWS_STORE(v, q) vstore16((v), 0, (q))
 #else
 typedef float8 msocl_rows_f;
 typedef int8 msocl_rows_m;
+#define MSOCL_ROWS_LANES ((int8)(0, 1, 2, 3, 4, 5, 6, 7))
 #define MSOCL_ROWS_LOAD(q) vload8(0, (q))
 #define MSOCL_ROWS_STORE(v, q) vstore8((v), 0, (q))
 #endif
@@ -45,9 +48,10 @@ typedef int8 msocl_rows_m;
 #define MSOCL_ROWS_SEL(c, a, b)                                               \
   select((msocl_rows_f)(b), (msocl_rows_f)(a), (msocl_rows_m)(c))
 
-/* Floats of one ring row: six forward springs' x, y, z terms, each `ring_w`
- * floats (a padded row's columns) */
-#define MSOCL_ROWS_TERMS 18
+/* Floats of one ring row: six forward springs' x, y, z terms, then wind's
+ * on the quad's two triangles (A, B as wind.cl's msocl_wind_quads), each
+ * `ring_w` floats (a padded row's columns) */
+#define MSOCL_ROWS_TERMS 24
 
 /* The forward springs: offset in a plane, kind and rest index (as
  * common.cl's slots 2, 3, 6, 7, 10, 11). */
@@ -96,6 +100,45 @@ static void msocl_rows_springs(MSOCL_CONN, __global const float *p,
       MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dy, 0.0f), q + ring_w);
       MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dz, 0.0f), q + 2 * ring_w);
     }
+  }
+}
+
+/* Wind on row y's quads at padded columns 0..nx + 2 into ring row t
+ * (terms 6 and 7: A and B), from the velocities before the step, as
+ * msocl_wind_quads computes them: zero where the quad is not the model's
+ * (its padding corners hold NaN). */
+static void msocl_rows_wind(MSOCL_CONN, __global const float *p,
+                            __global const float *v,
+                            int pitch, int plane, int y, float4 air,
+                            float4 coef, __global float *t, int ring_w)
+{
+  const int row = (y + 2) * pitch, cols = grid_nx + 3, q = plane;
+  for (int c0 = 0; c0 < cols; c0 += MSOCL_ROWS_W) {
+    const int c = min(c0, cols - MSOCL_ROWS_W), a = row + c;
+    const msocl_rows_m x = MSOCL_ROWS_LANES + (c - 2);
+    /* select reads a lane's sign bit: the row's test as -1 or 0 */
+    const int row_real = -(int)(y >= 0 && y + 1 < grid_ny);
+    const msocl_rows_m real = (x >= 0) & (x + 1 < grid_nx) & row_real;
+#define L(o) MSOCL_ROWS_LOAD(p + (o))
+#define V(o) MSOCL_ROWS_LOAD(v + (o))
+    const int a1 = a + 1, an = a + pitch, an1 = a + pitch + 1;
+    for (int tri = 0; tri < 2; tri++) {
+      /* A = (a, a+1, a+pitch+1), B = (a, a+pitch+1, a+pitch) */
+      const int b1 = tri ? an1 : a1, b2 = tri ? an : an1;
+      MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, L(b1) - L(a),
+                       L(q + b1) - L(q + a), L(2 * q + b1) - L(2 * q + a),
+                       L(b2) - L(a), L(q + b2) - L(q + a),
+                       L(2 * q + b2) - L(2 * q + a), V(a) + V(b1) + V(b2),
+                       V(q + a) + V(q + b1) + V(q + b2),
+                       V(2 * q + a) + V(2 * q + b1) + V(2 * q + b2), air,
+                       coef, fx, fy, fz);
+      __global float *o = t + 3 * (6 + tri) * ring_w + c;
+      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, fx, 0.0f), o);
+      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, fy, 0.0f), o + ring_w);
+      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, fz, 0.0f), o + 2 * ring_w);
+    }
+#undef L
+#undef V
   }
 }
 
@@ -196,14 +239,16 @@ msocl_rows_sum(__global const float *r0,
  * vector moves back to end at the row's last point, over points the one
  * before it has updated: its velocities are read before that. */
 static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
-                            __global float *v, __global float *p_out,
+                            __global const float *v, __global float *v_out,
+                            __global float *p_out,
                             __global const float *aux,
                             int pitch, int plane, float4 gravity,
                             float viscous, float air, float dt,
                             __constant const float *cf,
                             __global const float *r0,
                             __global const float *r1,
-                            __global const float *r2, int y, int ring_w)
+                            __global const float *r2, int y, int ring_w,
+                            int wind)
 {
   const int row = (y + 2) * pitch + 2, tail = grid_nx - MSOCL_ROWS_W;
   const msocl_rows_f tx = MSOCL_ROWS_LOAD(v + row + tail),
@@ -215,9 +260,35 @@ static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
     const msocl_rows_f fx0 = msocl_rows_sum(r0, r1, r2, 0, c, ring_w),
                        fy0 = msocl_rows_sum(r0, r1, r2, 1, c, ring_w),
                        fz0 = msocl_rows_sum(r0, r1, r2, 2, c, ring_w);
-    const msocl_rows_f ux = last ? tx : MSOCL_ROWS_LOAD(v + a),
-                       uy = last ? ty : MSOCL_ROWS_LOAD(v + plane + a),
-                       uz = last ? tz : MSOCL_ROWS_LOAD(v + 2 * plane + a);
+    msocl_rows_f ux = last ? tx : MSOCL_ROWS_LOAD(v + a),
+                 uy = last ? ty : MSOCL_ROWS_LOAD(v + plane + a),
+                 uz = last ? tz : MSOCL_ROWS_LOAD(v + 2 * plane + a);
+    const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
+    if (wind) {
+      /* the six triangles' thirds in triangle order, then the velocity
+       * change, as msocl_wind_quad_points and msocl_wind_kick */
+      msocl_rows_f wx = 0.0f, wy = 0.0f, wz = 0.0f;
+#define W(r, f, cc)                                                           \
+  wx += MSOCL_ROWS_T(r, f, 0, cc);                                            \
+  wy += MSOCL_ROWS_T(r, f, 1, cc);                                            \
+  wz += MSOCL_ROWS_T(r, f, 2, cc)
+      W(r1, 6, c - 1);
+      W(r1, 7, c - 1);
+      W(r1, 7, c);
+      W(r2, 6, c - 1);
+      W(r2, 6, c);
+      W(r2, 7, c);
+#undef W
+#ifdef MSOCL_PINS
+      const msocl_rows_m held = MSOCL_ROWS_LOAD(aux + plane + a) != 0.0f;
+      const msocl_rows_f s = MSOCL_ROWS_SEL(held, 0.0f, dt * im);
+#else
+      const msocl_rows_f s = dt * im;
+#endif
+      ux += s * wx;
+      uy += s * wy;
+      uz += s * wz;
+    }
     msocl_rows_f fx = fx0, fy = fy0, fz = fz0;
 #ifdef MSOCL_VISCOUS
     fx = fx - viscous * ux;
@@ -225,7 +296,6 @@ static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
     fz = fz - viscous * uz;
 #endif
     (void)viscous;
-    const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
     msocl_rows_f vx = ux + dt * (fx * im + gravity.x);
     msocl_rows_f vy = uy + dt * (fy * im + gravity.y);
     msocl_rows_f vz = uz + dt * (fz * im + gravity.z);
@@ -252,9 +322,9 @@ static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
     qy = MSOCL_ROWS_SEL(pinned, py, qy);
     qz = MSOCL_ROWS_SEL(pinned, pz, qz);
 #endif
-    MSOCL_ROWS_STORE(vx, v + a);
-    MSOCL_ROWS_STORE(vy, v + plane + a);
-    MSOCL_ROWS_STORE(vz, v + 2 * plane + a);
+    MSOCL_ROWS_STORE(vx, v_out + a);
+    MSOCL_ROWS_STORE(vy, v_out + plane + a);
+    MSOCL_ROWS_STORE(vz, v_out + 2 * plane + a);
     MSOCL_ROWS_STORE(qx, p_out + a);
     MSOCL_ROWS_STORE(qy, p_out + plane + a);
     MSOCL_ROWS_STORE(qz, p_out + 2 * plane + a);
@@ -265,11 +335,14 @@ static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
  * with its own ring of three rows: the two rows below the block first,
  * for its first rows' backward springs. */
 __kernel void msocl_planes_rows(MSOCL_CONN, __global const float *p,
-                                __global float *v, __global float *p_out,
+                                __global const float *v,
+                                __global float *p_out,
                                 __global const float *aux, int pitch,
                                 int plane, float4 gravity, float viscous,
                                 float air, float dt, __constant float4 *col,
-                                __global float *ring, int ring_w)
+                                __global float *ring, int ring_w,
+                                __global float *v_out, float4 wind_air,
+                                float4 wind_coef, int wind)
 {
   const int b = get_global_id(0), nb = get_global_size(0);
   const int y0 = (int)((long)grid_ny * b / nb),
@@ -280,12 +353,16 @@ __kernel void msocl_planes_rows(MSOCL_CONN, __global const float *p,
   for (int y = y0 - 2; y < y1; y++) {
     msocl_rows_springs(MSOCL_CONN_ARGS, p, pitch, plane, y,
                        mine + (size_t)((y + 3) % 3) * one, ring_w);
+    if (wind && y >= y0 - 1)
+      msocl_rows_wind(MSOCL_CONN_ARGS, p, v, pitch, plane, y, wind_air,
+                      wind_coef,
+                      mine + (size_t)((y + 3) % 3) * one, ring_w);
     if (y >= y0)
-      msocl_rows_kick(MSOCL_CONN_ARGS, p, v, p_out, aux, pitch, plane,
+      msocl_rows_kick(MSOCL_CONN_ARGS, p, v, v_out, p_out, aux, pitch, plane,
                       gravity, viscous, air, dt, cf,
                       mine + (size_t)((y + 1) % 3) * one,
                       mine + (size_t)((y + 2) % 3) * one,
-                      mine + (size_t)((y + 3) % 3) * one, y, ring_w);
+                      mine + (size_t)((y + 3) % 3) * one, y, ring_w, wind);
   }
 }
 

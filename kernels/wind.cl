@@ -7,42 +7,65 @@
  * the area and the relative speed squared. One kernel a triangle (no loop
  * inside, so PoCL vectorises it), one a point summing its corners in the
  * order the triangles were added, so every layout gets the same bits.
- * Needs planes.cl before it (MSOCL_PLANES_POINT). */
+ * Needs planes.cl before it (MSOCL_PLANES_AT); planes_rows.cl, after it,
+ * takes MSOCL_WIND_FORCE into its sweep. */
 #if defined(MSOCL_PLANES)
 
-/* A third of the force on the triangle with corners at tx, ty, tz of the
- * planes (q floats a plane) from air at velocity air.xyz, with coef.x =
- * rho Cd / 2 and coef.y = rho Cl / 2: every wind kernel's one arithmetic,
- * so that each layout gets the same bits. */
+/* A third of the force on a triangle of edges e1 = p1 - p0 and
+ * e2 = p2 - p0 whose corners' velocities sum to s = (v0 + v1) + v2, from
+ * air at velocity air.xyz, with coef.x = rho Cd / 2 and coef.y =
+ * rho Cl / 2, into fx, fy, fz (declared here, of type T; SEL(c, a, b) is
+ * c ? a : b for T): the one arithmetic of every wind kernel, scalar or
+ * vector (planes_rows.cl), so that each layout gets the same bits. With
+ * the unnormalised normal N = e1 x e2 = 2 A n the area cancels:
+ * f = kd |N.u| u / 2 + kl (N.u) (|u|^2 N - (N.u) u) / (2 |N| |u|), one
+ * square root (two would be paired into a vector and stop PoCL
+ * vectorising the kernel). */
+#define MSOCL_WIND_FORCE(T, SEL, e1x, e1y, e1z, e2x, e2y, e2z, sx, sy, sz,    \
+                         air, coef, fx, fy, fz)                               \
+  const T msocl_nx = (e1y) * (e2z) - (e1z) * (e2y),                           \
+          msocl_ny = fma((e1z), (e2x), -((e1x) * (e2z))),                     \
+          msocl_nz = fma(-(e1y), (e2x), (e1x) * (e2y));                       \
+  const float msocl_third = 1.0f / 3.0f;                                      \
+  const T msocl_ux = (air).x - (sx) * msocl_third,                            \
+          msocl_uy = fma((sy), -msocl_third, (air).y),                        \
+          msocl_uz = (air).z - (sz) / 3.0f;                                   \
+  const T msocl_nu = msocl_nx * msocl_ux + msocl_ny * msocl_uy +              \
+                     msocl_nz * msocl_uz;                                     \
+  const T msocl_uu = msocl_ux * msocl_ux + msocl_uy * msocl_uy +              \
+                     msocl_uz * msocl_uz;                                     \
+  const T msocl_root = sqrt((msocl_nx * msocl_nx + msocl_ny * msocl_ny +      \
+                             msocl_nz * msocl_nz) * msocl_uu);                \
+  const T msocl_d = 0.5f * msocl_third * (coef).x * fabs(msocl_nu);           \
+  const T msocl_l = SEL(msocl_root > 0.0f,                                    \
+                        0.5f * msocl_third * (coef).y * msocl_nu / msocl_root,\
+                        0.0f);                                                \
+  const T fx = msocl_d * msocl_ux +                                           \
+               msocl_l * (msocl_uu * msocl_nx - msocl_nu * msocl_ux);         \
+  const T fy = fma(msocl_d, msocl_uy,                                         \
+                   msocl_l * fma(msocl_uu, msocl_ny, -(msocl_nu * msocl_uy)));\
+  const T fz = fma(msocl_l, fma(-msocl_nu, msocl_uz, msocl_uu * msocl_nz),    \
+                   msocl_d * msocl_uz)
+
+#define MSOCL_WIND_SEL1(c, a, b) ((c) ? (a) : (b))
+
+/* MSOCL_WIND_FORCE for the corners at tx, ty, tz of the planes (q floats a
+ * plane). */
 static inline void msocl_wind_third(__global const float *p,
                                     __global const float *v, int q, int tx,
                                     int ty, int tz, float4 air, float4 coef,
                                     float *fx, float *fy, float *fz)
 {
-  const float e1x = p[ty] - p[tx], e1y = p[q + ty] - p[q + tx],
-              e1z = p[2 * q + ty] - p[2 * q + tx];
-  const float e2x = p[tz] - p[tx], e2y = p[q + tz] - p[q + tx],
-              e2z = p[2 * q + tz] - p[2 * q + tx];
-  const float nx = e1y * e2z - e1z * e2y,
-              ny = fma(e1z, e2x, -(e1x * e2z)),
-              nz = fma(-e1y, e2x, e1x * e2y);
-  const float third_of = 1.0f / 3.0f;
-  const float ux = air.x - (v[tx] + v[ty] + v[tz]) * third_of,
-              uy = fma(v[q + tx] + v[q + ty] + v[q + tz], -third_of, air.y),
-              uz = air.z - (v[2 * q + tx] + v[2 * q + ty] + v[2 * q + tz]) /
-                               3.0f;
-  /* With the unnormalised normal (nx, ny, nz) = 2 A n the area cancels:
-   * f = kd |N.u| u / 2 + kl (N.u) (|u|^2 N - (N.u) u) / (2 |N| |u|), one
-   * square root (two would be paired into a vector and stop PoCL
-   * vectorising the kernel). */
-  const float nu = nx * ux + ny * uy + nz * uz;
-  const float uu = ux * ux + uy * uy + uz * uz;
-  const float root = sqrt((nx * nx + ny * ny + nz * nz) * uu);
-  const float d = 0.5f * third_of * coef.x * fabs(nu);
-  const float l = root > 0.0f ? 0.5f * third_of * coef.y * nu / root : 0.0f;
-  *fx = d * ux + l * (uu * nx - nu * ux);
-  *fy = fma(d, uy, l * fma(uu, ny, -(nu * uy)));
-  *fz = fma(l, fma(-nu, uz, uu * nz), d * uz);
+  MSOCL_WIND_FORCE(float, MSOCL_WIND_SEL1, p[ty] - p[tx],
+                   p[q + ty] - p[q + tx], p[2 * q + ty] - p[2 * q + tx],
+                   p[tz] - p[tx], p[q + tz] - p[q + tx],
+                   p[2 * q + tz] - p[2 * q + tx], v[tx] + v[ty] + v[tz],
+                   v[q + tx] + v[q + ty] + v[q + tz],
+                   v[2 * q + tx] + v[2 * q + ty] + v[2 * q + tz], air, coef,
+                   gx, gy, gz);
+  *fx = gx;
+  *fy = gy;
+  *fz = gz;
 }
 
 /* A third of the force on triangle k (its corners at tri[k],

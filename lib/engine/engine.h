@@ -81,6 +81,7 @@ struct msocl__engine {
   cl_kernel pl_rows;
   cl_mem pl_ring;         /* its work-items' rings of spring terms */
   size_t pl_blocks;       /* its work-items: blocks of rows */
+  int pl_rows_wind;       /* it blows wind on the quads (wind.c) */
   /* wind on the triangles, planes only (wind.c, kernels/wind.cl) */
   int wind_on, wind_ntri, wind_nspill;
   int wind_quads;         /* the cloth builder's triangles on GRID */

@@ -41,6 +41,10 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog);
 int msocl__pl_rows_step(msocl__engine *s, int r, int w);
 /* Its gravity, viscous damping and air arguments again (msocl__pl_forces). */
 int msocl__pl_rows_forces(msocl__engine *s);
+/* Wind on the cloth builder's triangles inside the sweep (air NULL:
+ * none), kd and kl as msocl__wind_set's. */
+int msocl__pl_rows_wind(msocl__engine *s, const float air[3], float kd,
+                        float kl);
 void msocl__pl_rows_release(msocl__engine *s);
 
 #endif

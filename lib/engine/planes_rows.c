@@ -48,9 +48,10 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   if (blocks > (size_t)s->lay.grid_ny)
     blocks = (size_t)s->lay.grid_ny;
   s->pl_blocks = blocks;
-  /* a ring row: 18 terms of a padded row's columns -2..nx, whole vectors */
+  /* a ring row: 24 terms (springs' 18, wind's 6) of a padded row's
+   * columns -2..nx, whole vectors */
   const int ring_w = (s->lay.grid_nx + 3 + ROWS_W - 1) / ROWS_W * ROWS_W;
-  const size_t bytes = blocks * 3 * 18 * (size_t)ring_w * sizeof(float);
+  const size_t bytes = blocks * 3 * 24 * (size_t)ring_w * sizeof(float);
   s->pl_ring = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes, NULL, &e);
   if (e != CL_SUCCESS)
     return msocl__fail(e, "clCreateBuffer(%zu bytes of rings): %s", bytes,
@@ -62,7 +63,7 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
     MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->pl_p[q], &nan, sizeof nan,
                                   0, 3 * (size_t)s->pl_plane * sizeof(float),
                                   0, NULL, NULL));
-  /* connectivity, p, v (in place), p_out, then these */
+  /* connectivity, p, v, p_out, then these, then v_out and wind's */
   cl_kernel k = s->pl_rows;
   cl_uint a;
   MSOCL__TRY(msocl__layout_set_args(&s->lay, k, &a));
@@ -76,7 +77,23 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   MSOCL__TRY(arg(k, a + 6, sizeof(float), &s->o.dt));
   MSOCL__TRY(arg(k, a + 7, sizeof s->pl_col, &s->pl_col));
   MSOCL__TRY(arg(k, a + 8, sizeof s->pl_ring, &s->pl_ring));
-  return arg(k, a + 9, sizeof(int), &ring_w);
+  MSOCL__TRY(arg(k, a + 9, sizeof(int), &ring_w));
+  return msocl__pl_rows_wind(s, NULL, 0.0f, 0.0f);
+}
+
+int msocl__pl_rows_wind(msocl__engine *s, const float air[3], float kd,
+                        float kl)
+{
+  const cl_uint a = s->pl_conn + 3 + 11; /* after ring_w */
+  const cl_float4 w = {{air ? air[0] : 0.0f, air ? air[1] : 0.0f,
+                        air ? air[2] : 0.0f, 0.0f}},
+                  c = {{kd, kl, 0.0f, 0.0f}};
+  const int on = air != NULL;
+  MSOCL__TRY(arg(s->pl_rows, a, sizeof w, &w));
+  MSOCL__TRY(arg(s->pl_rows, a + 1, sizeof c, &c));
+  MSOCL__TRY(arg(s->pl_rows, a + 2, sizeof on, &on));
+  s->pl_rows_wind = on;
+  return MSOCL_OK;
 }
 
 int msocl__pl_rows_forces(msocl__engine *s)
@@ -92,17 +109,24 @@ int msocl__pl_rows_forces(msocl__engine *s)
 
 int msocl__pl_rows_step(msocl__engine *s, int r, int w)
 {
+  /* without wind the velocities move in place; with it, into set w, as
+   * its triangles read the neighbours' velocities before the step */
+  const int out = s->pl_rows_wind ? w : r;
   const cl_mem bufs[3] = {s->pl_p[r], s->pl_v[r], s->pl_p[w]};
   for (cl_uint q = 0; q < 3; q++)
     MSOCL__TRY(arg(s->pl_rows, s->pl_conn + q, sizeof bufs[q],
                              &bufs[q]));
+  MSOCL__TRY(arg(s->pl_rows, s->pl_conn + 3 + 10, sizeof(cl_mem),
+                 &s->pl_v[out]));
   const size_t one = 1;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_rows, 1, NULL,
                                    &s->pl_blocks, &one, 0, NULL, NULL));
-  /* the velocities moved in place: set w's are now that buffer */
-  const cl_mem t = s->pl_v[r];
-  s->pl_v[r] = s->pl_v[w];
-  s->pl_v[w] = t;
+  if (out == r) {
+    /* moved in place: set w's velocities are now that buffer */
+    const cl_mem t = s->pl_v[r];
+    s->pl_v[r] = s->pl_v[w];
+    s->pl_v[w] = t;
+  }
   return MSOCL_OK;
 }
 

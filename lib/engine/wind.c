@@ -186,7 +186,7 @@ int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
 {
   if (!air) {
     s->wind_on = 0;
-    return MSOCL_OK;
+    return s->pl_rows ? msocl__pl_rows_wind(s, NULL, 0.0f, 0.0f) : MSOCL_OK;
   }
   if (!s->planes)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
@@ -196,6 +196,11 @@ int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "wind pushes on triangles, and the model has none "
                        "(msocl_model_add_triangles)");
+  if (s->wind_quads && s->pl_rows) {
+    /* the one-sweep kernel blows it on the quads as it goes */
+    s->wind_on = 1;
+    return msocl__pl_rows_wind(s, air, kd, kl);
+  }
   if (!s->wind_third)
     TRY(buffers(s));
   const cl_float4 a = {{air[0], air[1], air[2], 0.0f}},
@@ -210,7 +215,7 @@ int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
 
 int msocl__wind_pass(msocl__engine *s)
 {
-  if (!s->wind_on)
+  if (!s->wind_on || s->pl_rows_wind)
     return MSOCL_OK;
   const int set = s->pl_set;
   const size_t local[3] = {s->pl_group, 1, 1};
