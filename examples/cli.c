@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -255,5 +256,39 @@ int cli_step(msocl_sim *s, cli_progress *p, long long n, int cap,
     cli_progress_add(p, k);
     n -= k;
   }
+  return rc;
+}
+
+int cli_frames_parse(const char *prog, const char *usage, int argc,
+                     char **argv, struct cli_frames *a, int *done)
+{
+  static const char options[] = ":n:t:F:d:o:h";
+  int rc, opt;
+  if ((rc = cli_long_options(prog, options, argc, argv, done)))
+    return rc;
+  if (*done)
+    return cli_help("%s", usage);
+  while (!rc && (opt = getopt(argc, argv, options)) != -1) {
+    switch (opt) {
+    case 'n':
+      rc = cli_int(prog, opt, optarg, "grid size", 4, a->n_max, &a->n);
+      break;
+    case 't':
+      rc = cli_double(prog, opt, optarg, "seconds", 0.0, 1, 600.0,
+                      &a->seconds);
+      break;
+    case 'F':
+      rc = cli_int(prog, opt, optarg, "frames a second", 1, 240, &a->fps);
+      break;
+    case 'd': a->spec = optarg; break;
+    case 'o': a->dir = optarg; break;
+    case 'h': *done = 1; return cli_help("%s", usage);
+    default: return cli_bad_option(prog, opt);
+    }
+  }
+  if (!rc)
+    rc = cli_no_operands(prog, optind, argc, argv);
+  if (!rc && mkdir(a->dir, 0777) != 0 && errno != EEXIST)
+    rc = cli_bad(prog, "-o %s: %s", a->dir, strerror(errno));
   return rc;
 }

@@ -86,4 +86,17 @@ void cli_progress_end(cli_progress *p);
 int cli_step(msocl_sim *s, cli_progress *p, long long n, int cap,
              double *secs);
 
+/* The animation examples' command line (msocl-flag, msocl-character):
+ * -n grid size in [4, n_max], -t seconds in (0, 600], -F frames a second
+ * in [1, 240], -d device spec, -o folder (made if missing), -h the usage
+ * text. *a holds the defaults on entry. 0 (with *done set after -h), or
+ * CLI_USAGE after the message. */
+struct cli_frames {
+  int n, n_max, fps;
+  double seconds;
+  const char *spec, *dir;
+};
+int cli_frames_parse(const char *prog, const char *usage, int argc,
+                     char **argv, struct cli_frames *a, int *done);
+
 #endif /* CLI_H */

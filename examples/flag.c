@@ -9,70 +9,25 @@
 
 #include <msocl.h>
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #define PROG "msocl-flag"
-#define OPTIONS ":n:t:F:d:o:h"
 
-static int usage(void)
-{
-  return cli_help(
-      "usage: " PROG " [-n GRID] [-t SECONDS] [-F FRAMES] [-d DEVICE_SPEC]\n"
-      "  [-o DIR]\n"
-      "A flag on a pole in wind that gusts between 3 and 9 m/s and veers by\n"
-      "up to 25 degrees; writes DIR/flag-NNNN.obj, one a frame.\n"
-      "  -n  points along the flag's height, 4 to 512 (default 32; 1.5 n\n"
-      "      along its length)\n"
-      "  -t  simulated seconds, > 0 to 600 (default 4)\n"
-      "  -F  frames a second written, 1 to 240 (default 12)\n"
-      "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that variable)\n"
-      "  -o  folder for the frames, made if missing (default flag-frames)\n"
-      "  -h, --help  this text\n");
-}
-
-struct args {
-  int n, fps;
-  double seconds;
-  const char *spec, *dir;
-};
-
-static int parse(int argc, char **argv, struct args *a, int *done)
-{
-  a->n = 32;
-  a->fps = 12;
-  a->seconds = 4.0;
-  a->spec = NULL;
-  a->dir = "flag-frames";
-  int rc, opt;
-  if ((rc = cli_long_options(PROG, OPTIONS, argc, argv, done)))
-    return rc;
-  if (*done)
-    return usage();
-  while (!rc && (opt = getopt(argc, argv, OPTIONS)) != -1) {
-    switch (opt) {
-    case 'n': rc = cli_int(PROG, opt, optarg, "grid size", 4, 512, &a->n); break;
-    case 't':
-      rc = cli_double(PROG, opt, optarg, "seconds", 0.0, 1, 600.0, &a->seconds);
-      break;
-    case 'F': rc = cli_int(PROG, opt, optarg, "frames a second", 1, 240, &a->fps); break;
-    case 'd': a->spec = optarg; break;
-    case 'o': a->dir = optarg; break;
-    case 'h': *done = 1; return usage();
-    default: return cli_bad_option(PROG, opt);
-    }
-  }
-  if (!rc)
-    rc = cli_no_operands(PROG, optind, argc, argv);
-  if (!rc && mkdir(a->dir, 0777) != 0 && errno != EEXIST)
-    rc = cli_bad(PROG, "-o %s: %s", a->dir, strerror(errno));
-  return rc;
-}
+static const char usage[] =
+    "usage: " PROG " [-n GRID] [-t SECONDS] [-F FRAMES] [-d DEVICE_SPEC]\n"
+    "  [-o DIR]\n"
+    "A flag on a pole in wind that gusts between 3 and 9 m/s and veers by\n"
+    "up to 25 degrees; writes DIR/flag-NNNN.obj, one a frame.\n"
+    "  -n  points along the flag's height, 4 to 512 (default 32; 1.5 n\n"
+    "      along its length)\n"
+    "  -t  simulated seconds, > 0 to 600 (default 4)\n"
+    "  -F  frames a second written, 1 to 240 (default 12)\n"
+    "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that variable)\n"
+    "  -o  folder for the frames, made if missing (default flag-frames)\n"
+    "  -h, --help  this text\n";
 
 /* The flag in the x-y plane, its left edge (x = 0) at the pole, top
  * corner 2 m up; stiff along its threads, soft in shear and bending. */
@@ -116,8 +71,8 @@ static void gust(double t, msocl_wind *w)
 
 int main(int argc, char **argv)
 {
-  struct args a;
-  int done = 0, rc = parse(argc, argv, &a, &done);
+  struct cli_frames a = {32, 512, 12, 4.0, NULL, "flag-frames"};
+  int done = 0, rc = cli_frames_parse(PROG, usage, argc, argv, &a, &done);
   if (rc || done)
     return rc;
   int nu = 0;
