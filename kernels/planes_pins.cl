@@ -27,3 +27,27 @@ __kernel void msocl_planes_pins(__global float *p, __global float *v,
   }
 }
 #endif
+
+/* Soft pins (lib/engine/soft_pins.c), before each step: pin i of m, at
+ * at[i] in each plane, is pulled toward its anchor (1 - f) from + f to by
+ * a spring of stiffness k, as the velocity change dt k (anchor - p) / m
+ * (dtk = dt k; aux holds the inverse masses). */
+#if defined(MSOCL_PLANES)
+__kernel void msocl_soft_pins(__global const float *p, __global float *v,
+                              __global const float *aux,
+                              __global const int *at,
+                              __global const float *from,
+                              __global const float *to, int m, int plane,
+                              float f, float dtk)
+{
+  const int i = get_global_id(0);
+  if (i >= m)
+    return;
+  const int a = at[i];
+  const float s = dtk * aux[a];
+  for (int q = 0; q < 3; q++) {
+    const float anchor = (1.0f - f) * from[3 * i + q] + f * to[3 * i + q];
+    v[q * plane + a] += s * (anchor - p[q * plane + a]);
+  }
+}
+#endif

@@ -485,6 +485,19 @@ MSOCL_EXTERN int msocl_sim_pin(msocl_sim *s, int count, const int *idx,
  * float4); a point not pinned or given twice: MSOCL_ERR_BAD_VALUE. */
 MSOCL_EXTERN int msocl_sim_set_pin_targets(msocl_sim *s, int count,
                                            const int *idx, const float *xyz);
+/* Soft pins: free points idx[0..count) pulled toward anchors xyz (3 count
+ * floats) by springs of `stiffness` N/m (zero rest length), a velocity
+ * change dt k (anchor - x) / m before each step (first order, as wind);
+ * given again for the same points in the same order, the anchors move
+ * from where they rest to the new ones over the next msocl_sim_step, along
+ * straight lines as pin targets do; otherwise they start there. count 0
+ * clears them. A hard-pinned point, an index out of range or given twice,
+ * a non-finite anchor or stiffness: an error; a stiffness whose
+ * oscillation would be unstable at the simulation's dt (k dt^2 / m > 1):
+ * MSOCL_ERR_UNSTABLE. Planes engine on one device. */
+MSOCL_EXTERN int msocl_sim_set_soft_pins(msocl_sim *s, int count,
+                                         const int *idx, const float *xyz,
+                                         float stiffness);
 /* Partial state access: 3 floats a point, of positions (velocities 0) or
  * velocities (1), for points first..first+count-1 or idx[0..count);
  * other points and the rest of the state are untouched (writes keep the
@@ -618,6 +631,11 @@ MSOCL_EXTERN int msocl_reference_energy(const msocl_reference *r,
 /* As msocl_sim_set_wind, in double. */
 MSOCL_EXTERN int msocl_reference_set_wind(msocl_reference *r,
                                           const msocl_wind *w);
+/* As msocl_sim_set_soft_pins, in double. */
+MSOCL_EXTERN int msocl_reference_set_soft_pins(msocl_reference *r,
+                                               int count, const int *idx,
+                                               const float *xyz,
+                                               float stiffness);
 /* As msocl_sim_set_accelerations and msocl_sim_set_forces, in double. */
 MSOCL_EXTERN int msocl_reference_set_accelerations(msocl_reference *r,
                                                    const float *xyz);

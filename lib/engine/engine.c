@@ -362,6 +362,7 @@ void msocl__engine_destroy(msocl__engine *s)
   msocl__planes_release(s);
   msocl__wind_release(s);
   msocl__field_release(s);
+  msocl__soft_release(s);
   msocl__layout_release(&s->lay);
   free(s->stage);
   free(s->partial_host);

@@ -94,6 +94,11 @@ struct msocl__engine {
   int field_on;
   cl_kernel field_k;
   cl_mem field_acc;       /* three planes, laid out as the state's */
+  /* soft pins, planes only (soft_pins.c, kernels/planes_pins.cl) */
+  int soft_m, soft_cap;
+  float soft_f;           /* the anchors' place from `from` to `to` */
+  cl_kernel soft_k;
+  cl_mem soft_at, soft_from, soft_to;
 };
 
 /* What a phase of a step leaves that other engines' next phase reads. */
@@ -179,6 +184,20 @@ int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog);
 int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl);
 int msocl__wind_pass(msocl__engine *s);
 void msocl__wind_release(msocl__engine *s);
+/* Where the engine's point j sits in each plane (planes.c; planes.cl's
+ * MSOCL_PLANES_AT). */
+int msocl__pl_address(const msocl__engine *s, int j);
+/* Soft pins (soft_pins.c): set: the engine's points k[0..m) pulled by
+ * springs of `stiffness` toward anchors xyz (3 m floats), from the next
+ * step; `move`: the anchors move there over the next moving call from
+ * where they rest (fraction: before each of its steps), else they start
+ * there; m 0: none. pass: their velocity change, before a step's phases;
+ * release: frees them. */
+int msocl__soft_set(msocl__engine *s, int m, const int *k, const float *xyz,
+                    float stiffness, int move);
+void msocl__soft_fraction(msocl__engine *s, float f);
+int msocl__soft_pass(msocl__engine *s);
+void msocl__soft_release(msocl__engine *s);
 /* A user's field (field.c): create: its kernel, where the engine runs in
  * planes; set: xyz (3 floats a point, the engine's order) as accelerations
  * or, `forces`, as forces divided by the points' masses, from the next

@@ -30,9 +30,7 @@ int msocl__pl_implicit_args(msocl__engine *s);
 /* The gathering kernels' gravity, viscous damping and air arguments again
  * (planes.c; msocl__planes_forces adds the implicit kernels'). */
 int msocl__pl_forces(msocl__engine *s);
-/* Where the engine's point j sits in each plane (planes.cl's
- * MSOCL_PLANES_AT). */
-int msocl__pl_address(const msocl__engine *s, int j);
+
 
 /* planes_rows.c: symplectic Euler in one sweep a step with each spring
  * computed once, where it applies (s->pl_rows then set), and its step

@@ -143,6 +143,7 @@ int msocl__integrate(msocl__engine *s, int n)
     if (s->planes) {
       TRY(msocl__wind_pass(s));
       TRY(msocl__field_pass(s));
+      TRY(msocl__soft_pass(s));
     }
     for (int ph = 0; ph < phases; ph++) {
       unsigned x;

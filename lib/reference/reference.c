@@ -215,6 +215,7 @@ int msocl_reference_step(msocl_reference *r, int n)
     msocl__ref_pins(r, k, n);
     msocl__ref_wind(r);
     msocl__ref_field(r);
+    msocl__ref_soft_pins(r, k, n);
     switch (r->o.integrator) {
     case MSOCL_SYMPLECTIC_EULER:
     case MSOCL_IMPLICIT_EULER:
@@ -239,7 +240,9 @@ int msocl_reference_step(msocl_reference *r, int n)
     r->vel = r->vnew;
     r->vnew = t;
   }
-  if (n > 0)
+  if (n > 0) {
     msocl__ref_pins(r, n, n);
+    msocl__ref_soft_pins(r, n, n);
+  }
   return msocl__ref_cg_report(r, MSOCL_OK, n);
 }

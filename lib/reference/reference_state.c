@@ -106,6 +106,7 @@ void msocl_reference_destroy(msocl_reference *r)
   free(r->pinned);
   free(r->tri);
   msocl__ref_controls_free(r);
+  msocl__ref_soft_pins_free(r);
   free(r);
 }
 

@@ -27,6 +27,9 @@ struct msocl_reference {
   int wind_on;             /* reference_wind.c */
   double wind_air[3], wind_kd, wind_kl;
   double *field;           /* accelerations, 3n, or NULL (reference_field.c) */
+  /* soft pins (reference_soft_pins.c) */
+  int soft_m, soft_moving, *soft_idx;
+  double soft_k, *soft_from, *soft_to;
   /* pins moving to targets in the next call (reference_controls.c) */
   int tm;
   int *tidx;
@@ -62,6 +65,10 @@ void msocl__ref_implicit_velocity(msocl_reference *r);
 void msocl__ref_wind(msocl_reference *r);
 /* The user's field's velocity change before a step (reference_field.c). */
 void msocl__ref_field(msocl_reference *r);
+/* Soft pins' velocity change before step k of a call's n (k = n: the
+ * call's end), and their lists freed (reference_soft_pins.c). */
+void msocl__ref_soft_pins(msocl_reference *r, int k, int n);
+void msocl__ref_soft_pins_free(msocl_reference *r);
 /* As msocl__cg_report, for msocl_reference_step. */
 int msocl__ref_cg_report(msocl_reference *r, int rc, int n);
 

@@ -114,6 +114,7 @@ struct msocl_sim {
   struct msocl__live *live;     /* the model's count of its simulations */
   struct msocl__controls *ctl;  /* live controls (sim_controls.c), or NULL */
   int call_n, call_j;     /* a moving call's steps, and those done (motion.c) */
+  struct msocl__soft *soft;     /* soft pins (sim_soft_pins.c), or NULL */
 };
 
 /* Live controls (sim_controls.c): frees them; whether pins have targets
@@ -125,6 +126,12 @@ int msocl__pins_pending(const msocl_sim *s);
 int msocl__pins_place(msocl_sim *s, float fp, float f0, float f1,
                       int capture);
 void msocl__pins_done(msocl_sim *s);
+/* Soft pins (sim_soft_pins.c): frees them; whether their anchors move
+ * over the next call; the anchors at fraction f of that move (1: the end,
+ * which ends it). */
+void msocl__soft_pins_free(msocl_sim *s);
+int msocl__soft_pins_moving(const msocl_sim *s);
+void msocl__soft_pins_place(msocl_sim *s, float f);
 /* A call that moves things over its steps (motion.c): begun before a
  * stepping call of n steps; whether it moves anything; `n` of its steps. */
 void msocl__motion_call(msocl_sim *s, int n);

@@ -217,18 +217,6 @@ int msocl_sim_pin(msocl_sim *s, int count, const int *idx, int pinned)
   return MSOCL_OK;
 }
 
-/* Where the simulation's point k sits in each of the engine's planes
- * (kernels/planes.cl's MSOCL_PLANES_AT). */
-static int plane_at(const msocl__engine *e, int k)
-{
-  if (e->lay.kind != MSOCL_LAYOUT_GRID)
-    return k;
-  const int nx = e->lay.grid_nx, ny = e->lay.grid_ny;
-  const int x = k % nx, y = k / nx % ny, z = k / nx / ny;
-  const int row = (y + 2) * e->pl_pitch + x + 2;
-  return e->lay.grid_nz > 0 ? (z + 2) * e->pl_slab + row : row;
-}
-
 /* Buffers for m pins, the kernel at first use. */
 static int pin_buffers(msocl__engine *e, struct msocl__controls *c, int m)
 {
@@ -337,7 +325,7 @@ int msocl_sim_set_pin_targets(msocl_sim *s, int count, const int *idx,
                        model[q]);
     if (rc == MSOCL_OK) {
       seen[model[q]] = 1;
-      at[q] = plane_at(e, k);
+      at[q] = msocl__pl_address(e, k);
     }
   }
   free(seen);
