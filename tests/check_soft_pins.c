@@ -2,7 +2,8 @@
  * discrete oscillator symplectic Euler makes of it (computed here in
  * double); anchors moving over a call of k steps equal k one-step calls,
  * bitwise, and the double reference; a hanging cloth's soft-pinned corners
- * dragged along against the reference; bad input refused. */
+ * dragged along against the reference; the layouts bitwise; bad input
+ * refused. */
 #include "scenes.h"
 
 #include <check.h>
@@ -15,16 +16,22 @@
 
 enum { N = 16, P = N * N };
 
-static msocl_sim *sim_of(const msocl_model *m, float dt)
+static msocl_sim *sim_in(const msocl_model *m, float dt, msocl_layout l)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = dt;
   o.tuning.planes = MSOCL_ON;
+  o.tuning.layout = l;
   msocl_sim *s = NULL;
   ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK, "%s",
                 msocl_last_error());
   return s;
+}
+
+static msocl_sim *sim_of(const msocl_model *m, float dt)
+{
+  return sim_in(m, dt, MSOCL_LAYOUT_AUTO);
 }
 
 /* A free plate without gravity, every point soft-pinned d away from
@@ -152,6 +159,44 @@ START_TEST(dragged_corners)
 }
 END_TEST
 
+/* GRID, BUFFER and IMAGE2D keep one result with soft pins. */
+START_TEST(layouts_bitwise)
+{
+  msocl_model *m = scene_hanging(N);
+  float x0[3 * P];
+  ck_assert_int_eq(msocl_model_get_positions(m, x0), MSOCL_OK);
+  const int idx[3] = {P - 1, N * (N - 1), P / 2};
+  const msocl_layout ls[3] = {MSOCL_LAYOUT_GRID, MSOCL_LAYOUT_BUFFER,
+                              MSOCL_LAYOUT_IMAGE2D};
+  float *p[3];
+  for (int l = 0; l < 3; l++) {
+    msocl_sim *s = sim_in(m, 1e-3f, ls[l]);
+    float a[9];
+    for (int q = 0; q < 3; q++) {
+      memcpy(a + 3 * q, x0 + 3 * idx[q], 3 * sizeof(float));
+      a[3 * q] += 0.1f;
+    }
+    ck_assert_int_eq(msocl_sim_set_soft_pins(s, 3, idx, a, 3.0f), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_step(s, 50), MSOCL_OK);
+    for (int q = 0; q < 3; q++)
+      a[3 * q + 2] += 0.2f;
+    ck_assert_int_eq(msocl_sim_set_soft_pins(s, 3, idx, a, 3.0f), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_step(s, 150), MSOCL_OK);
+    p[l] = malloc(3 * P * sizeof *p[l]);
+    ck_assert_int_eq(msocl_sim_read_positions(s, p[l]), MSOCL_OK);
+    msocl_sim_destroy(s);
+  }
+  for (int l = 1; l < 3; l++)
+    ck_assert_msg(memcmp(p[0], p[l], 3 * P * sizeof(float)) == 0,
+                  "layout %d differs from GRID (%g m)", (int)ls[l],
+                  scene_max_diff(p[0], p[l], 3 * P));
+  ck_assert(memcmp(p[0], x0, sizeof x0) != 0);
+  for (int l = 0; l < 3; l++)
+    free(p[l]);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 START_TEST(bad_input)
 {
   msocl_model *m = scene_hanging(N);
@@ -203,6 +248,7 @@ int main(void)
   tcase_set_timeout(tc, 600);
   tcase_add_test(tc, plate_oscillates);
   tcase_add_test(tc, dragged_corners);
+  tcase_add_test(tc, layouts_bitwise);
   tcase_add_test(tc, bad_input);
   suite_add_tcase(su, tc);
   return scene_run(su);
