@@ -2,24 +2,25 @@
 # Renders a scene's final mesh (an OBJ the examples write) to an 800 x 600
 # PNG with gnuplot: the mesh's faces lit, with the scene's collider.
 #
-#   docs/render.sh tablecloth|jello|ball|flag IN.obj OUT.png
+#   docs/render.sh tablecloth|jello|ball|flag|character IN.obj OUT.png
 #
 # tablecloth: the round table of examples/tablecloth.c (radius 0.35 m, top at
 # y = 0) under the cloth; jello, ball: the ground y = 0, darkened under the
 # body as if lit from above; flag: the pole of examples/flag.c (x = z = 0,
-# 2.05 m tall), in a fixed frame so that frames make an animation. The
-# OBJ's y axis is up. Needs gnuplot 5.4
+# 2.05 m tall), in a fixed frame so that frames make an animation;
+# character: IN is examples/character.c's cape-NNNN.obj, and its body is the
+# body-NNNN.obj beside it, in a fixed frame. The OBJ's y axis is up. Needs gnuplot 5.4
 # (apt-get install gnuplot-nox); uses pngcairo when there is one.
 set -eu
 
 usage() {
-  echo "usage: $0 tablecloth|jello|ball|flag IN.obj OUT.png" >&2
+  echo "usage: $0 tablecloth|jello|ball|flag|character IN.obj OUT.png" >&2
   exit 2
 }
 [ $# -eq 3 ] || usage
 scene=$1 obj=$2 png=$3
 case $scene in
-tablecloth | jello | ball | flag) ;;
+tablecloth | jello | ball | flag | character) ;;
 *) usage ;;
 esac
 [ -r "$obj" ] || { echo "$0: cannot read $obj" >&2; exit 1; }
@@ -40,13 +41,15 @@ trap 'exit 1' HUP INT TERM
 # the collider, 1 to 2 the ground's darker tiles, 2.5 the mesh.
 quad='function quad(p, q, r, s) { printf "%s\n%s\n\n%s\n%s\n\n\n", p, q, s, r }'
 
-# The mesh. OBJ (x, y, z) becomes gnuplot (x, -z, y), a rotation that puts
-# y up. Faces may be "f a b c", "f a/t b/t c/t" or "f a//n b//n c//n";
-# negative indices count back from the last vertex.
-awk "$quad"'
-  function at(i) { return x[i] " " y[i] " " z[i] " 2.5" }
+# A mesh in palette value $1 from OBJ file $2. OBJ (x, y, z) becomes gnuplot (x, -z, y), a rotation
+# that puts y up. Faces may be "f a b c", "f a/t b/t c/t" or "f a//n b//n
+# c//n"; negative indices count back from the last vertex.
+faces() {
+awk -v colour="$1" "$quad"'
+  function at(i) { return x[i] " " y[i] " " z[i] " " colour }
   function mid(i, j) {
-    return (x[i] + x[j]) / 2 " " (y[i] + y[j]) / 2 " " (z[i] + z[j]) / 2 " 2.5"
+    return (x[i] + x[j]) / 2 " " (y[i] + y[j]) / 2 " " (z[i] + z[j]) / 2 " " \
+      colour
   }
   $1 == "v" { n++; x[n] = $2; y[n] = -$4; z[n] = $3; next }
   $1 == "f" {
@@ -60,7 +63,9 @@ awk "$quad"'
     for (k = 2; k < NF - 1; k++)
       quad(at(c[1]), at(c[k]), mid(c[k], c[k + 1]), at(c[k + 1]))
   }
-' "$obj" >"$tmp/mesh.dat"
+' "$2"
+}
+faces 2.5 "$obj" >"$tmp/mesh.dat"
 [ -s "$tmp/mesh.dat" ] || { echo "$0: no faces in $obj" >&2; exit 1; }
 
 # The collider, in pieces about as small as the mesh's faces: pm3d sorts
@@ -88,6 +93,26 @@ if [ "$scene" = tablecloth ]; then
     }' >"$tmp/collider.dat"
   view="64, 28, 1.5"
   palette='0 "#8a6a4a", 1 "#8a6a4a", 1 "#000000", 2 "#000000"'
+  mesh_colour="#b8323a"
+elif [ "$scene" = character ]; then
+  body="$(dirname "$obj")/body-$(basename "$obj" | sed 's/^cape-//')"
+  [ -r "$body" ] || { echo "$0: cannot read $body" >&2; exit 1; }
+  faces 0.5 "$body" >"$tmp/collider.dat"
+  # The ground along the walk: a ring from 0.9 to 1.4 m, in small pieces.
+  awk "$quad"'
+    function at(rad, a) { return rad * cos(a) " " rad * sin(a) " 0 1.5" }
+    BEGIN {
+      pi = atan2(0, -1); m = 96; rings = 8
+      for (k = 0; k < m; k++)
+        for (j = 0; j < rings; j++) {
+          a0 = 2 * pi * k / m; a1 = 2 * pi * (k + 1) / m
+          r0 = 0.9 + 0.5 * j / rings; r1 = 0.9 + 0.5 * (j + 1) / rings
+          quad(at(r0, a0), at(r1, a0), at(r1, a1), at(r0, a1))
+        }
+    }' >>"$tmp/collider.dat"
+  ranges="set xrange [-1.4:1.4]; set yrange [-1.4:1.4]; set zrange [0:1.8]"
+  view="72, 28, 1.8"
+  palette='0 "#5f7fa8", 1 "#5f7fa8", 1 "#cfcfcf", 2 "#cfcfcf"'
   mesh_colour="#b8323a"
 elif [ "$scene" = flag ]; then
   # The pole: a cylinder of radius 2 cm from the ground to 2.05 m.
@@ -142,7 +167,7 @@ else
   fi
 fi
 
-if [ "$scene" = flag ]; then
+if [ "$scene" = flag ] || [ "$scene" = character ]; then
   plots="$ranges
 splot 'collider.dat' using 1:2:3:4 with pm3d, \\
     'mesh.dat' using 1:2:3:4 with pm3d"

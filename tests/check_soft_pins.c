@@ -235,6 +235,20 @@ START_TEST(bad_input)
   ck_assert_int_eq(msocl_sim_set_soft_pins(s, 2, idx, a, 1.0f), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_set_soft_pins(s, 0, NULL, NULL, 0.0f), MSOCL_OK);
   msocl_sim_destroy(s);
+  char spec[256];
+  if (scene_cpu_spec(spec, sizeof spec, 2) >= 2) {
+    msocl_runtime *two = NULL;
+    ck_assert_int_eq(msocl_runtime_create(&two, spec), MSOCL_OK);
+    msocl_sim_options o;
+    msocl_sim_options_init(&o);
+    o.tuning.ndevices = 2;
+    ck_assert_int_eq(msocl_sim_create(&s, two, m, &o), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_set_soft_pins(s, 2, idx, a, 1.0f),
+                     MSOCL_ERR_BAD_VALUE);
+    ck_assert_ptr_nonnull(strstr(msocl_last_error(), "split"));
+    msocl_sim_destroy(s);
+    msocl_runtime_destroy(two);
+  }
   msocl_model_destroy(m);
 }
 END_TEST
