@@ -119,26 +119,34 @@ static void msocl_rows_wind(MSOCL_CONN, __global const float *p,
     /* select reads a lane's sign bit: the row's test as -1 or 0 */
     const int row_real = -(int)(y >= 0 && y + 1 < grid_ny);
     const msocl_rows_m real = (x >= 0) & (x + 1 < grid_nx) & row_real;
+    /* the quad's corners a, a+1, a+pitch+1 (A) and a, a+pitch+1,
+     * a+pitch (B), each loaded once, both triangles before any store */
+    const int r = a + 1, u = a + pitch + 1, l = a + pitch;
 #define L(o) MSOCL_ROWS_LOAD(p + (o))
 #define V(o) MSOCL_ROWS_LOAD(v + (o))
-    const int a1 = a + 1, an = a + pitch, an1 = a + pitch + 1;
-    for (int tri = 0; tri < 2; tri++) {
-      /* A = (a, a+1, a+pitch+1), B = (a, a+pitch+1, a+pitch) */
-      const int b1 = tri ? an1 : a1, b2 = tri ? an : an1;
-      MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, L(b1) - L(a),
-                       L(q + b1) - L(q + a), L(2 * q + b1) - L(2 * q + a),
-                       L(b2) - L(a), L(q + b2) - L(q + a),
-                       L(2 * q + b2) - L(2 * q + a), V(a) + V(b1) + V(b2),
-                       V(q + a) + V(q + b1) + V(q + b2),
-                       V(2 * q + a) + V(2 * q + b1) + V(2 * q + b2), air,
-                       coef, fx, fy, fz);
-      __global float *o = t + 3 * (6 + tri) * ring_w + c;
-      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, fx, 0.0f), o);
-      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, fy, 0.0f), o + ring_w);
-      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, fz, 0.0f), o + 2 * ring_w);
-    }
+    const msocl_rows_f p0x = L(a), p0y = L(q + a), p0z = L(2 * q + a);
+    const msocl_rows_f ux_ = L(u) - p0x, uy_ = L(q + u) - p0y,
+                       uz_ = L(2 * q + u) - p0z;
+    const msocl_rows_f v0x = V(a), v0y = V(q + a), v0z = V(2 * q + a);
+    const msocl_rows_f vux = V(u), vuy = V(q + u), vuz = V(2 * q + u);
+    MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wa_, L(r) - p0x,
+                     L(q + r) - p0y, L(2 * q + r) - p0z, ux_, uy_, uz_,
+                     v0x + V(r) + vux, v0y + V(q + r) + vuy,
+                     v0z + V(2 * q + r) + vuz, air, coef, ax, ay, az);
+    MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wb_, ux_, uy_, uz_,
+                     L(l) - p0x, L(q + l) - p0y, L(2 * q + l) - p0z,
+                     v0x + vux + V(l), v0y + vuy + V(q + l),
+                     v0z + vuz + V(2 * q + l), air, coef, bx, by, bz);
 #undef L
 #undef V
+    __global float *o = t + 3 * 6 * ring_w + c;
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, ax, 0.0f), o);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, ay, 0.0f), o + ring_w);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, az, 0.0f), o + 2 * ring_w);
+    o += 3 * ring_w;
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, bx, 0.0f), o);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, by, 0.0f), o + ring_w);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, bz, 0.0f), o + 2 * ring_w);
   }
 }
 

@@ -14,38 +14,39 @@
 /* A third of the force on a triangle of edges e1 = p1 - p0 and
  * e2 = p2 - p0 whose corners' velocities sum to s = (v0 + v1) + v2, from
  * air at velocity air.xyz, with coef.x = rho Cd / 2 and coef.y =
- * rho Cl / 2, into fx, fy, fz (declared here, of type T; SEL(c, a, b) is
- * c ? a : b for T): the one arithmetic of every wind kernel, scalar or
- * vector (planes_rows.cl), so that each layout gets the same bits. With
+ * rho Cl / 2, into fx, fy, fz (declared here, of type T, with temporaries
+ * named after `tag`; SEL(c, a, b) is c ? a : b for T): the one arithmetic
+ * of every wind kernel, scalar or vector (planes_rows.cl), so that each
+ * layout gets the same bits. With
  * the unnormalised normal N = e1 x e2 = 2 A n the area cancels:
  * f = kd |N.u| u / 2 + kl (N.u) (|u|^2 N - (N.u) u) / (2 |N| |u|), one
  * square root (two would be paired into a vector and stop PoCL
  * vectorising the kernel). */
-#define MSOCL_WIND_FORCE(T, SEL, e1x, e1y, e1z, e2x, e2y, e2z, sx, sy, sz,    \
-                         air, coef, fx, fy, fz)                               \
-  const T msocl_nx = (e1y) * (e2z) - (e1z) * (e2y),                           \
-          msocl_ny = fma((e1z), (e2x), -((e1x) * (e2z))),                     \
-          msocl_nz = fma(-(e1y), (e2x), (e1x) * (e2y));                       \
-  const float msocl_third = 1.0f / 3.0f;                                      \
-  const T msocl_ux = (air).x - (sx) * msocl_third,                            \
-          msocl_uy = fma((sy), -msocl_third, (air).y),                        \
-          msocl_uz = (air).z - (sz) / 3.0f;                                   \
-  const T msocl_nu = msocl_nx * msocl_ux + msocl_ny * msocl_uy +              \
-                     msocl_nz * msocl_uz;                                     \
-  const T msocl_uu = msocl_ux * msocl_ux + msocl_uy * msocl_uy +              \
-                     msocl_uz * msocl_uz;                                     \
-  const T msocl_root = sqrt((msocl_nx * msocl_nx + msocl_ny * msocl_ny +      \
-                             msocl_nz * msocl_nz) * msocl_uu);                \
-  const T msocl_d = 0.5f * msocl_third * (coef).x * fabs(msocl_nu);           \
-  const T msocl_l = SEL(msocl_root > 0.0f,                                    \
-                        0.5f * msocl_third * (coef).y * msocl_nu / msocl_root,\
-                        0.0f);                                                \
-  const T fx = msocl_d * msocl_ux +                                           \
-               msocl_l * (msocl_uu * msocl_nx - msocl_nu * msocl_ux);         \
-  const T fy = fma(msocl_d, msocl_uy,                                         \
-                   msocl_l * fma(msocl_uu, msocl_ny, -(msocl_nu * msocl_uy)));\
-  const T fz = fma(msocl_l, fma(-msocl_nu, msocl_uz, msocl_uu * msocl_nz),    \
-                   msocl_d * msocl_uz)
+#define MSOCL_WIND_FORCE(T, SEL, tag, e1x, e1y, e1z, e2x, e2y, e2z, sx, sy,   \
+                         sz, air, coef, fx, fy, fz)                           \
+  const T tag##nx = (e1y) * (e2z) - (e1z) * (e2y),                            \
+          tag##ny = fma((e1z), (e2x), -((e1x) * (e2z))),                      \
+          tag##nz = fma(-(e1y), (e2x), (e1x) * (e2y));                        \
+  const float tag##third = 1.0f / 3.0f;                                       \
+  const T tag##ux = (air).x - (sx) * tag##third,                              \
+          tag##uy = fma((sy), -tag##third, (air).y),                          \
+          tag##uz = (air).z - (sz) / 3.0f;                                    \
+  const T tag##nu = tag##nx * tag##ux + tag##ny * tag##uy + tag##nz * tag##uz;\
+  const T tag##uu = tag##ux * tag##ux + tag##uy * tag##uy + tag##uz * tag##uz;\
+  const T tag##root =                                                         \
+      sqrt((tag##nx * tag##nx + tag##ny * tag##ny + tag##nz * tag##nz) *      \
+           tag##uu);                                                          \
+  const T tag##d = 0.5f * tag##third * (coef).x * fabs(tag##nu);              \
+  const T tag##l =                                                            \
+      SEL(tag##root > 0.0f,                                                   \
+          0.5f * tag##third * (coef).y * tag##nu / tag##root, 0.0f);          \
+  const T fx = tag##d * tag##ux +                                             \
+               tag##l * (tag##uu * tag##nx - tag##nu * tag##ux);              \
+  const T fy =                                                                \
+      fma(tag##d, tag##uy,                                                    \
+          tag##l * fma(tag##uu, tag##ny, -(tag##nu * tag##uy)));              \
+  const T fz =                                                                \
+      fma(tag##l, fma(-tag##nu, tag##uz, tag##uu * tag##nz), tag##d * tag##uz)
 
 #define MSOCL_WIND_SEL1(c, a, b) ((c) ? (a) : (b))
 
@@ -56,7 +57,7 @@ static inline void msocl_wind_third(__global const float *p,
                                     int ty, int tz, float4 air, float4 coef,
                                     float *fx, float *fy, float *fz)
 {
-  MSOCL_WIND_FORCE(float, MSOCL_WIND_SEL1, p[ty] - p[tx],
+  MSOCL_WIND_FORCE(float, MSOCL_WIND_SEL1, w_, p[ty] - p[tx],
                    p[q + ty] - p[q + tx], p[2 * q + ty] - p[2 * q + tx],
                    p[tz] - p[tx], p[q + tz] - p[q + tx],
                    p[2 * q + tz] - p[2 * q + tx], v[tx] + v[ty] + v[tz],
