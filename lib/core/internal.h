@@ -13,6 +13,9 @@
 
 #define MSOCL__MAX_DEVICES MSOCL_MAX_DEVICES
 #define MSOCL__MAX_COLLIDERS 16
+/* Values a collider in the planes kernels' table, a float4 each
+ * (kernels/planes.cl MSOCL_PLANES_COL). */
+#define MSOCL__COL_VALUES 32
 /* The paper's connectivity texture holds 16 springs per point. */
 #define MSOCL__IMAGE_SLOTS 16
 
@@ -63,6 +66,11 @@ struct msocl__collider {
    * x = (unit quaternion xyzw, half extents xyz) */
   float x[8];
 };
+
+/* The checks every collider kind's builder makes (model/colliders.c):
+ * the model, its friction in [0, 1], room for one more. */
+int msocl__collider_check(const msocl_model *m, const char *kind,
+                          float friction);
 
 /* The simulations made from a model and not yet destroyed, in a block
  * shared by the model and those simulations and freed with the last of

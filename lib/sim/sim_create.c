@@ -412,6 +412,7 @@ void msocl_sim_destroy(msocl_sim *s)
   free(s->pinned);
   free(s->perm);
   msocl__controls_free(s);
+  msocl__colliders_free(s);
   msocl__live_leave(s->live);
   free(s);
 }
