@@ -658,6 +658,14 @@ MSOCL_EXTERN int msocl_reference_pin(msocl_reference *r, int count,
 MSOCL_EXTERN int msocl_reference_set_pin_targets(msocl_reference *r,
                                                  int count, const int *idx,
                                                  const float *xyz);
+/* msocl_sim_set_collider_pose and msocl_sim_enable_collider on the
+ * reference: the same path (poses interpolated in the same floats) and
+ * the response on the relative velocity, in double. */
+MSOCL_EXTERN int msocl_reference_set_collider_pose(msocl_reference *r, int id,
+                                                   const float position[3],
+                                                   const float rotation[4]);
+MSOCL_EXTERN int msocl_reference_enable_collider(msocl_reference *r, int id,
+                                                 int on);
 
 /* ---------------------------------------------------------------- export */
 

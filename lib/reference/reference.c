@@ -213,6 +213,7 @@ int msocl_reference_step(msocl_reference *r, int n)
   }
   for (int k = 0; k < n; k++) {
     msocl__ref_pins(r, k, n);
+    msocl__ref_colliders(r, k, n);
     msocl__ref_wind(r);
     switch (r->o.integrator) {
     case MSOCL_SYMPLECTIC_EULER:
@@ -238,7 +239,9 @@ int msocl_reference_step(msocl_reference *r, int n)
     r->vel = r->vnew;
     r->vnew = t;
   }
-  if (n > 0)
+  if (n > 0) {
     msocl__ref_pins(r, n, n);
+    msocl__ref_colliders(r, n, n);
+  }
   return msocl__ref_cg_report(r, MSOCL_OK, n);
 }

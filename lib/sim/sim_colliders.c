@@ -75,15 +75,7 @@ static int moving(msocl_sim *s, const char *call, struct msocl__moving **out)
       memcpy(a->p, packed + 8 * c + 4, sizeof a->p);
       memcpy(a->x, e->pl_colx + 8 * c, sizeof a->x);
       float *P = m->add_pos[c], *Q = m->add_rot[c];
-      Q[0] = Q[1] = Q[2] = 0.0f;
-      Q[3] = 1.0f;
-      for (int d = 0; d < 3; d++)
-        P[d] = a->kind == MSOCL__PLANE ? a->p[3] * a->p[d]
-               : a->kind == MSOCL__CAPSULE
-                   ? (float)(0.5 * ((double)a->p[d] + a->x[d]))
-                   : a->p[d];
-      if (a->kind == MSOCL__BOX)
-        memcpy(Q, a->x, 4 * sizeof *Q);
+      msocl__pose_home(a, P, Q);
       memcpy(m->pos[c], P, 3 * sizeof *P);
       memcpy(m->rot[c], Q, 4 * sizeof *Q);
     }
@@ -91,119 +83,6 @@ static int moving(msocl_sim *s, const char *call, struct msocl__moving **out)
   }
   *out = s->mov;
   return MSOCL_OK;
-}
-
-/* q / |q| in double. */
-static void unit(const float q[4], double u[4])
-{
-  double len = 0;
-  for (int d = 0; d < 4; d++)
-    len += (double)q[d] * q[d];
-  len = sqrt(len);
-  for (int d = 0; d < 4; d++)
-    u[d] = q[d] / len;
-}
-
-/* The rotation matrix of unit q = (x, y, z, w). */
-static void matrix(const double q[4], double r[3][3])
-{
-  const double x = q[0], y = q[1], z = q[2], w = q[3];
-  r[0][0] = 1 - 2 * (y * y + z * z);
-  r[0][1] = 2 * (x * y - z * w);
-  r[0][2] = 2 * (x * z + y * w);
-  r[1][0] = 2 * (x * y + z * w);
-  r[1][1] = 1 - 2 * (x * x + z * z);
-  r[1][2] = 2 * (y * z - x * w);
-  r[2][0] = 2 * (x * z - y * w);
-  r[2][1] = 2 * (y * z + x * w);
-  r[2][2] = 1 - 2 * (x * x + y * y);
-}
-
-/* a b of quaternions (x, y, z, w). */
-static void qmul(const double a[4], const double b[4], double o[4])
-{
-  o[0] = a[3] * b[0] + b[3] * a[0] + a[1] * b[2] - a[2] * b[1];
-  o[1] = a[3] * b[1] + b[3] * a[1] + a[2] * b[0] - a[0] * b[2];
-  o[2] = a[3] * b[2] + b[3] * a[2] + a[0] * b[1] - a[1] * b[0];
-  o[3] = a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2];
-}
-
-/* Collider c's shape at pose (P, Q): its kernel values p and x. The pose
- * it was added at gives its values exactly (a static scene's table). */
-static void posed(const struct msocl__moving *m, int c, const float P[3],
-                  const float Q[4], float p[4], float x[8])
-{
-  const struct msocl__collider *a = &m->add[c];
-  memcpy(p, a->p, 4 * sizeof *p);
-  memcpy(x, a->x, 8 * sizeof *x);
-  if (!memcmp(P, m->add_pos[c], 3 * sizeof *P) &&
-      !memcmp(Q, m->add_rot[c], 4 * sizeof *Q))
-    return;
-  /* the turn from the added pose: R(Q) R(Q_add)^T = R(Q conj(Q_add)) */
-  double q[4], q0[4], rel[4], r[3][3];
-  unit(Q, q);
-  unit(m->add_rot[c], q0);
-  q0[0] = -q0[0];
-  q0[1] = -q0[1];
-  q0[2] = -q0[2];
-  qmul(q, q0, rel);
-  matrix(rel, r);
-  switch (a->kind) {
-  case MSOCL__PLANE: {
-    double n[3], off = 0;
-    for (int i = 0; i < 3; i++) {
-      n[i] = r[i][0] * a->p[0] + r[i][1] * a->p[1] + r[i][2] * a->p[2];
-      off += n[i] * P[i];
-    }
-    for (int i = 0; i < 3; i++)
-      p[i] = (float)n[i];
-    p[3] = (float)off;
-    break;
-  }
-  case MSOCL__CAPSULE: {
-    const float *ends[2] = {a->p, a->x};
-    float *to[2] = {p, x};
-    for (int k = 0; k < 2; k++)
-      for (int i = 0; i < 3; i++) {
-        double d = P[i];
-        for (int j = 0; j < 3; j++)
-          d += r[i][j] * ((double)ends[k][j] - m->add_pos[c][j]);
-        to[k][i] = (float)d;
-      }
-    break;
-  }
-  default: /* sphere, table (a table turns about y: its shape stays), box */
-    for (int i = 0; i < 3; i++)
-      p[i] = P[i];
-    if (a->kind == MSOCL__BOX)
-      for (int i = 0; i < 4; i++)
-        x[i] = (float)q[i];
-  }
-}
-
-/* (1 - f) a + f b, exact at f = 0 and 1; the rotation by nlerp, b taken
- * in a's hemisphere, a and b themselves at the ends. */
-static void lerp_pose(const float a[3], const float qa[4], const float b[3],
-                      const float qb[4], float f, float P[3], float Q[4])
-{
-  const double g = f;
-  for (int d = 0; d < 3; d++)
-    P[d] = (float)((1 - g) * a[d] + g * b[d]);
-  if (f == 0.0f || f == 1.0f) {
-    memcpy(Q, f == 0.0f ? qa : qb, 4 * sizeof *Q);
-    return;
-  }
-  double dot = 0, q[4], len = 0;
-  for (int d = 0; d < 4; d++)
-    dot += (double)qa[d] * qb[d];
-  const double sb = dot < 0 ? -g : g;
-  for (int d = 0; d < 4; d++) {
-    q[d] = (1 - g) * qa[d] + sb * qb[d];
-    len += q[d] * q[d];
-  }
-  len = sqrt(len);
-  for (int d = 0; d < 4; d++)
-    Q[d] = (float)(q[d] / len);
 }
 
 /* Collider c's row of the table (lane 0 of each of its float4s): its
@@ -215,27 +94,18 @@ static void row(const struct msocl__moving *m, int c, const float P0[3],
 {
   float v[MSOCL__COL_VALUES] = {0};
   if (!m->off[c]) {
-    v[0] = (float)m->add[c].kind;
-    v[1] = m->add[c].friction;
-    posed(m, c, P0, Q0, v + 4, v + 8);
-    if (P1 && (memcmp(P0, P1, 3 * sizeof *P0) ||
-               memcmp(Q0, Q1, 4 * sizeof *Q0))) {
-      double a[4], b[4], dq[4];
-      unit(Q0, a);
-      unit(Q1, b);
-      a[0] = -a[0];
-      a[1] = -a[1];
-      a[2] = -a[2];
-      qmul(b, a, dq);
-      if (dq[3] < 0)
-        for (int d = 0; d < 4; d++)
-          dq[d] = -dq[d];
-      const double sn = sqrt(dq[0] * dq[0] + dq[1] * dq[1] + dq[2] * dq[2]);
-      const double turn = sn > 0 ? 2 * atan2(sn, dq[3]) / (sn * dt) : 0;
+    struct msocl__collider k;
+    msocl__pose_shape(&m->add[c], P0, Q0, &k);
+    v[0] = (float)k.kind;
+    v[1] = k.friction;
+    memcpy(v + 4, k.p, sizeof k.p);
+    memcpy(v + 8, k.x, sizeof k.x);
+    double lin[3], ang[3];
+    if (P1 && msocl__pose_motion(P0, Q0, P1, Q1, dt, lin, ang)) {
       v[2] = 1.0f;
       for (int d = 0; d < 3; d++) {
-        v[16 + d] = (float)(((double)P1[d] - P0[d]) / dt);
-        v[19 + d] = (float)(dq[d] * turn);
+        v[16 + d] = (float)lin[d];
+        v[19 + d] = (float)ang[d];
         v[22 + d] = P0[d];
       }
     }
@@ -258,9 +128,9 @@ static int write_table(msocl_sim *s, float f0, float f1)
     float *row_at = t + 4 * MSOCL__COL_VALUES * c;
     if (m->target[c] && f1 >= 0.0f) {
       float P0[3], Q0[4], P1[3], Q1[4];
-      lerp_pose(m->pos[c], m->rot[c], m->to_pos[c], m->to_rot[c], f0, P0,
+      msocl__pose_lerp(m->pos[c], m->rot[c], m->to_pos[c], m->to_rot[c], f0, P0,
                 Q0);
-      lerp_pose(m->pos[c], m->rot[c], m->to_pos[c], m->to_rot[c], f1, P1,
+      msocl__pose_lerp(m->pos[c], m->rot[c], m->to_pos[c], m->to_rot[c], f1, P1,
                 Q1);
       row(m, c, P0, Q0, P1, Q1, e->o.dt, row_at);
     } else
@@ -316,34 +186,11 @@ int msocl_sim_set_collider_pose(msocl_sim *s, int id, const float position[3],
   msocl__clear_error();
   if (!s)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
-  if (!position || !rotation)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s: %s is NULL", call,
-                       position ? "rotation" : "position");
   struct msocl__moving *m;
   MSOCL__TRY(moving(s, call, &m));
   MSOCL__TRY(check_id(s, m, id, call));
-  for (int d = 0; d < 7; d++) {
-    const float x = d < 3 ? position[d] : rotation[d - 3];
-    if (!isfinite(x))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "%s: collider %d's %s %d is %g", call, id,
-                         d < 3 ? "position coordinate" : "rotation component",
-                         d < 3 ? d : d - 3, (double)x);
-  }
-  double len = 0;
-  for (int d = 0; d < 4; d++)
-    len += (double)rotation[d] * rotation[d];
-  len = sqrt(len);
-  if (!(len > 0))
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "%s: collider %d's rotation quaternion is zero", call,
-                       id);
-  if (m->add[id].kind == MSOCL__TABLE &&
-      (fabs(rotation[0]) > 1e-6 * len || fabs(rotation[2]) > 1e-6 * len))
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "%s: collider %d is a table, which turns only about "
-                       "y (rotation x and z must be 0, not %g and %g)",
-                       call, id, (double)rotation[0], (double)rotation[2]);
+  MSOCL__TRY(msocl__pose_check(call, id, m->add[id].kind, position,
+                               rotation));
   memcpy(m->to_pos[id], position, sizeof m->to_pos[id]);
   memcpy(m->to_rot[id], rotation, sizeof m->to_rot[id]);
   m->target[id] = 1;
