@@ -27,8 +27,9 @@
 static const float ident[4] = {0.0f, 0.0f, 0.0f, 1.0f};
 
 /* An N x N cloth, SIDE a side, hanging in the x-y plane (z 0) from its
- * whole top row. */
-static msocl_model *curtain(void)
+ * whole top row, with dashpots `damping` (0: GRID's symplectic Euler
+ * then runs kernels/planes_rows.cl on a CPU). */
+static msocl_model *curtain_damped(float damping)
 {
   msocl_cloth_desc d;
   msocl_cloth_desc_init(&d);
@@ -42,12 +43,17 @@ static msocl_model *curtain(void)
   d.k_stretch = 40.0f;
   d.k_shear = 8.0f;
   d.k_bend = 4.0f;
-  d.damping = 1e-3f;
+  d.damping = damping;
   msocl_model *m = NULL;
   OK(msocl_model_cloth_grid(&m, &d));
   for (int i = 0; i < N; i++)
     OK(msocl_model_pin(m, i, 1));
   return m;
+}
+
+static msocl_model *curtain(void)
+{
+  return curtain_damped(1e-3f);
 }
 
 static msocl_sim *make(const msocl_model *m, msocl_integrator in,
@@ -165,18 +171,21 @@ static const struct {
   int kind;
   msocl_integrator in;
   msocl_layout layout;
+  float damping;
 } passes[] = {
-    {SPHERE, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID}, /* planes_rows */
-    {CAPSULE, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID},
-    {BOX, MSOCL_VERLET, MSOCL_LAYOUT_BUFFER},
-    {BOX_TURNING, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID},
-    {SPHERE, MSOCL_RK4, MSOCL_LAYOUT_GRID}, /* msocl_planes_project */
+    {SPHERE, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, 0.0f}, /* rows */
+    {SPHERE, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, 1e-3f},
+    {CAPSULE, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, 1e-3f},
+    {BOX, MSOCL_VERLET, MSOCL_LAYOUT_BUFFER, 1e-3f},
+    {BOX_TURNING, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, 1e-3f},
+    {SPHERE, MSOCL_RK4, MSOCL_LAYOUT_GRID, 1e-3f}, /* planes_project */
+    {BOX_TURNING, MSOCL_EXPLICIT_EULER, MSOCL_LAYOUT_IMAGE2D, 1e-3f},
 };
 
 START_TEST(nothing_inside)
 {
   const int kind = passes[_i].kind;
-  msocl_model *m = curtain();
+  msocl_model *m = curtain_damped(passes[_i].damping);
   add_shape(m, kind);
   msocl_sim *s = make(m, passes[_i].in, passes[_i].layout, MSOCL_ON);
   const double dt = sim_dt(m, passes[_i].in);
@@ -261,6 +270,38 @@ START_TEST(vs_reference)
   free(qd);
   msocl_reference_destroy(r);
   msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* GRID (planes_rows for the sphere), BUFFER and IMAGE2D in planes give
+ * bitwise the same pass of a moving sphere and of the turning box. */
+START_TEST(layouts_bitwise)
+{
+  static const msocl_layout layouts[3] = {
+      MSOCL_LAYOUT_GRID, MSOCL_LAYOUT_BUFFER, MSOCL_LAYOUT_IMAGE2D};
+  const int kind = _i == 0 ? SPHERE : BOX_TURNING, n = N * N;
+  msocl_model *m = curtain_damped(0.0f);
+  add_shape(m, kind);
+  const double dt = sim_dt(m, MSOCL_SYMPLECTIC_EULER);
+  float *x = malloc(9 * (size_t)n * sizeof *x);
+  for (int l = 0; l < 3; l++) {
+    msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, layouts[l], MSOCL_ON);
+    for (double t = 0.0; t < 0.6 / SPEED;) {
+      t += SUB * dt;
+      float P[3], Q[4];
+      pose_at(kind, t, P, Q);
+      OK(msocl_sim_set_collider_pose(s, 0, P, Q));
+      OK(msocl_sim_step(s, SUB));
+    }
+    OK(msocl_sim_read_positions(s, x + 3 * (size_t)n * l));
+    msocl_sim_destroy(s);
+  }
+  for (int l = 1; l < 3; l++)
+    ck_assert_msg(!memcmp(x, x + 3 * (size_t)n * l, 3 * (size_t)n * sizeof *x),
+                  "layout %d differs from GRID by %g", l,
+                  scene_max_diff(x, x + 3 * (size_t)n * l, 3 * n));
+  free(x);
   msocl_model_destroy(m);
 }
 END_TEST
@@ -529,6 +570,7 @@ int main(void)
   tcase_add_loop_test(tc, nothing_inside, 0,
                       (int)(sizeof passes / sizeof passes[0]));
   tcase_add_loop_test(tc, vs_reference, 0, 4);
+  tcase_add_loop_test(tc, layouts_bitwise, 0, 2);
   tcase_add_test(tc, carried_by_box);
   tcase_add_test(tc, calls_bitwise);
   tcase_add_test(tc, enable_disable);
