@@ -485,17 +485,18 @@ MSOCL_EXTERN int msocl_sim_pin(msocl_sim *s, int count, const int *idx,
 MSOCL_EXTERN int msocl_sim_set_pin_targets(msocl_sim *s, int count,
                                            const int *idx, const float *xyz);
 /* Moving colliders. Each analytic collider (id: msocl_model_collider_count)
- * has a pose, a position and a quaternion (x, y, z, w; normalised where
- * used, not zero), that starts
- * where it was added: a plane's position is the point offset * normal, a
- * sphere's its centre, a table's its top centre, a capsule's the midpoint
- * of its ends, a box's its centre; the rotation is a box's quaternion,
- * identity for the others. The shape moves rigidly with its pose, turning
- * about the pose position. The pose set is
+ * has a pose, a position and a quaternion (x, y, z, w; not zero,
+ * normalised where used), that starts where it was added: a plane's
+ * position is the point offset * normal, a sphere's its centre, a table's
+ * its top centre, a capsule's the midpoint of its ends, a box's its
+ * centre; the rotation is a box's quaternion, identity for the others.
+ * The shape moves rigidly with its pose, turning about the pose position.
+ * The pose set is
  * reached at the end of the next msocl_sim_step(s, n): before step j the
- * collider is at (1 - f) start + f end, f = (float)j / (float)n, the
- * rotation by nlerp (normalised linear blend, end taken in the start's
- * hemisphere), exact at both ends; the collision response acts on the
+ * collider is at (1 - f) start + f end (in double), f = (float)j /
+ * (float)n, the rotation by nlerp (normalised linear blend in double, end
+ * taken in the start's hemisphere), exact at both ends, moving toward the
+ * pose at (j + 1) / n; the collision response acts on the
  * velocity relative to the surface's u = v + w x (p - c) over the step
  * (friction on the relative tangential part: a point resting on a moving
  * box at friction 1 moves with it). k one-step calls given the poses at

@@ -5,11 +5,11 @@
  * the rotation by nlerp. Before each of those steps the planes kernels'
  * collider table gets the shape at the step's start and the surface's
  * velocity over the step (kernels/planes.cl MSOCL_PLANES_SURFACE), so the
- * response acts on the velocity relative to the collider. */
+ * response acts on the velocity relative to the collider. The pose math
+ * is model/collider_pose.c's. */
 #include "config.h"
 #include "sim.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -138,9 +138,12 @@ static int write_table(msocl_sim *s, float f0, float f1)
   }
   m->writes++;
   const size_t bytes = 4 * MSOCL__COL_VALUES * (size_t)m->n * sizeof(float);
+  /* at rest (a call's end, an enable): blocking, so that no write reads
+   * the ring once the call returned (the simulation may be destroyed) */
   if (bytes > 0)
-    MSOCL__CL(clEnqueueWriteBuffer(e->dev->queue, e->pl_col, CL_FALSE, 0,
-                                   bytes, t, 0, NULL, NULL));
+    MSOCL__CL(clEnqueueWriteBuffer(e->dev->queue, e->pl_col,
+                                   f1 < 0.0f ? CL_TRUE : CL_FALSE, 0, bytes,
+                                   t, 0, NULL, NULL));
   return MSOCL_OK;
 }
 
@@ -167,10 +170,8 @@ int msocl__colliders_done(msocl_sim *s)
   return write_table(s, 0.0f, -1.0f);
 }
 
-static int check_id(const msocl_sim *s, const struct msocl__moving *m,
-                    int id, const char *call)
+static int check_id(const struct msocl__moving *m, int id, const char *call)
 {
-  (void)s;
   if (id < 0 || id >= m->n)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
                        "%s: collider id %d out of range [0, %d) (ids count "
@@ -188,7 +189,7 @@ int msocl_sim_set_collider_pose(msocl_sim *s, int id, const float position[3],
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
   struct msocl__moving *m;
   MSOCL__TRY(moving(s, call, &m));
-  MSOCL__TRY(check_id(s, m, id, call));
+  MSOCL__TRY(check_id(m, id, call));
   MSOCL__TRY(msocl__pose_check(call, id, m->add[id].kind, position,
                                rotation));
   memcpy(m->to_pos[id], position, sizeof m->to_pos[id]);
@@ -210,7 +211,7 @@ int msocl_sim_get_collider_pose(msocl_sim *s, int id, float position[3],
                        position ? "rotation" : "position");
   struct msocl__moving *m;
   MSOCL__TRY(moving(s, call, &m));
-  MSOCL__TRY(check_id(s, m, id, call));
+  MSOCL__TRY(check_id(m, id, call));
   memcpy(position, m->pos[id], sizeof m->pos[id]);
   memcpy(rotation, m->rot[id], sizeof m->rot[id]);
   return MSOCL_OK;
@@ -224,7 +225,7 @@ int msocl_sim_enable_collider(msocl_sim *s, int id, int on)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
   struct msocl__moving *m;
   MSOCL__TRY(moving(s, call, &m));
-  MSOCL__TRY(check_id(s, m, id, call));
+  MSOCL__TRY(check_id(m, id, call));
   m->off[id] = !on;
   return write_table(s, 0.0f, -1.0f);
 }
