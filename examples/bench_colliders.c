@@ -2,7 +2,10 @@
  * grid 5 cm above y = 0) with no collider, a floor plane, a sphere or the
  * round table - the sphere and table tops at y = 0, so the cloth lands on
  * them - per engine: GRID in planes, GRID in float4 (both forced) and
- * BUFFER. The four scenes of an engine are timed in turn, --repeat rounds,
+ * BUFFER; and in planes the capsule and the box moving (cap-mov,
+ * box-mov: a pose set before each call, carried along x at 0.5 m/s, the
+ * box turning about y at 1 rad/s) beside the same shapes at rest. The
+ * scenes of an engine are timed in turn, --repeat rounds,
  * the fastest of each counting, so the ratios to "none" come from the same
  * moments of a noisy machine. */
 #include "bench.h"
@@ -11,11 +14,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { ENGINES = 3, SCENES = 6, FLOAT4_SCENES = 4 };
+enum { ENGINES = 3, SCENES = 8, FLOAT4_SCENES = 4 };
 static const char *const engine_names[ENGINES] = {"grid-planes",
                                                   "grid-float4", "buffer"};
-static const char *const scene_names[SCENES] = {"none",  "plane",   "sphere",
-                                                "table", "capsule", "box"};
+static const char *const scene_names[SCENES] = {
+    "none", "plane", "sphere", "table", "capsule", "box", "cap-mov", "box-mov"};
 
 static msocl_model *build(int n, int scene)
 {
@@ -50,15 +53,26 @@ static msocl_model *build(int n, int scene)
   const float bc[3] = {0.0f, -0.05f, 0.0f}, q[4] = {0.0f, 0.258819f, 0.0f,
                                                     0.9659258f},
               h[3] = {TC_RADIUS, 0.05f, TC_RADIUS};
-  if (rc == MSOCL_OK && scene == 4)
+  if (rc == MSOCL_OK && (scene == 4 || scene == 6))
     rc = msocl_model_add_capsule(m, a, b, TC_RADIUS, TC_FRICTION);
-  if (rc == MSOCL_OK && scene == 5)
+  if (rc == MSOCL_OK && (scene == 5 || scene == 7))
     rc = msocl_model_add_box(m, bc, q, h, TC_FRICTION);
   if (rc != MSOCL_OK) {
     msocl_model_destroy(m);
     return NULL;
   }
   return m;
+}
+
+/* The moving scenes' pose for the call that ends at time t. */
+static int move(msocl_sim *s, int scene, double t)
+{
+  const float p[3] = {(float)(0.5 * t), scene == 6 ? -TC_RADIUS : -0.05f,
+                      0.0f};
+  const double a = 0.5235988 + 1.0 * t; /* 30 degrees, then 1 rad/s */
+  const float ident[4] = {0.0f, 0.0f, 0.0f, 1.0f},
+              q[4] = {0.0f, (float)sin(0.5 * a), 0.0f, (float)cos(0.5 * a)};
+  return msocl_sim_set_collider_pose(s, 0, p, scene == 6 ? ident : q);
 }
 
 /* One engine on one grid: the four scenes timed in turn. */
@@ -81,6 +95,8 @@ static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
     so.check_every = 0;
     rc = m ? msocl_sim_create(&s[c], rt, m, &so) : MSOCL_ERR_NO_MEMORY;
     msocl_model_destroy(m);
+    if (rc == MSOCL_OK && c >= 6)
+      rc = move(s[c], c, 1e-4);
     if (rc == MSOCL_OK)
       rc = msocl_sim_step(s[c], 1); /* warm-up */
     best[c] = INFINITY;
@@ -88,7 +104,10 @@ static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
   for (int rep = 0; rc == MSOCL_OK && rep < o->repeat; rep++)
     for (int c = 0; c < scenes && rc == MSOCL_OK; c++) {
       double t0 = bench_now();
-      rc = msocl_sim_step(s[c], steps);
+      if (c >= 6)
+        rc = move(s[c], c, 1e-4 * (1 + (rep + 1) * steps));
+      if (rc == MSOCL_OK)
+        rc = msocl_sim_step(s[c], steps);
       double t = bench_now() - t0;
       best[c] = t < best[c] ? t : best[c];
     }
@@ -114,9 +133,12 @@ static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
     r.seconds = best[c];
     r.status = "ok";
     bench_row_rates(&r);
-    printf("%4d^2 %-12s %-7s %6d %8.3f %9.1f %10.4f %7.2fx\n", n,
+    printf("%4d^2 %-12s %-7s %6d %8.3f %9.1f %10.4f %7.2fx", n,
            engine_names[engine], scene_names[c], steps, r.seconds,
            r.steps_per_s, r.vertex_steps_per_s / 1e9, best[c] / best[0]);
+    if (c >= 6) /* the same shape at rest */
+      printf("  %.2fx at rest", best[c] / best[c - 2]);
+    printf("\n");
     bench_csv_row(csv, &r);
   }
   fflush(stdout);

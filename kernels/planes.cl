@@ -69,11 +69,24 @@
 #define MSOCL_PLANES_PINNED(w) false
 #endif
 
-/* Value k of collider c (0: kind, 1: friction, 4-7: msocl_collider_gap's
- * prm, 8-15: a capsule's or box's msocl__collider.x) in the planes' collider table (lib/engine/planes.c), where each value
- * has a float4 to itself: adjacent ones would be loaded as a pair into a
+/* Value k of collider c (0: kind, 1: friction, 2: 1 while it moves,
+ * 4-7: msocl_collider_gap's prm, 8-15: a capsule's or box's
+ * msocl__collider.x, 16-18: its pose's velocity, 19-21: its angular
+ * velocity, 22-24: its pose position) in the planes' collider table
+ * (lib/engine/planes.c, lib/sim/sim_colliders.c), where each value has a
+ * float4 to itself: adjacent ones would be loaded as a pair into a
  * <2 x float>, which stops PoCL vectorising the kernel. */
-#define MSOCL_PLANES_COL(cf, c, k) ((cf)[4 * (16 * (c) + (k))])
+#define MSOCL_PLANES_COL(cf, c, k) ((cf)[4 * (32 * (c) + (k))])
+
+/* The surface velocity of moving collider c at p: u = v + w x (p - c),
+ * declared as ux, uy, uz of type T (cv(k) reads value k). Each component
+ * in its own shape: three alike would be paired by -O3's SLP vectorizer
+ * and PoCL would leave the kernel scalar. */
+#define MSOCL_PLANES_SURFACE(T, cv, px, py, pz)                               \
+  const T rx_ = (px) - cv(22), ry_ = (py) - cv(23), rz_ = (pz) - cv(24);      \
+  const T ux = cv(16) + (cv(20) * rz_ - cv(21) * ry_);                        \
+  const T uy = fma((T)cv(21), rx_, -(cv(19) * rz_)) + cv(17);                 \
+  const T uz = cv(18) - (cv(20) * rx_ - cv(19) * ry_)
 
 /* msocl_collider_gap in scalars for collider c: g, and the unit gradient
  * in *nx.. */
@@ -439,15 +452,26 @@ static MSOCL_PLANES_INLINE void msocl_planes_collide(float px, float py, float p
   for (int c = 0; c < MSOCL_NCOL; c++) {
     float nx, ny, nz;
     const float g = msocl_planes_gap(px, py, pz, cf, c, &nx, &ny, &nz);
-    /* msocl_respond, its branch as selects */
+    /* msocl_respond, its branch as selects, on the velocity relative to a
+     * moving collider's surface (a static one's, selected, is v itself:
+     * bitwise the float4 engine's) */
+#define cv(k) MSOCL_PLANES_COL(cf, c, k)
+    MSOCL_PLANES_SURFACE(float, cv, px, py, pz);
+    const bool moving = cv(2) != 0.0f;
+#undef cv
+    const float ox = moving ? vx - ux : vx, oy = moving ? vy - uy : vy,
+                oz = moving ? vz - uz : vz;
     const float fr = fscale * MSOCL_PLANES_COL(cf, c, 1);
-    const float vn = MSOCL_DOT3(vx, vy, vz, nx, ny, nz);
+    const float vn = MSOCL_DOT3(ox, oy, oz, nx, ny, nz);
     const float lim = MSOCL_DIV(-g, dt);
-    float hx = vx + (lim - vn) * nx, hy = vy + (lim - vn) * ny,
-          hz = vz + (lim - vn) * nz;
+    float hx = ox + (lim - vn) * nx, hy = oy + (lim - vn) * ny,
+          hz = oz + (lim - vn) * nz;
     hx = hx - fr * (hx - lim * nx);
     hy = hy - fr * (hy - lim * ny);
     hz = hz - fr * (hz - lim * nz);
+    hx = moving ? hx + ux : hx;
+    hy = moving ? hy + uy : hy;
+    hz = moving ? hz + uz : hz;
     const bool hit = vn < lim;
     vx = hit ? hx : vx;
     vy = hit ? hy : vy;
@@ -636,26 +660,40 @@ MSOCL_PLANES_GATHER(msocl_planes_vkick,
 }
 
 /* msocl_project in scalars (explicit methods: a point found inside a
- * collider goes back to its surface and loses its inward speed). */
+ * collider at the end of the step goes back to its surface and loses its
+ * inward speed). A moving collider's table holds its shape at the step's
+ * start: its gap at the step's end is the gap at p - dt u, to first order,
+ * and the response acts on the velocity relative to its surface. */
 static MSOCL_PLANES_INLINE void msocl_planes_project(float *px, float *py, float *pz, float *vx,
-                                 float *vy, float *vz,
+                                 float *vy, float *vz, float dt,
                                  __constant float4 *col)
 {
   __constant const float *cf = (__constant const float *)col;
 #pragma unroll
   for (int c = 0; c < MSOCL_NCOL; c++) {
+#define cv(k) MSOCL_PLANES_COL(cf, c, k)
+    MSOCL_PLANES_SURFACE(float, cv, *px, *py, *pz);
+    const bool moving = cv(2) != 0.0f;
+#undef cv
+    const float ex = moving ? *px - dt * ux : *px,
+                ey = moving ? *py - dt * uy : *py,
+                ez = moving ? *pz - dt * uz : *pz;
     float nx, ny, nz;
-    const float g = msocl_planes_gap(*px, *py, *pz, cf, c, &nx, &ny,
-                                     &nz);
+    const float g = msocl_planes_gap(ex, ey, ez, cf, c, &nx, &ny, &nz);
     const bool in = g < 0.0f;
     const float qx = *px - g * nx, qy = *py - g * ny, qz = *pz - g * nz;
-    const float vn = MSOCL_DOT3(*vx, *vy, *vz, nx, ny, nz);
+    const float ox = moving ? *vx - ux : *vx, oy = moving ? *vy - uy : *vy,
+                oz = moving ? *vz - uz : *vz;
+    const float vn = MSOCL_DOT3(ox, oy, oz, nx, ny, nz);
     const bool back = in && vn < 0.0f;
-    float wx = *vx - vn * nx, wy = *vy - vn * ny, wz = *vz - vn * nz;
+    float wx = ox - vn * nx, wy = oy - vn * ny, wz = oz - vn * nz;
     const float fr = MSOCL_PLANES_COL(cf, c, 1);
     wx = wx - fr * wx;
     wy = wy - fr * wy;
     wz = wz - fr * wz;
+    wx = moving ? wx + ux : wx;
+    wy = moving ? wy + uy : wy;
+    wz = moving ? wz + uz : wz;
     *px = in ? qx : *px;
     *py = in ? qy : *py;
     *pz = in ? qz : *pz;
@@ -688,7 +726,7 @@ MSOCL_PLANES_GATHER(msocl_planes_euler,
         vy = v[ay] + dt * (fy * im + gravity.y),
         vz = v[az] + dt * (fz * im + gravity.z);
   msocl_planes_air(air, &vx, &vy, &vz);
-  msocl_planes_project(&px, &py, &pz, &vx, &vy, &vz, col);
+  msocl_planes_project(&px, &py, &pz, &vx, &vy, &vz, dt, col);
   const bool pinned = MSOCL_PLANES_PINNED(aux[ay]);
   if (MSOCL_PLANES_LIVE) {
     p_out[a] = pinned ? p[a] : px;
@@ -733,7 +771,8 @@ static MSOCL_PLANES_INLINE void msocl_planes_rk4(MSOCL_CONN, const int pass, con
       v[q] = air * v[q];
 #endif
     }
-    msocl_planes_project(&p[0], &p[1], &p[2], &v[0], &v[1], &v[2], col);
+    msocl_planes_project(&p[0], &p[1], &p[2], &v[0], &v[1], &v[2], dt,
+                         col);
   } else {
     const float h = c * dt;
 #pragma unroll

@@ -190,17 +190,27 @@ static void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
     g = MSOCL_ROWS_SEL(top, gtop, gside);
   }
 #endif
-  (void)kind; (void)px; (void)py; (void)pz;
+  (void)kind;
   const float fr = 1.0f * cv(1);
+  /* on the velocity relative to a moving collider's surface */
+  MSOCL_PLANES_SURFACE(msocl_rows_f, cv, px, py, pz);
+  const bool moving = cv(2) != 0.0f;
 #undef cv
   const msocl_rows_f vx = *vx_io, vy = *vy_io, vz = *vz_io;
-  const msocl_rows_f vn = MSOCL_DOT3(vx, vy, vz, nx, ny, nz);
+  const msocl_rows_f ox = moving ? vx - ux : vx, oy = moving ? vy - uy : vy,
+                     oz = moving ? vz - uz : vz;
+  const msocl_rows_f vn = MSOCL_DOT3(ox, oy, oz, nx, ny, nz);
   const msocl_rows_f lim = MSOCL_DIV(-g, dt);
-  msocl_rows_f hx = vx + (lim - vn) * nx, hy = vy + (lim - vn) * ny,
-               hz = vz + (lim - vn) * nz;
+  msocl_rows_f hx = ox + (lim - vn) * nx, hy = oy + (lim - vn) * ny,
+               hz = oz + (lim - vn) * nz;
   hx = hx - fr * (hx - lim * nx);
   hy = hy - fr * (hy - lim * ny);
   hz = hz - fr * (hz - lim * nz);
+  if (moving) {
+    hx = hx + ux;
+    hy = hy + uy;
+    hz = hz + uz;
+  }
   const msocl_rows_m hit = vn < lim;
   *vx_io = MSOCL_ROWS_SEL(hit, hx, vx);
   *vy_io = MSOCL_ROWS_SEL(hit, hy, vy);

@@ -186,6 +186,13 @@ MSOCL_EXTERN int msocl_model_add_box(msocl_model *m, const float centre[3],
                                      const float rotation[4],
                                      const float half[3], float friction);
 
+/* The model's analytic colliders (planes, spheres, tables, capsules,
+ * boxes): collider id k is the k-th added, whatever its kind; the ids
+ * msocl_sim_set_collider_pose and msocl_sim_enable_collider take. (Mesh
+ * colliders are numbered apart, by their own calls.) A count, or
+ * MSOCL_ERR_NULL_HANDLE. */
+MSOCL_EXTERN int msocl_model_collider_count(const msocl_model *m);
+
 MSOCL_EXTERN int msocl_model_point_count(const msocl_model *m, int *n);
 MSOCL_EXTERN int msocl_model_spring_count(const msocl_model *m, int *n);
 /* The largest number of springs at any one point. */
@@ -498,6 +505,39 @@ MSOCL_EXTERN int msocl_sim_set_pin_targets(msocl_sim *s, int count,
 MSOCL_EXTERN int msocl_sim_set_soft_pins(msocl_sim *s, int count,
                                          const int *idx, const float *xyz,
                                          float stiffness);
+/* Moving colliders. Each analytic collider (id: msocl_model_collider_count)
+ * has a pose, a position and a quaternion (x, y, z, w; not zero,
+ * normalised where used), that starts where it was added: a plane's
+ * position is the point offset * normal, a sphere's its centre, a table's
+ * its top centre, a capsule's the midpoint of its ends, a box's its
+ * centre; the rotation is a box's quaternion, identity for the others.
+ * The shape moves rigidly with its pose, turning about the pose position.
+ * The pose set is
+ * reached at the end of the next msocl_sim_step(s, n): before step j the
+ * collider is at (1 - f) start + f end (in double), f = (float)j /
+ * (float)n, the rotation by nlerp (normalised linear blend in double, end
+ * taken in the start's hemisphere), exact at both ends, moving toward the
+ * pose at (j + 1) / n; the collision response acts on the
+ * velocity relative to the surface's u = v + w x (p - c) over the step
+ * (friction on the relative tangential part: a point resting on a moving
+ * box at friction 1 moves with it). k one-step calls given the poses at
+ * j / k equal one k-step call, bitwise. A table turns only about y
+ * (MSOCL_ERR_BAD_VALUE otherwise). Planes engine on one device only:
+ * MSOCL_ERR_BAD_VALUE on the float4 engine or a split simulation.
+ * Unknown id: MSOCL_ERR_BAD_INDEX; NaN/Inf: MSOCL_ERR_NOT_FINITE; a zero
+ * quaternion: MSOCL_ERR_BAD_VALUE. get: the pose reached so far (the
+ * rotation as set). */
+MSOCL_EXTERN int msocl_sim_set_collider_pose(msocl_sim *s, int id,
+                                             const float position[3],
+                                             const float rotation[4]);
+MSOCL_EXTERN int msocl_sim_get_collider_pose(msocl_sim *s, int id,
+                                             float position[3],
+                                             float rotation[4]);
+/* A disabled collider (on 0) has no effect from the next step until
+ * enabled again; disabling is how a collider is removed (colliders cannot
+ * be added to a running simulation: its kernels are built for the
+ * model's). Same engine limits as the poses. */
+MSOCL_EXTERN int msocl_sim_enable_collider(msocl_sim *s, int id, int on);
 /* Partial state access: 3 floats a point, of positions (velocities 0) or
  * velocities (1), for points first..first+count-1 or idx[0..count);
  * other points and the rest of the state are untouched (writes keep the
@@ -650,6 +690,14 @@ MSOCL_EXTERN int msocl_reference_pin(msocl_reference *r, int count,
 MSOCL_EXTERN int msocl_reference_set_pin_targets(msocl_reference *r,
                                                  int count, const int *idx,
                                                  const float *xyz);
+/* msocl_sim_set_collider_pose and msocl_sim_enable_collider on the
+ * reference: the same path (poses interpolated in the same floats) and
+ * the response on the relative velocity, in double. */
+MSOCL_EXTERN int msocl_reference_set_collider_pose(msocl_reference *r, int id,
+                                                   const float position[3],
+                                                   const float rotation[4]);
+MSOCL_EXTERN int msocl_reference_enable_collider(msocl_reference *r, int id,
+                                                 int on);
 
 /* ---------------------------------------------------------------- export */
 

@@ -13,6 +13,9 @@
 
 #define MSOCL__MAX_DEVICES MSOCL_MAX_DEVICES
 #define MSOCL__MAX_COLLIDERS 16
+/* Values a collider in the planes kernels' table, a float4 each
+ * (kernels/planes.cl MSOCL_PLANES_COL). */
+#define MSOCL__COL_VALUES 32
 /* The paper's connectivity texture holds 16 springs per point. */
 #define MSOCL__IMAGE_SLOTS 16
 
@@ -63,6 +66,29 @@ struct msocl__collider {
    * x = (unit quaternion xyzw, half extents xyz) */
   float x[8];
 };
+
+/* The checks every collider kind's builder makes (model/colliders.c):
+ * the model, its friction in [0, 1], room for one more. */
+int msocl__collider_check(const msocl_model *m, const char *kind,
+                          float friction);
+
+/* Collider poses (model/collider_pose.c; msocl.h "moving colliders"):
+ * the pose a collider a is added at; its shape moved rigidly to pose
+ * (P, Q); the path's pose at f from (a, qa) to (b, qb); the motion from
+ * pose 0 to 1 over dt, velocity v and angular velocity w (0: they are
+ * the same pose, v and w zero); the checks of a pose given for collider
+ * id of that kind. */
+void msocl__pose_home(const struct msocl__collider *a, float P[3],
+                      float Q[4]);
+void msocl__pose_shape(const struct msocl__collider *a, const float P[3],
+                       const float Q[4], struct msocl__collider *out);
+void msocl__pose_lerp(const float a[3], const float qa[4], const float b[3],
+                      const float qb[4], float f, float P[3], float Q[4]);
+int msocl__pose_motion(const float P0[3], const float Q0[4],
+                       const float P1[3], const float Q1[4], double dt,
+                       double v[3], double w[3]);
+int msocl__pose_check(const char *call, int id, int kind,
+                      const float position[3], const float rotation[4]);
 
 /* The simulations made from a model and not yet destroyed, in a block
  * shared by the model and those simulations and freed with the last of

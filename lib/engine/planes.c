@@ -384,24 +384,25 @@ static int fixed_args(msocl__engine *s)
  * each at the start of a float4 of its own. Side by side, two values read
  * with the same arithmetic (a sphere's centre y and z) were paired by
  * -O3's SLP vectorizer into a <2 x float>, and PoCL then left the whole
- * kernel unvectorised (planes.cl's header says why). */
+ * kernel unvectorised (planes.cl's header says why). A moving collider's
+ * values are rewritten before its steps (sim/sim_colliders.c). */
 static int collider_table(msocl__engine *s)
 {
-  enum { VALUES = 16 * MSOCL__MAX_COLLIDERS };
+  enum { VALUES = MSOCL__COL_VALUES * MSOCL__MAX_COLLIDERS };
   float packed[8 * MSOCL__MAX_COLLIDERS], spread[4 * VALUES] = {0};
   const size_t used = 8 * (size_t)s->ncol * sizeof(float);
   if (used > 0)
     MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->col, CL_TRUE, 0, used,
                                   packed, 0, NULL, NULL));
-  /* 16 values a collider: the float4 engine's 8, then msocl__collider.x */
+  /* the float4 engine's 8, then msocl__collider.x; no motion */
   for (int c = 0; c < s->ncol; c++)
     for (int k = 0; k < 8; k++) {
-      spread[4 * (16 * c + k)] = packed[8 * c + k];
-      spread[4 * (16 * c + 8 + k)] = s->pl_colx[8 * c + k];
+      spread[4 * (MSOCL__COL_VALUES * c + k)] = packed[8 * c + k];
+      spread[4 * (MSOCL__COL_VALUES * c + 8 + k)] = s->pl_colx[8 * c + k];
     }
   cl_int e;
-  s->pl_col = clCreateBuffer(s->dev->ctx,
-                             CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+  s->pl_col = clCreateBuffer(s->dev->ctx, CL_MEM_READ_ONLY |
+                                              CL_MEM_COPY_HOST_PTR,
                              sizeof spread, spread, &e);
   if (e != CL_SUCCESS)
     return msocl__fail(e, "clCreateBuffer(colliders): %s", msocl_err_name(e));

@@ -10,30 +10,12 @@ static int finite3(const float *v)
   return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
 }
 
-static int check(const msocl_model *m, const char *kind, float friction)
-{
-  if (!m)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "model is NULL");
-  if (!isfinite(friction))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE, "%s %d: friction %g is not finite",
-                       kind, m->ncol, friction);
-  if (friction < 0 || friction > 1)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "%s %d: friction %g is outside [0, 1]", kind, m->ncol,
-                       friction);
-  if (m->ncol >= MSOCL__MAX_COLLIDERS)
-    return msocl__fail(MSOCL_ERR_TOO_MANY,
-                       "%s: a model holds at most %d colliders", kind,
-                       MSOCL__MAX_COLLIDERS);
-  return MSOCL_OK;
-}
-
 int msocl_model_add_capsule(msocl_model *m, const float a[3], const float b[3],
                             float radius, float friction)
 {
   int rc;
   msocl__clear_error();
-  if ((rc = check(m, "capsule", friction)))
+  if ((rc = msocl__collider_check(m, "capsule", friction)))
     return rc;
   if (!a || !b)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "capsule %d: an end is NULL",
@@ -61,7 +43,7 @@ int msocl_model_add_box(msocl_model *m, const float centre[3],
 {
   int rc;
   msocl__clear_error();
-  if ((rc = check(m, "box", friction)))
+  if ((rc = msocl__collider_check(m, "box", friction)))
     return rc;
   if (!centre || !rotation || !half)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "box %d: a vector is NULL",

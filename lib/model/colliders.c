@@ -4,15 +4,10 @@
 
 #include "internal.h"
 
-/* The checks every kind shares: handle, vector, friction, room. */
-static int check_common(const msocl_model *m, const char *kind,
-                        const float v[3], float friction) {
+int msocl__collider_check(const msocl_model *m, const char *kind,
+                          float friction)
+{
   if (!m) return msocl__fail(MSOCL_ERR_NULL_HANDLE, "model is NULL");
-  if (!v) return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s: vector is NULL", kind);
-  if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2]))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                       "%s %d: vector (%g, %g, %g) is not finite", kind,
-                       m->ncol, v[0], v[1], v[2]);
   if (!isfinite(friction))
     return msocl__fail(MSOCL_ERR_NOT_FINITE, "%s %d: friction %g is not finite",
                        kind, m->ncol, friction);
@@ -24,6 +19,26 @@ static int check_common(const msocl_model *m, const char *kind,
     return msocl__fail(MSOCL_ERR_TOO_MANY,
                        "%s: a model holds at most %d colliders", kind,
                        MSOCL__MAX_COLLIDERS);
+  return MSOCL_OK;
+}
+
+int msocl_model_collider_count(const msocl_model *m)
+{
+  msocl__clear_error();
+  if (!m) return msocl__fail(MSOCL_ERR_NULL_HANDLE, "model is NULL");
+  return m->ncol;
+}
+
+/* The checks planes, spheres and tables share: those of every kind, then
+ * their vector. */
+static int check_common(const msocl_model *m, const char *kind,
+                        const float v[3], float friction) {
+  MSOCL__TRY(msocl__collider_check(m, kind, friction));
+  if (!v) return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s: vector is NULL", kind);
+  if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2]))
+    return msocl__fail(MSOCL_ERR_NOT_FINITE,
+                       "%s %d: vector (%g, %g, %g) is not finite", kind,
+                       m->ncol, v[0], v[1], v[2]);
   return MSOCL_OK;
 }
 

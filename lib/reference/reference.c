@@ -213,6 +213,7 @@ int msocl_reference_step(msocl_reference *r, int n)
   }
   for (int k = 0; k < n; k++) {
     msocl__ref_pins(r, k, n);
+    msocl__ref_colliders(r, k, n);
     msocl__ref_wind(r);
     msocl__ref_field(r);
     msocl__ref_soft_pins(r, k, n);
@@ -243,6 +244,7 @@ int msocl_reference_step(msocl_reference *r, int n)
   if (n > 0) {
     msocl__ref_pins(r, n, n);
     msocl__ref_soft_pins(r, n, n);
+    msocl__ref_colliders(r, n, n);
   }
   return msocl__ref_cg_report(r, MSOCL_OK, n);
 }

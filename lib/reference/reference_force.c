@@ -10,6 +10,8 @@
 static double gap(const struct msocl__collider *k, const double *p, double *n)
 {
   n[0] = 0.0; n[1] = 1.0; n[2] = 0.0;
+  if (k->kind == 0) /* disabled */
+    return INFINITY;
   if (k->kind == MSOCL__PLANE) {
     for (int d = 0; d < 3; d++)
       n[d] = k->p[d];
@@ -42,31 +44,44 @@ void msocl__ref_collide(const msocl_reference *r, const double *p, double *v,
                         double fscale)
 {
   for (int c = 0; c < r->ncol; c++) {
-    double n[3], g = gap(&r->col[c], p, n), vn = msocl__dot3(v, n),
+    /* on the velocity relative to a moving collider's surface */
+    double u[3], w[3];
+    msocl__ref_surface(r, c, p, u);
+    for (int e = 0; e < 3; e++)
+      w[e] = v[e] - u[e];
+    double n[3], g = gap(&r->col[c], p, n), vn = msocl__dot3(w, n),
                  lim = -g / r->dt, fr = fscale * r->col[c].friction;
     if (vn < lim) {
       for (int e = 0; e < 3; e++)
-        v[e] += (lim - vn) * n[e];
+        w[e] += (lim - vn) * n[e];
       for (int e = 0; e < 3; e++)
-        v[e] -= fr * (v[e] - lim * n[e]);
+        v[e] = w[e] - fr * (w[e] - lim * n[e]) + u[e];
     }
   }
 }
 
-/* msocl_project() of common.cl. */
+/* msocl_project() of common.cl; a moving collider's gap at the step's
+ * end is its gap at p - dt u, to first order (kernels/planes.cl). */
 void msocl__ref_project(const msocl_reference *r, double *p, double *v)
 {
   for (int c = 0; c < r->ncol; c++) {
-    double n[3], g = gap(&r->col[c], p, n);
+    double u[3], q[3];
+    msocl__ref_surface(r, c, p, u);
+    for (int e = 0; e < 3; e++)
+      q[e] = p[e] - r->dt * u[e];
+    double n[3], g = gap(&r->col[c], q, n);
     if (g < 0) {
       for (int e = 0; e < 3; e++)
         p[e] -= g * n[e];
-      double vn = msocl__dot3(v, n);
+      double w[3];
+      for (int e = 0; e < 3; e++)
+        w[e] = v[e] - u[e];
+      double vn = msocl__dot3(w, n);
       if (vn < 0) {
         for (int e = 0; e < 3; e++)
-          v[e] -= vn * n[e];
+          w[e] -= vn * n[e];
         for (int e = 0; e < 3; e++)
-          v[e] -= r->col[c].friction * v[e];
+          v[e] = w[e] - r->col[c].friction * w[e] + u[e];
       }
     }
   }

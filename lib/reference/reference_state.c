@@ -79,6 +79,7 @@ int msocl_reference_create(msocl_reference **out, const msocl_model *m,
   r->air = m->air;
   r->ncol = m->ncol;
   memcpy(r->col, m->col, sizeof r->col);
+  msocl__ref_colliders_init(r);
   r->nt = m->nt;
   r->tri = malloc((3 * (size_t)m->nt + 1) * sizeof *r->tri);
   if (!r->tri) {

@@ -34,7 +34,25 @@ struct msocl_reference {
   int tm;
   int *tidx;
   double *tstart, *ttarget;
+  /* colliders moving to poses in the next call (reference_colliders.c):
+   * as added, their poses, targets, the disabled, and a moving one's
+   * motion over the step (v, w, the pose position) */
+  struct msocl__collider col_add[MSOCL__MAX_COLLIDERS];
+  float cpos[MSOCL__MAX_COLLIDERS][3], crot[MSOCL__MAX_COLLIDERS][4];
+  float cto_pos[MSOCL__MAX_COLLIDERS][3], cto_rot[MSOCL__MAX_COLLIDERS][4];
+  unsigned char cto[MSOCL__MAX_COLLIDERS], coff[MSOCL__MAX_COLLIDERS];
+  unsigned char cmoving[MSOCL__MAX_COLLIDERS];
+  double cmove[MSOCL__MAX_COLLIDERS][9];
+  int cpending;
 };
+
+/* reference_colliders.c: the colliders as added, at their home poses; the
+ * colliders before step k of a call's n (and at its end, k = n); the
+ * surface velocity u of collider c at p (0 when it does not move). */
+void msocl__ref_colliders_init(msocl_reference *r);
+void msocl__ref_colliders(msocl_reference *r, int k, int n);
+void msocl__ref_surface(const msocl_reference *r, int c, const double *p,
+                        double *u);
 
 /* reference_controls.c: the moving pins before step k of a call's n (and
  * at its end, k = n); frees their lists. */

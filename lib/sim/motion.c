@@ -1,8 +1,9 @@
 /* A stepping call that moves something along a path over its steps (pins
  * toward their targets, sim_controls.c; soft pins' anchors,
- * sim_soft_pins.c) runs one step at a time: before
- * step j of the call's N, each mover sits at j / N of its path and moves
- * toward (j + 1) / N; after the last, it is at its path's end. The
+ * sim_soft_pins.c; colliders toward their poses, sim_colliders.c) runs one
+ * step at a time: before step j of the call's N, each mover sits at j / N
+ * of its path and moves toward (j + 1) / N; after the last, it is at its
+ * path's end. The
  * fractions are computed in float as (float)j / (float)N, so that a caller
  * giving the same ends to N one-step calls gets the same steps. */
 #include "config.h"
@@ -10,7 +11,8 @@
 
 void msocl__motion_call(msocl_sim *s, int n)
 {
-  if (n > 0 && (msocl__pins_pending(s) || msocl__soft_pins_moving(s))) {
+  if (n > 0 && (msocl__pins_pending(s) || msocl__soft_pins_moving(s) ||
+                msocl__colliders_pending(s))) {
     s->call_n = n;
     s->call_j = 0;
   }
@@ -29,6 +31,7 @@ int msocl__motion_steps(msocl_sim *s, int n)
   MSOCL__TRY(msocl__planes_enter(e));
   const float N = (float)s->call_n;
   const int pins = msocl__pins_pending(s), soft = msocl__soft_pins_moving(s);
+  const int cols = msocl__colliders_pending(s);
   for (int q = 0; q < n && s->call_j < s->call_n; q++) {
     const float f0 = (float)s->call_j / N;
     const float f1 = (float)(s->call_j + 1) / N;
@@ -36,6 +39,8 @@ int msocl__motion_steps(msocl_sim *s, int n)
       MSOCL__TRY(msocl__pins_place(s, f0, f0, f1, s->call_j == 0));
     if (soft)
       msocl__soft_pins_place(s, f0);
+    if (cols)
+      MSOCL__TRY(msocl__colliders_place(s, f0, f1));
     MSOCL__TRY(msocl__integrate(e, 1));
     s->steps++;
     s->call_j++;
@@ -50,6 +55,8 @@ int msocl__motion_steps(msocl_sim *s, int n)
     }
     if (soft)
       msocl__soft_pins_place(s, 1.0f);
+    if (cols)
+      MSOCL__TRY(msocl__colliders_done(s));
     s->call_n = 0;
   }
   return MSOCL_OK;

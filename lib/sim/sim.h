@@ -113,6 +113,7 @@ struct msocl_sim {
   double efloor;          /* the least energy scale, from the springs */
   struct msocl__live *live;     /* the model's count of its simulations */
   struct msocl__controls *ctl;  /* live controls (sim_controls.c), or NULL */
+  struct msocl__moving *mov;    /* collider poses (sim_colliders.c), or NULL */
   int call_n, call_j;     /* a moving call's steps, and those done (motion.c) */
   struct msocl__soft *soft;     /* soft pins (sim_soft_pins.c), or NULL */
 };
@@ -132,6 +133,13 @@ void msocl__pins_done(msocl_sim *s);
 void msocl__soft_pins_free(msocl_sim *s);
 int msocl__soft_pins_moving(const msocl_sim *s);
 void msocl__soft_pins_place(msocl_sim *s, float f);
+/* Moving colliders (sim_colliders.c): frees them; whether any has a pose
+ * for the next call; the collider table at their paths' point f0, moving
+ * to f1 in a step; their poses reached (the table at rest there). */
+void msocl__colliders_free(msocl_sim *s);
+int msocl__colliders_pending(const msocl_sim *s);
+int msocl__colliders_place(msocl_sim *s, float f0, float f1);
+int msocl__colliders_done(msocl_sim *s);
 /* A call that moves things over its steps (motion.c): begun before a
  * stepping call of n steps; whether it moves anything; `n` of its steps. */
 void msocl__motion_call(msocl_sim *s, int n);

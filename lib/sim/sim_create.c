@@ -413,6 +413,7 @@ void msocl_sim_destroy(msocl_sim *s)
   free(s->perm);
   msocl__controls_free(s);
   msocl__soft_pins_free(s);
+  msocl__colliders_free(s);
   msocl__live_leave(s->live);
   free(s);
 }
