@@ -69,8 +69,8 @@ output() {
 
 e=$(pwd)/examples
 t=$e/msocl-tablecloth j=$e/msocl-jello s=$e/msocl-solid
-d=$e/msocl-devices b=$e/msocl-bench g=$e/msocl-flag
-for p in $t $j $s $d $b $g; do
+d=$e/msocl-devices b=$e/msocl-bench g=$e/msocl-flag c=$e/msocl-character
+for p in $t $j $s $d $b $g $c; do
   [ -x "$p" ] || fail "$p not built"
 done
 # (in $tmp: a run that should have been refused writes its mesh there)
@@ -83,6 +83,7 @@ help $s 'default 2' 'default 3' 'default 0.998' 'default ball.obj'
 help $d 'default: \$MSOCL_DEVICE'
 help $b 'default 2000' 'default 256'
 help $g 'default 32' 'default 4' 'default 12' 'default flag-frames'
+help $c 'default 20' 'default 6' 'default 12' 'default' 'character-frames'
 
 for p in $t $j $s; do
   refused $p -x
@@ -152,4 +153,17 @@ run $g -n 4 -t 0.25 -F 8 -o "$tmp/frames"
 [ "$(ls "$tmp/frames" | wc -l)" = 3 ] || fail "$g: frames $(ls "$tmp/frames")"
 [ "$(grep -c '^v ' "$tmp/frames/flag-0002.obj")" = 24 ] ||
   fail "$g: not 6 x 4 points in the last frame"
+refused $c -n 3
+refused $c -t 0
+# the character: a cape and a body a frame, the cape's top edge on the
+# shoulders, 1.44 m up, in every frame
+run $c -n 4 -t 0.25 -F 8 -o "$tmp/walk"
+[ "$rc" = 0 ] || fail "$c exited $rc: $(cat "$tmp/err")"
+[ "$(ls "$tmp/walk" | wc -l)" = 6 ] || fail "$c: frames $(ls "$tmp/walk")"
+[ "$(grep -c '^v ' "$tmp/walk/cape-0002.obj")" = 32 ] ||
+  fail "$c: not 4 x 8 points in the last frame"
+awk '$1 == "v" && ++k <= 4 && ($3 < 1.439 || $3 > 1.441) { bad = 1 }
+  END { exit bad }' "$tmp/walk/cape-0002.obj" ||
+  fail "$c: the cape's top edge left the shoulders"
+grep -q '^f ' "$tmp/walk/body-0002.obj" || fail "$c: no body faces"
 echo "PASS"
