@@ -1,5 +1,6 @@
 /* A stepping call that moves something along a path over its steps (pins
- * toward their targets, sim_controls.c) runs one step at a time: before
+ * toward their targets, sim_controls.c; mesh colliders, sim_mesh.c, which
+ * also act after each step when they do not move) runs one step at a time: before
  * step j of the call's N, each mover sits at j / N of its path and moves
  * toward (j + 1) / N; after the last, it is at its path's end. The
  * fractions are computed in float as (float)j / (float)N, so that a caller
@@ -9,7 +10,7 @@
 
 void msocl__motion_call(msocl_sim *s, int n)
 {
-  if (n > 0 && msocl__pins_pending(s)) {
+  if (n > 0 && (msocl__pins_pending(s) || msocl__meshes_active(s))) {
     s->call_n = n;
     s->call_j = 0;
   }
@@ -28,12 +29,17 @@ int msocl__motion_steps(msocl_sim *s, int n)
   MSOCL__TRY(msocl__planes_enter(e));
   const float N = (float)s->call_n;
   const int pins = msocl__pins_pending(s);
+  const int meshes = msocl__meshes_active(s);
+  if (meshes && s->call_j == 0 && n > 0)
+    MSOCL__TRY(msocl__meshes_begin(s, s->call_n));
   for (int q = 0; q < n && s->call_j < s->call_n; q++) {
     const float f0 = (float)s->call_j / N;
     const float f1 = (float)(s->call_j + 1) / N;
     if (pins)
       MSOCL__TRY(msocl__pins_place(s, f0, f0, f1, s->call_j == 0));
     MSOCL__TRY(msocl__integrate(e, 1));
+    if (meshes)
+      MSOCL__TRY(msocl__meshes_step(s, f0, f1));
     s->steps++;
     s->call_j++;
     if (s->call_j % 64 == 0)
@@ -45,6 +51,8 @@ int msocl__motion_steps(msocl_sim *s, int n)
       MSOCL__TRY(msocl__pins_place(s, 1.0f, last, 1.0f, 0));
       msocl__pins_done(s);
     }
+    if (meshes)
+      msocl__meshes_end(s);
     s->call_n = 0;
   }
   return MSOCL_OK;
