@@ -69,42 +69,53 @@ static inline float3 msocl_mesh_vertex(__global const float *m, int k, int nv)
  * friction); orient: +1 or -1 for a closed mesh (the side its normals
  * point to is outside), 0 for an open one (a point stays on the side of
  * the triangle it was on at the step's start). */
-__kernel void msocl_mesh_collide(
+/* The grid cell of the point at a, or -1 (pinned, outside the grid or
+ * NaN: every comparison false), without a branch. */
+static inline int msocl_mesh_cell(__global const float *p,
+                                  __global const float *aux, float4 origin,
+                                  int gx, int gy, int gz, int plane, int a)
+{
+  const float fx = floor((p[a] - origin.x) * origin.w),
+              fy = floor((p[plane + a] - origin.y) * origin.w),
+              fz = floor((p[2 * plane + a] - origin.z) * origin.w);
+  const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]);
+  const bool in = fx >= 0.0f && fy >= 0.0f && fz >= 0.0f && fx < (float)gx &&
+                  fy < (float)gy && fz < (float)gz && free;
+  const int c = ((int)fz * gy + (int)fy) * gx + (int)fx;
+  return in ? c : -1;
+}
+
+static inline void msocl_mesh_point(
     __global float *p, __global float *v, __global const float *pp,
     __global const float *aux, __global const float *va,
     __global const float *vb, __global const int *tri,
     __global const int *rim, __global const int *cell_start,
     __global const int *cell_tri, float4 origin, int gx, int gy, int gz,
-    float4 prm, float orient, float dt, int nv, int nt, int nx, int pitch,
-    int slab, int plane)
+    float4 prm, float orient, float dt, int nv, int nt, int plane,
+    __global const float4 *cur, float reach2, int a)
 {
-  MSOCL_PLANES_XYZ;
-  (void)slab;
-  if (x >= nx)
-    return;
-  const int a = MSOCL_PLANES_AT(x, y, z);
-  if (MSOCL_PLANES_PINNED(aux[plane + a]))
+  const int cell = msocl_mesh_cell(p, aux, origin, gx, gy, gz, plane, a);
+  if (cell < 0)
     return;
   const float3 P = (float3)(p[a], p[plane + a], p[2 * plane + a]);
-  const int cx = (int)floor((P.x - origin.x) * origin.w),
-            cy = (int)floor((P.y - origin.y) * origin.w),
-            cz = (int)floor((P.z - origin.z) * origin.w);
-  if (cx < 0 || cy < 0 || cz < 0 || cx >= gx || cy >= gy || cz >= gz)
-    return; /* also NaN: every comparison false, then cx 0 would pass */
-  const int cell = (cz * gy + cy) * gx + cx;
   const float f0 = prm.x, f1 = prm.y, thick = prm.z;
-  float best = INFINITY;
+  float best = reach2; /* farther than the reach: no contact */
   int bt = -1, bfeat = 0;
   float3 bw = (float3)(0.0f);
   for (int q = cell_start[cell]; q < cell_start[cell + 1]; q++) {
     const int t = cell_tri[q];
-    const int i0 = tri[t], i1 = tri[nt + t], i2 = tri[2 * nt + t];
-    const float3 A = mix(msocl_mesh_vertex(va, i0, nv),
-                         msocl_mesh_vertex(vb, i0, nv), f1);
-    const float3 B = mix(msocl_mesh_vertex(va, i1, nv),
-                         msocl_mesh_vertex(vb, i1, nv), f1);
-    const float3 C = mix(msocl_mesh_vertex(va, i2, nv),
-                         msocl_mesh_vertex(vb, i2, nv), f1);
+    /* the distances to its bounding sphere and to its plane bound the
+     * distance to the triangle: most triangles end there */
+    const float4 s4 = cur[4 * t + 3];
+    const float3 e = P - s4.xyz;
+    const float r = s4.w * s4.w, e2 = dot(e, e);
+    if (e2 > r && e2 - 2.0f * s4.w * sqrt(e2) + r >= best)
+      continue;
+    const float4 a4 = cur[4 * t], b4 = cur[4 * t + 1], c4 = cur[4 * t + 2];
+    const float3 A = a4.xyz, B = b4.xyz, C = c4.xyz;
+    const float h = dot(P - A, (float3)(a4.w, b4.w, c4.w));
+    if (h * h >= best)
+      continue;
     float3 w;
     const int feat = msocl_mesh_closest(P, A, B, C, &w);
     const float3 d = P - (w.x * A + w.y * B + w.z * C);
@@ -125,8 +136,9 @@ __kernel void msocl_mesh_collide(
   const float3 DA = msocl_mesh_vertex(vb, i0, nv) - A0,
                DB = msocl_mesh_vertex(vb, i1, nv) - B0,
                DC = msocl_mesh_vertex(vb, i2, nv) - C0;
-  const float3 A1 = A0 + f1 * DA, B1 = B0 + f1 * DB, C1 = C0 + f1 * DC;
-  const float3 n1 = normalize(cross(B1 - A1, C1 - A1));
+  const float4 a4 = cur[4 * bt], b4 = cur[4 * bt + 1], c4 = cur[4 * bt + 2];
+  const float3 A1 = a4.xyz, B1 = b4.xyz, C1 = c4.xyz;
+  const float3 n1 = (float3)(a4.w, b4.w, c4.w);
   /* the side the point belongs on */
   float side = orient;
   if (orient == 0.0f) {
@@ -165,6 +177,70 @@ __kernel void msocl_mesh_collide(
   v[a] = Vn.x;
   v[plane + a] = Vn.y;
   v[2 * plane + a] = Vn.z;
+}
+
+/* The triangles at fraction f of the motion from va to vb, each as four
+ * float4s: its corners, in their w its unit normal, and its bounding
+ * sphere (centroid, radius) (a work-item a triangle; those past nt do
+ * nothing). */
+__kernel void msocl_mesh_place(__global const float *va,
+                               __global const float *vb,
+                               __global const int *tri, __global float4 *cur,
+                               float f, int nv, int nt)
+{
+  const int t = get_global_id(0);
+  if (t >= nt)
+    return;
+  const int i0 = tri[t], i1 = tri[nt + t], i2 = tri[2 * nt + t];
+  const float3 A = mix(msocl_mesh_vertex(va, i0, nv),
+                       msocl_mesh_vertex(vb, i0, nv), f);
+  const float3 B = mix(msocl_mesh_vertex(va, i1, nv),
+                       msocl_mesh_vertex(vb, i1, nv), f);
+  const float3 C = mix(msocl_mesh_vertex(va, i2, nv),
+                       msocl_mesh_vertex(vb, i2, nv), f);
+  const float3 n = normalize(cross(B - A, C - A));
+  const float3 m = (A + B + C) / 3.0f;
+  const float r = sqrt(fmax(dot(A - m, A - m),
+                            fmax(dot(B - m, B - m), dot(C - m, C - m))));
+  cur[4 * t] = (float4)(A, n.x);
+  cur[4 * t + 1] = (float4)(B, n.y);
+  cur[4 * t + 2] = (float4)(C, n.z);
+  cur[4 * t + 3] = (float4)(m, r * 1.0001f);
+}
+
+#define MSOCL_MESH_PARAMS                                                     \
+  __global float *p, __global float *v, __global const float *pp,             \
+      __global const float *aux, __global const float *va,                    \
+      __global const float *vb, __global const int *tri,                      \
+      __global const int *rim, __global const int *cell_start,                \
+      __global const int *cell_tri, float4 origin, int gx, int gy, int gz,    \
+      float4 prm, float orient, float dt, int nv, int nt, int nx, int pitch,  \
+      int slab, int plane, __global const float4 *cur, float reach2
+#define MSOCL_MESH_ARGS(a)                                                    \
+  p, v, pp, aux, va, vb, tri, rim, cell_start, cell_tri, origin, gx, gy, gz,  \
+      prm, orient, dt, nv, nt, plane, cur, reach2, a
+
+/* A work-item a point (GPUs). */
+__kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
+{
+  MSOCL_PLANES_XYZ;
+  (void)slab;
+  if (x < nx)
+    msocl_mesh_point(MSOCL_MESH_ARGS(MSOCL_PLANES_AT(x, y, z)));
+}
+
+/* A work-item a run of MSOCL_MESH_RUN points of a row, (run, y, z) = its
+ * ids (CPU devices: the pass cannot be vectorised, and a work-item a point
+ * costs more to schedule than most points take). */
+#define MSOCL_MESH_RUN 256
+__kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
+{
+  const int y = get_global_id(1), z = get_global_id(2);
+  const int x0 = get_global_id(0) * MSOCL_MESH_RUN;
+  const int x1 = min(nx, x0 + MSOCL_MESH_RUN);
+  (void)y; (void)z; (void)slab;
+  for (int x = x0; x < x1; x++)
+    msocl_mesh_point(MSOCL_MESH_ARGS(MSOCL_PLANES_AT(x, y, z)));
 }
 
 #endif

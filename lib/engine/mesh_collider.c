@@ -20,11 +20,14 @@ struct msocl__mesh_dev {
   int *tri;              /* host: 3 nt corners */
   int moving, built;     /* end differs from start; a grid exists */
   int a;                 /* at[a], vert[a]: the start */
+  int rows;              /* the kernel runs a row a work-item (CPUs) */
   float thick, friction, orient;
   cl_mem vert[2];        /* 3 planes of nv floats each */
   cl_mem dtri, drim, start, list;
   size_t start_cap, list_cap; /* ints the grid's buffers hold */
-  cl_kernel k;
+  cl_kernel k, place;    /* the pass; the triangles at a step's end */
+  cl_mem cur;            /* ... there: 4 float4s a triangle */
+  int placed;            /* cur holds a static mesh */
   cl_float4 origin;      /* the grid: origin, 1 / cell size */
   int g[3];
 };
@@ -203,10 +206,23 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
     rc = upload(s, d, 1);
   TRY(rc);
   cl_int e;
-  d->k = clCreateKernel(s->prog, "msocl_mesh_collide", &e);
+  d->rows = s->dev->info.type == MSOCL_DEVICE_CPU;
+  const char *name = d->rows ? "msocl_mesh_collide_rows" : "msocl_mesh_collide";
+  d->k = clCreateKernel(s->prog, name, &e);
   if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateKernel(msocl_mesh_collide): %s",
+    return msocl__fail(e, "clCreateKernel(%s): %s", name, msocl_err_name(e));
+  d->place = clCreateKernel(s->prog, "msocl_mesh_place", &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateKernel(msocl_mesh_place): %s",
                        msocl_err_name(e));
+  int rc2 = MSOCL_OK;
+  d->cur = buffer(s, 16 * (size_t)d->nt * sizeof(float), NULL, &rc2);
+  TRY(rc2);
+  TRY(msocl__arg_mem(d->place, 2, d->dtri));
+  TRY(msocl__arg_mem(d->place, 3, d->cur));
+  TRY(msocl__arg_int(d->place, 5, d->nv));
+  TRY(msocl__arg_int(d->place, 6, d->nt));
+  TRY(msocl__arg_mem(d->k, 23, d->cur));
   TRY(msocl__arg_mem(d->k, 3, s->pl_aux));
   TRY(msocl__arg_mem(d->k, 6, d->dtri));
   TRY(msocl__arg_mem(d->k, 7, d->drim));
@@ -253,22 +269,15 @@ static void span(const struct msocl__mesh_dev *d, float h, int c, float lo,
 }
 
 /* Each triangle's bounds over the call, from start to end, grown by the
- * reach: the thickness, the mesh's largest motion a step and as much
- * again as the thickness for the cloth's (a point moving more than that
- * relative to the mesh in one step may pass a triangle unseen). */
-static int build(msocl__engine *s, struct msocl__mesh_dev *d, int n)
+ * reach: the thickness and the mesh's largest motion a step. A point held
+ * at the thickness that crosses a triangle within one step ends up at
+ * most its motion less the thickness behind it, so it is seen while the
+ * cloth moves less than twice the thickness a step (beside the mesh's own
+ * motion). */
+static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
 {
   const float *p0 = d->at[d->a], *p1 = d->at[1 - d->a];
-  double step = 0;
-  for (int i = 0; i < d->nv; i++) {
-    double l2 = 0;
-    for (int c = 0; c < 3; c++)
-      l2 += ((double)p1[3 * i + c] - p0[3 * i + c]) *
-            ((double)p1[3 * i + c] - p0[3 * i + c]);
-    step = fmax(step, sqrt(l2));
-  }
-  step /= n > 0 ? n : 1;
-  const float reach = (float)(2.0 * d->thick + step) * 1.001f;
+  const float reach = (d->thick + step) * 1.001f;
   float *box = malloc(6 * (size_t)d->nt * sizeof *box);
   if (!box)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
@@ -285,16 +294,20 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, int n)
         b[c] = fminf(b[c], x);
         b[3 + c] = fmaxf(b[3 + c], x);
       }
+      size += (double)(b[3 + c] - b[c]) / 3.0;
       b[c] -= reach;
       b[3 + c] += reach;
       lo[c] = fminf(lo[c], b[c]);
       hi[c] = fmaxf(hi[c], b[3 + c]);
-      size += (double)(b[3 + c] - b[c]) / 3.0;
     }
   }
-  /* cells about a triangle's grown bounds across, at most 4 a triangle */
-  double h = size / d->nt;
-  const double most = 4.0 * d->nt + 4096.0;
+  /* cells about as wide as a triangle's swept bounds, or the reach if
+   * that is more: a point near the surface then looks at the triangles
+   * within about reach plus two cells of it; at most 16 cells a triangle
+   * (or 2^16), 2^22 in all */
+  double h = 1.5 * fmax(size / d->nt, (double)reach);
+  double most = fmax(16.0 * d->nt, 65536.0);
+  most = fmin(most, 4194304.0);
   for (;;) {
     double cells = 1;
     for (int c = 0; c < 3; c++)
@@ -360,6 +373,7 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, int n)
   free(list);
   TRY(rc);
   d->built = 1;
+  TRY(msocl__arg_float(d->k, 24, reach * reach));
   TRY(msocl__arg_mem(d->k, 8, d->start));
   TRY(msocl__arg_mem(d->k, 9, d->list));
   MSOCL__CL(clSetKernelArg(d->k, 10, sizeof d->origin, &d->origin));
@@ -368,29 +382,64 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, int n)
   return msocl__arg_int(d->k, 13, d->g[2]);
 }
 
+/* The call's largest vertex motion a step. */
+static float motion(const struct msocl__mesh_dev *d, int n)
+{
+  const float *p0 = d->at[d->a], *p1 = d->at[1 - d->a];
+  double st = 0;
+  for (int i = 0; i < d->nv; i++) {
+    double l2 = 0;
+    for (int c = 0; c < 3; c++) {
+      const double e = (double)p1[3 * i + c] - p0[3 * i + c];
+      l2 += e * e;
+    }
+    st = fmax(st, l2);
+  }
+  return (float)(sqrt(st) / (n > 0 ? n : 1));
+}
+
+/* A moving mesh's grid is built again each call, tight around the call's
+ * swept bounds (slack for later calls would grow every point's search
+ * more than it saves); a static mesh's once. */
 int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n)
 {
   if (d->moving)
     TRY(upload(s, d, 1 - d->a));
   if (d->moving || !d->built)
-    TRY(build(s, d, n));
-  TRY(msocl__arg_mem(d->k, 4, d->vert[d->a]));
-  return msocl__arg_mem(d->k, 5, d->vert[d->moving ? 1 - d->a : d->a]);
+    TRY(build(s, d, d->moving ? motion(d, n) : 0.0f));
+  const cl_mem a = d->vert[d->a], b = d->vert[d->moving ? 1 - d->a : d->a];
+  TRY(msocl__arg_mem(d->place, 0, a));
+  TRY(msocl__arg_mem(d->place, 1, b));
+  TRY(msocl__arg_mem(d->k, 4, a));
+  return msocl__arg_mem(d->k, 5, b);
 }
 
 int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
                      float f1)
 {
+  if (d->moving || !d->placed) { /* a static mesh's, once */
+    TRY(msocl__arg_float(d->place, 4, f1));
+    const size_t tris = ((size_t)d->nt + 63) / 64 * 64;
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->place, 1, NULL, &tris,
+                                     NULL, 0, NULL, NULL));
+    d->placed = !d->moving;
+  }
   const int set = s->pl_set;
   TRY(msocl__arg_mem(d->k, 0, s->pl_p[set]));
   TRY(msocl__arg_mem(d->k, 1, s->pl_v[set]));
   TRY(msocl__arg_mem(d->k, 2, s->pl_p[1 - set]));
   const cl_float4 prm = {{f0, f1, d->thick, d->friction}};
   MSOCL__CL(clSetKernelArg(d->k, 14, sizeof prm, &prm));
-  const size_t local[3] = {s->pl_group, 1, 1};
-  const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
+  if (d->rows) {
+    const size_t rows[3] = {(s->pl_global[0] + 255) / 256, s->pl_global[1],
+                            s->pl_global[2]}; /* the kernel's runs */
+    const size_t one[3] = {1, 1, 1}; /* a group a run, spread over cores */
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->k, 3, NULL, rows, one,
+                                     0, NULL, NULL));
+    return MSOCL_OK;
+  }
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->k, 3, NULL, s->pl_global,
-                                   group, 0, NULL, NULL));
+                                   NULL, 0, NULL, NULL));
   return MSOCL_OK;
 }
 
@@ -399,6 +448,7 @@ void msocl__mesh_end(struct msocl__mesh_dev *d)
   if (!d->moving)
     return;
   d->a = 1 - d->a;
+  d->placed = 0;
   /* the host's copies agree again, for a later partial move */
   memcpy(d->at[1 - d->a], d->at[d->a], 3 * (size_t)d->nv * sizeof(float));
   d->moving = 0;
@@ -410,8 +460,11 @@ void msocl__mesh_free(struct msocl__mesh_dev *d)
     return;
   if (d->k)
     clReleaseKernel(d->k);
-  cl_mem b[6] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start, d->list};
-  for (int q = 0; q < 6; q++)
+  if (d->place)
+    clReleaseKernel(d->place);
+  cl_mem b[7] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start, d->list,
+                 d->cur};
+  for (int q = 0; q < 7; q++)
     if (b[q])
       clReleaseMemObject(b[q]);
   free(d->at[0]);
