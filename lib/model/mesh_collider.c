@@ -1,9 +1,8 @@
 /* Triangle-mesh colliders on a model: a copy of the caller's vertices and
- * triangles, checked, with a thickness and a friction. The simulation
- * (sim/sim_mesh.c, engine/mesh_collider.c) keeps its own moving copy. */
-#include "config.h"
+ * triangles, checked, with a thickness and a friction (from an OBJ file:
+ * io/mesh_collider_obj.c). The simulation (sim/sim_mesh.c,
+ * engine/mesh_collider.c) keeps its own moving copy. */
 #include "internal.h"
-#include "obj_parse.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -116,29 +115,5 @@ int msocl_model_add_mesh_collider(msocl_model *m, const float *verts,
   memcpy(c.verts, verts, 3 * (size_t)nverts * sizeof *c.verts);
   memcpy(c.tris, tris, 3 * (size_t)ntris * sizeof *c.tris);
   m->mesh[m->nmesh++] = c;
-  return MSOCL_OK;
-}
-
-int msocl_model_add_mesh_collider_obj(msocl_model *m, const char *path,
-                                      float thickness, float friction)
-{
-  msocl__clear_error();
-  if (!m)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "mesh collider: model is NULL");
-  if (!path)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "mesh collider: path is NULL");
-  char *text = NULL;
-  size_t len = 0;
-  struct msocl__obj o;
-  MSOCL__TRY(msocl__obj_read_file(path, MSOCL_OBJ_MAX_FILE_BYTES, &text, &len));
-  int rc = msocl__obj_parse(&o, text, len);
-  free(text);
-  if (rc != MSOCL_OK)
-    return msocl__fail(rc, "%s: %s", path, msocl_last_error());
-  rc = msocl_model_add_mesh_collider(m, o.xyz, o.nv, o.tri, o.nt, thickness,
-                                     friction);
-  msocl__obj_free(&o);
-  if (rc != MSOCL_OK)
-    return msocl__fail(rc, "%s: %s", path, msocl_last_error());
   return MSOCL_OK;
 }
