@@ -92,9 +92,8 @@ static inline void msocl_mesh_point(
     __global const int *rim, __global const int *cell_start,
     __global const int *cell_tri, float4 origin, int gx, int gy, int gz,
     float4 prm, float orient, float dt, int nv, int nt, int plane,
-    __global const float4 *cur, float reach2, int a)
+    __global const float4 *cur, float reach2, int cell, int a)
 {
-  const int cell = msocl_mesh_cell(p, aux, origin, gx, gy, gz, plane, a);
   if (cell < 0)
     return;
   const float3 P = (float3)(p[a], p[plane + a], p[2 * plane + a]);
@@ -215,22 +214,52 @@ __kernel void msocl_mesh_place(__global const float *va,
       __global const int *rim, __global const int *cell_start,                \
       __global const int *cell_tri, float4 origin, int gx, int gy, int gz,    \
       float4 prm, float orient, float dt, int nv, int nt, int nx, int pitch,  \
-      int slab, int plane, __global const float4 *cur, float reach2
-#define MSOCL_MESH_ARGS(a)                                                    \
+      int slab, int plane, __global const float4 *cur, float reach2,          \
+      __global const int *cellof
+#define MSOCL_MESH_ARGS(c, a)                                                 \
   p, v, pp, aux, va, vb, tri, rim, cell_start, cell_tri, origin, gx, gy, gz,  \
-      prm, orient, dt, nv, nt, plane, cur, reach2, a
+      prm, orient, dt, nv, nt, plane, cur, reach2, c, a
 
 /* A work-item a point (GPUs). */
 __kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
 {
   MSOCL_PLANES_XYZ;
-  (void)slab;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab; (void)cellof;
   if (x < nx)
-    msocl_mesh_point(MSOCL_MESH_ARGS(MSOCL_PLANES_AT(x, y, z)));
+    msocl_mesh_point(MSOCL_MESH_ARGS(
+        msocl_mesh_cell(p, aux, origin, gx, gy, gz, plane, a), a));
 }
 
-/* A work-item a run of MSOCL_MESH_RUN points of a row, (run, y, z) = its
- * ids (CPU devices: the pass cannot be vectorised, and a work-item a point
+/* CPU devices, first: each point's cell in cellof, -1 where it has no
+ * triangles (or is pinned, or outside the grid, or padding); written
+ * without a branch, each coordinate in its own shape, so that PoCL
+ * vectorises it. */
+__kernel void msocl_mesh_cells(__global const float *p,
+                               __global const float *aux,
+                               __global const int *cell_start,
+                               __global int *cellof, float4 origin, int gx,
+                               int gy, int gz, int nx, int pitch, int slab,
+                               int plane)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab;
+  const float w = origin.w;
+  const float fx = floor((p[a] - origin.x) * w),
+              fy = floor(fma(p[plane + a], w, -(origin.y * w))),
+              fz = floor(p[2 * plane + a] * w - origin.z * w);
+  const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]);
+  const bool in = fx >= 0.0f && fy >= 0.0f && fz >= 0.0f && fx < (float)gx &&
+                  fy < (float)gy && fz < (float)gz && free && x < nx;
+  const int c = in ? ((int)fz * gy + (int)fy) * gx + (int)fx : 0;
+  const bool any = cell_start[c + 1] > cell_start[c];
+  cellof[a] = in && any ? c : -1;
+}
+
+/* CPU devices, then: a work-item a run of MSOCL_MESH_RUN points of a row,
+ * (run, y, z) = its ids, the points msocl_mesh_cells found in a cell with
+ * triangles (the search cannot be vectorised, and a work-item a point
  * costs more to schedule than most points take). */
 #define MSOCL_MESH_RUN 256
 __kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
@@ -239,8 +268,10 @@ __kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
   const int x0 = get_global_id(0) * MSOCL_MESH_RUN;
   const int x1 = min(nx, x0 + MSOCL_MESH_RUN);
   (void)y; (void)z; (void)slab;
-  for (int x = x0; x < x1; x++)
-    msocl_mesh_point(MSOCL_MESH_ARGS(MSOCL_PLANES_AT(x, y, z)));
+  for (int x = x0; x < x1; x++) {
+    const int a = MSOCL_PLANES_AT(x, y, z);
+    msocl_mesh_point(MSOCL_MESH_ARGS(cellof[a], a));
+  }
 }
 
 #endif

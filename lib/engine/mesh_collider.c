@@ -26,6 +26,8 @@ struct msocl__mesh_dev {
   cl_mem dtri, drim, start, list;
   size_t start_cap, list_cap; /* ints the grid's buffers hold */
   cl_kernel k, place;    /* the pass; the triangles at a step's end */
+  cl_kernel cells;       /* CPUs: each point's cell first, into cellof */
+  cl_mem cellof;
   cl_mem cur;            /* ... there: 4 float4s a triangle */
   int placed;            /* cur holds a static mesh */
   cl_float4 origin;      /* the grid: origin, 1 / cell size */
@@ -223,6 +225,18 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   TRY(msocl__arg_int(d->place, 5, d->nv));
   TRY(msocl__arg_int(d->place, 6, d->nt));
   TRY(msocl__arg_mem(d->k, 23, d->cur));
+  d->cellof = buffer(s, (size_t)s->pl_plane * sizeof(int), NULL, &rc2);
+  TRY(rc2);
+  TRY(msocl__arg_mem(d->k, 25, d->cellof));
+  if (d->rows) {
+    d->cells = clCreateKernel(s->prog, "msocl_mesh_cells", &e);
+    if (e != CL_SUCCESS)
+      return msocl__fail(e, "clCreateKernel(msocl_mesh_cells): %s",
+                         msocl_err_name(e));
+    TRY(msocl__arg_mem(d->cells, 1, s->pl_aux));
+    TRY(msocl__arg_mem(d->cells, 3, d->cellof));
+    TRY(msocl__pl_shape(s, d->cells, 8, 1));
+  }
   TRY(msocl__arg_mem(d->k, 3, s->pl_aux));
   TRY(msocl__arg_mem(d->k, 6, d->dtri));
   TRY(msocl__arg_mem(d->k, 7, d->drim));
@@ -374,6 +388,13 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
   TRY(rc);
   d->built = 1;
   TRY(msocl__arg_float(d->k, 24, reach * reach));
+  if (d->cells) {
+    TRY(msocl__arg_mem(d->cells, 2, d->start));
+    MSOCL__CL(clSetKernelArg(d->cells, 4, sizeof d->origin, &d->origin));
+    TRY(msocl__arg_int(d->cells, 5, d->g[0]));
+    TRY(msocl__arg_int(d->cells, 6, d->g[1]));
+    TRY(msocl__arg_int(d->cells, 7, d->g[2]));
+  }
   TRY(msocl__arg_mem(d->k, 8, d->start));
   TRY(msocl__arg_mem(d->k, 9, d->list));
   MSOCL__CL(clSetKernelArg(d->k, 10, sizeof d->origin, &d->origin));
@@ -431,6 +452,10 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
   const cl_float4 prm = {{f0, f1, d->thick, d->friction}};
   MSOCL__CL(clSetKernelArg(d->k, 14, sizeof prm, &prm));
   if (d->rows) {
+    TRY(msocl__arg_mem(d->cells, 0, s->pl_p[set]));
+    const size_t local[3] = {s->pl_group, 1, 1};
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->cells, 3, NULL,
+                                     s->pl_global, local, 0, NULL, NULL));
     const size_t rows[3] = {(s->pl_global[0] + 255) / 256, s->pl_global[1],
                             s->pl_global[2]}; /* the kernel's runs */
     const size_t one[3] = {1, 1, 1}; /* a group a run, spread over cores */
@@ -462,9 +487,11 @@ void msocl__mesh_free(struct msocl__mesh_dev *d)
     clReleaseKernel(d->k);
   if (d->place)
     clReleaseKernel(d->place);
-  cl_mem b[7] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start, d->list,
-                 d->cur};
-  for (int q = 0; q < 7; q++)
+  if (d->cells)
+    clReleaseKernel(d->cells);
+  cl_mem b[8] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start, d->list,
+                 d->cur, d->cellof};
+  for (int q = 0; q < 8; q++)
     if (b[q])
       clReleaseMemObject(b[q]);
   free(d->at[0]);
