@@ -25,6 +25,11 @@ struct msocl__mesh_dev {
   cl_mem vert[2];        /* 3 planes of nv floats each */
   cl_mem dtri, drim, start, list;
   size_t start_cap, list_cap; /* ints the grid's buffers hold */
+  /* host staging for the writes, kept until the next call's (a call
+   * ends with the queue finished), so the writes need not block */
+  float *hvert;
+  int *hstart, *hlist;
+  size_t hstart_cap, hlist_cap;
   cl_kernel k, place;    /* the pass; the triangles at a step's end */
   cl_kernel cells;       /* CPUs: each point's cell first, into cellof */
   cl_mem cellof;
@@ -133,16 +138,10 @@ static void to_planes(const struct msocl__mesh_dev *d, const float *xyz,
 
 static int upload(msocl__engine *s, struct msocl__mesh_dev *d, int which)
 {
-  float *pl = malloc(3 * (size_t)d->nv * sizeof *pl);
-  if (!pl)
-    return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's vertices");
-  to_planes(d, d->at[which], pl);
-  cl_int e = clEnqueueWriteBuffer(s->dev->queue, d->vert[which], CL_TRUE, 0,
-                                  3 * (size_t)d->nv * sizeof *pl, pl, 0, NULL,
-                                  NULL);
-  free(pl);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "mesh collider's vertices: %s", msocl_err_name(e));
+  to_planes(d, d->at[which], d->hvert);
+  MSOCL__CL(clEnqueueWriteBuffer(s->dev->queue, d->vert[which], CL_FALSE, 0,
+                                 3 * (size_t)d->nv * sizeof *d->hvert,
+                                 d->hvert, 0, NULL, NULL));
   return MSOCL_OK;
 }
 
@@ -172,11 +171,12 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   const size_t nv3 = 3 * (size_t)c->nv;
   d->at[0] = malloc(nv3 * sizeof(float));
   d->at[1] = malloc(nv3 * sizeof(float));
+  d->hvert = malloc(nv3 * sizeof(float));
   d->tri = malloc(3 * (size_t)c->nt * sizeof *d->tri);
   int *rim = malloc((size_t)c->nt * sizeof *rim);
   int *planes = malloc(3 * (size_t)c->nt * sizeof *planes);
   int rc = MSOCL_OK;
-  if (!d->at[0] || !d->at[1] || !d->tri || !rim || !planes)
+  if (!d->at[0] || !d->at[1] || !d->hvert || !d->tri || !rim || !planes)
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider");
   if (rc == MSOCL_OK) {
     memcpy(d->at[0], c->verts, nv3 * sizeof(float));
@@ -202,10 +202,14 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   }
   free(rim);
   free(planes);
-  if (rc == MSOCL_OK)
+  if (rc == MSOCL_OK) /* one staging area: each write finished in turn */
     rc = upload(s, d, 0);
+  if (rc == MSOCL_OK && clFinish(s->dev->queue) != CL_SUCCESS)
+    rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "mesh collider's vertices");
   if (rc == MSOCL_OK)
     rc = upload(s, d, 1);
+  if (rc == MSOCL_OK && clFinish(s->dev->queue) != CL_SUCCESS)
+    rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "mesh collider's vertices");
   TRY(rc);
   cl_int e;
   d->rows = s->dev->info.type == MSOCL_DEVICE_CPU;
@@ -271,8 +275,23 @@ static int room(msocl__engine *s, cl_mem *b, size_t *cap, size_t need)
   return rc;
 }
 
+/* A host array of at least `need` ints. */
+static int grow(int **a, size_t *cap, size_t need)
+{
+  if (*a && *cap >= need)
+    return MSOCL_OK;
+  free(*a);
+  *cap = need + need / 2 + 64;
+  *a = malloc(*cap * sizeof **a);
+  if (!*a) {
+    *cap = 0;
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
+  }
+  return MSOCL_OK;
+}
+
 /* The cells a bound [lo, hi] covers along axis c, clamped to the grid. */
-static void span(const struct msocl__mesh_dev *d, float h, int c, float lo,
+static inline void span(const struct msocl__mesh_dev *d, float h, int c, float lo,
                  float hi, int *a, int *b)
 {
   const float o = d->origin.s[c];
@@ -305,8 +324,8 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
       b[3 + c] = -INFINITY;
       for (int q = 0; q < 6; q++) {
         const float x = (q < 3 ? p0 : p1)[3 * d->tri[3 * t + q % 3] + c];
-        b[c] = fminf(b[c], x);
-        b[3 + c] = fmaxf(b[3 + c], x);
+        b[c] = x < b[c] ? x : b[c];
+        b[3 + c] = x > b[3 + c] ? x : b[3 + c];
       }
       size += (double)(b[3 + c] - b[c]) / 3.0;
       b[c] -= reach;
@@ -337,9 +356,10 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
   d->origin.s[3] = (float)(1.0 / h);
   const float hf = (float)h;
   const size_t ncell = (size_t)d->g[0] * d->g[1] * d->g[2];
-  int *start = calloc(ncell + 1, sizeof *start);
-  int rc = start ? MSOCL_OK
-                 : msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
+  int rc = grow(&d->hstart, &d->hstart_cap, ncell + 1);
+  int *start = d->hstart;
+  if (rc == MSOCL_OK)
+    memset(start, 0, (ncell + 1) * sizeof *start);
   int a[3], b[3];
   size_t total = 0;
   for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
@@ -355,9 +375,11 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
   if (rc == MSOCL_OK)
     total = (size_t)start[ncell];
   int *fill = rc == MSOCL_OK ? malloc(ncell * sizeof *fill) : NULL;
-  int *list = rc == MSOCL_OK ? malloc((total + 1) * sizeof *list) : NULL;
-  if (rc == MSOCL_OK && (!fill || !list))
+  if (rc == MSOCL_OK && !fill)
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
+  if (rc == MSOCL_OK)
+    rc = grow(&d->hlist, &d->hlist_cap, total + 1);
+  int *list = d->hlist;
   if (rc == MSOCL_OK)
     memcpy(fill, start, ncell * sizeof *fill);
   for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
@@ -374,17 +396,15 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
     rc = room(s, &d->list, &d->list_cap, total + 1);
   cl_int e = CL_SUCCESS;
   if (rc == MSOCL_OK)
-    e = clEnqueueWriteBuffer(s->dev->queue, d->start, CL_TRUE, 0,
+    e = clEnqueueWriteBuffer(s->dev->queue, d->start, CL_FALSE, 0,
                              (ncell + 1) * sizeof *start, start, 0, NULL, NULL);
   if (rc == MSOCL_OK && e == CL_SUCCESS)
-    e = clEnqueueWriteBuffer(s->dev->queue, d->list, CL_TRUE, 0,
+    e = clEnqueueWriteBuffer(s->dev->queue, d->list, CL_FALSE, 0,
                              (total + 1) * sizeof *list, list, 0, NULL, NULL);
   if (rc == MSOCL_OK && e != CL_SUCCESS)
     rc = msocl__fail(e, "mesh collider's grid: %s", msocl_err_name(e));
   free(box);
-  free(start);
   free(fill);
-  free(list);
   TRY(rc);
   d->built = 1;
   TRY(msocl__arg_float(d->k, 24, reach * reach));
@@ -424,6 +444,10 @@ static float motion(const struct msocl__mesh_dev *d, int n)
  * more than it saves); a static mesh's once. */
 int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n)
 {
+  /* the staging areas are free once the queue is (a failed call may
+   * have left it running) */
+  if (d->moving || !d->built)
+    MSOCL__CL(clFinish(s->dev->queue));
   if (d->moving)
     TRY(upload(s, d, 1 - d->a));
   if (d->moving || !d->built)
@@ -496,6 +520,9 @@ void msocl__mesh_free(struct msocl__mesh_dev *d)
       clReleaseMemObject(b[q]);
   free(d->at[0]);
   free(d->at[1]);
+  free(d->hvert);
+  free(d->hstart);
+  free(d->hlist);
   free(d->tri);
   free(d);
 }
