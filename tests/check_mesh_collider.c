@@ -385,8 +385,9 @@ START_TEST(open_sheet_keeps_side)
 }
 END_TEST
 
-/* A static mesh acts on every step too; disabled, it does not. */
-START_TEST(static_and_disabled)
+/* A static mesh acts on every step too; disabled, it does not; in
+ * BUFFER's planes (points in index order) as in GRID's. */
+static void floor_run(msocl_layout layout)
 {
   const float v[4 * 3] = {-1, -0.6f, -1, 1, -0.6f, -1, 1, -0.6f, 1, -1, -0.6f, 1};
   const int t[2 * 3] = {0, 2, 1, 0, 3, 2}; /* normal +y */
@@ -400,8 +401,10 @@ START_TEST(static_and_disabled)
   msocl_sim_options_init(&o);
   o.dt = dt;
   o.tuning.planes = MSOCL_ON;
+  o.tuning.layout = layout;
   msocl_sim *s = NULL;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK, "%s",
+                msocl_last_error());
   /* the sheet falls 0.92 m onto the floor mesh at y = -0.6 */
   float p[3 * 256];
   for (int c = 0; c < 60; c++)
@@ -416,6 +419,17 @@ START_TEST(static_and_disabled)
   ck_assert_msg(p[1] < -0.7, "disabled, the floor still held: y %g", p[1]);
   msocl_sim_destroy(s);
   msocl_model_destroy(m);
+}
+
+START_TEST(static_and_disabled)
+{
+  floor_run(MSOCL_LAYOUT_GRID);
+}
+END_TEST
+
+START_TEST(static_in_buffer)
+{
+  floor_run(MSOCL_LAYOUT_BUFFER);
 }
 END_TEST
 
@@ -498,6 +512,7 @@ int main(void)
   tcase_add_test(tc, icosphere_like_sphere);
   tcase_add_test(tc, open_sheet_keeps_side);
   tcase_add_test(tc, static_and_disabled);
+  tcase_add_test(tc, static_in_buffer);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }
