@@ -111,6 +111,8 @@ int bench_strain(const struct bench_opts *o, FILE *csv);
 int bench_colliders(const struct bench_opts *o, FILE *csv);
 int bench_meshes(const struct bench_opts *o, FILE *csv);
 int bench_wind(const struct bench_opts *o, FILE *csv);
+/* msocl-bench meshcollider (bench_mesh_collider.c). */
+int bench_mesh_collider(const struct bench_opts *o, FILE *csv);
 
 /* Device-to-device copy bandwidth (bytes read + written per second / 1e9)
  * of the device `info` names, through clEnqueueCopyBuffer on a context of

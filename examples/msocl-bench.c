@@ -3,7 +3,7 @@
  * math mode (precision), and the second seed's jello cube per engine
  * (lattice). A table on stdout, one CSV row per run.
  *
- *   msocl-bench [table1|precision|lattice|strain|colliders|meshes|wind] [-d SPEC] [-g LIST] [-s STEPS]
+ *   msocl-bench [table1|precision|lattice|strain|colliders|meshes|wind|meshcollider] [-d SPEC] [-g LIST] [-s STEPS]
  *               [-l LIST] [-i LIST] [-m LIST] [-T SECONDS] [--from X]
  *               [--levels N]
  *               [--max-grid N] [--big-steps N] [--repeat N] [--copy-mib N]
@@ -25,7 +25,8 @@ const char *const bench_integrator_names[5] = {"symplectic", "explicit",
 static int usage(FILE *f, int code)
 {
   fprintf(f,
-"usage: msocl-bench [table1|precision|lattice|strain|colliders|meshes|wind]\n"
+"usage: msocl-bench [table1|precision|lattice|strain|colliders|meshes|wind|\n"
+"                   meshcollider]\n"
 "                   [options]\n"
 "  table1     the paper's Table 1: tablecloth on a round table, serial C\n"
 "             (Algorithm 1) against libmsocl per layout, with a roofline\n"
@@ -50,6 +51,9 @@ static int usage(FILE *f, int code)
 "             (-s default 200; -i default symplectic)\n"
 "  wind       a flag hanging from two corners with no wind and in a 5 m/s\n"
 "             wind, side by side (-g default 128,256,512; -s default 200)\n"
+"  meshcollider  a cloth hanging from its top edge alone, against a\n"
+"             static 10 000-triangle sphere mesh and against it moving,\n"
+"             side by side (-g default 128,512; -s default 200)\n"
 "options:\n"
 "  -d SPEC        device spec (MSOCL_DEVICE grammar; 'all' = every device)\n"
 "  -g LIST        grid sizes, e.g. 48,64,96 (table1: default 48,64,96,128,\n"
@@ -164,6 +168,8 @@ int main(int argc, char **argv)
       mode = 5, takes = 0;
     } else if (!strcmp(w, "wind") && a == 1) {
       mode = 6, takes = 0;
+    } else if (!strcmp(w, "meshcollider") && a == 1) {
+      mode = 7, takes = 0;
     } else if (!strcmp(w, "--fused")) {
       o.fused = 1, takes = 0;
     } else if (!strcmp(w, "--values")) {
@@ -254,12 +260,14 @@ int main(int argc, char **argv)
     static const int col[] = {96, 256}, colq[] = {8};
     static const int msh[] = {6, 256}, mshq[] = {2, 16};
     static const int wnd[] = {128, 256, 512}, wndq[] = {16};
+    static const int mco[] = {128, 512}, mcoq[] = {16};
     const int *g = mode == 1   ? NULL
                    : mode == 2 ? (o.quick ? latq : lat)
                    : mode == 3 ? (o.quick ? strq : str)
                    : mode == 4 ? (o.quick ? colq : col)
                    : mode == 5 ? (o.quick ? mshq : msh)
                    : mode == 6 ? (o.quick ? wndq : wnd)
+                   : mode == 7 ? (o.quick ? mcoq : mco)
                    : o.quick   ? t1q
                                : t1;
     o.ngrids = mode == 1   ? 1
@@ -268,6 +276,7 @@ int main(int argc, char **argv)
                : mode == 4 ? (o.quick ? 1 : 2)
                : mode == 5 ? 2
                : mode == 6 ? (o.quick ? 1 : 3)
+               : mode == 7 ? (o.quick ? 1 : 2)
                : o.quick   ? 2
                            : 8;
     for (int i = 0; i < o.ngrids; i++)
@@ -313,7 +322,8 @@ int main(int argc, char **argv)
            : mode == 3 ? bench_strain(&o, csv)
            : mode == 4 ? bench_colliders(&o, csv)
            : mode == 5 ? bench_meshes(&o, csv)
-                       : bench_wind(&o, csv);
+           : mode == 6 ? bench_wind(&o, csv)
+                       : bench_mesh_collider(&o, csv);
   if (csv && fclose(csv) != 0) {
     perror(o.csv);
     rc = 1;

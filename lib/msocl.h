@@ -185,6 +185,25 @@ MSOCL_EXTERN int msocl_model_add_capsule(msocl_model *m, const float a[3],
 MSOCL_EXTERN int msocl_model_add_box(msocl_model *m, const float centre[3],
                                      const float rotation[4],
                                      const float half[3], float friction);
+/* A triangle-mesh collider, closed or open: nverts vertices (3 floats
+ * each) and ntris triangles (3 vertex indices each), copied. Points are
+ * kept `thickness` > 0 from its surface (and, for a closed mesh, out of
+ * it); friction in [0, 1] as the others. Its id is its number among the
+ * model's mesh colliders (0, 1, ... in the order added; apart from the
+ * analytic colliders). Checked: NULL, a non-finite vertex, an index out
+ * of range, only degenerate triangles. Needs the planes engine on one
+ * device (else msocl_sim_create: MSOCL_ERR_BAD_VALUE). _obj reads the
+ * mesh from a Wavefront OBJ file (faces fanned into triangles). */
+#define MSOCL_MAX_MESH_COLLIDERS 16
+MSOCL_EXTERN int msocl_model_add_mesh_collider(msocl_model *m,
+                                               const float *verts, int nverts,
+                                               const int *tris, int ntris,
+                                               float thickness,
+                                               float friction);
+MSOCL_EXTERN int msocl_model_add_mesh_collider_obj(msocl_model *m,
+                                                   const char *path,
+                                                   float thickness,
+                                                   float friction);
 
 /* The model's analytic colliders (planes, spheres, tables, capsules,
  * boxes): collider id k is the k-th added, whatever its kind; the ids
@@ -538,6 +557,16 @@ MSOCL_EXTERN int msocl_sim_get_collider_pose(msocl_sim *s, int id,
  * be added to a running simulation: its kernels are built for the
  * model's). Same engine limits as the poses. */
 MSOCL_EXTERN int msocl_sim_enable_collider(msocl_sim *s, int id, int on);
+/* Mesh collider `id` (its number among the model's mesh colliders):
+ * the positions verts (3 floats a vertex, as many as it was added with)
+ * its vertices reach at the end of the next msocl_sim_step(s, n), moving
+ * linearly over its n steps (an animated body); the points it touches
+ * take on its velocity there. enable: on (!= 0) or off from the next
+ * step. An unknown id, a non-finite vertex: MSOCL_ERR_BAD_INDEX,
+ * MSOCL_ERR_NOT_FINITE. */
+MSOCL_EXTERN int msocl_sim_set_mesh_collider_vertices(msocl_sim *s, int id,
+                                                      const float *verts);
+MSOCL_EXTERN int msocl_sim_enable_mesh_collider(msocl_sim *s, int id, int on);
 /* Partial state access: 3 floats a point, of positions (velocities 0) or
  * velocities (1), for points first..first+count-1 or idx[0..count);
  * other points and the rest of the state are untouched (writes keep the

@@ -81,4 +81,11 @@ for w in none wind; do
   grep -q ",$w,symplectic,precise,16,.*,ok,,\$" "$tmp/w.csv" ||
     fail "no $w row"
 done
+# meshcollider: the cloth alone, with a static and a moving mesh, all ok
+./examples/msocl-bench meshcollider --quick --csv "$tmp/m.csv" >/dev/null ||
+  fail "meshcollider exited $?"
+for w in none static moving; do
+  grep -q ",$w,symplectic,precise,16,.*,ok,,\$" "$tmp/m.csv" ||
+    fail "no mesh $w row"
+done
 echo "PASS"

@@ -139,3 +139,84 @@ int scene_cpu_spec(char *spec, size_t cap, int most)
   free(list);
   return found;
 }
+
+/* Midpoint vertex of edge (i, j), made once: a linear-probing table of
+ * edges keyed by their ends. */
+struct ico {
+  float *v;
+  int nv;
+  long long *key;
+  int *mid;
+  int cap;
+};
+
+static int ico_mid(struct ico *s, int i, int j)
+{
+  const long long k = i < j ? (long long)i << 32 | j : (long long)j << 32 | i;
+  int h = (int)((unsigned long long)(k * 0x9E3779B97F4A7C15ULL) >> 40) % s->cap;
+  while (s->key[h] >= 0 && s->key[h] != k)
+    h = (h + 1) % s->cap;
+  if (s->key[h] == k)
+    return s->mid[h];
+  s->key[h] = k;
+  float *p = s->v + 3 * s->nv;
+  double l = 0;
+  for (int c = 0; c < 3; c++) {
+    p[c] = 0.5f * (s->v[3 * i + c] + s->v[3 * j + c]);
+    l += (double)p[c] * p[c];
+  }
+  for (int c = 0; c < 3; c++)
+    p[c] = (float)(p[c] / sqrt(l));
+  return s->mid[h] = s->nv++;
+}
+
+int scene_icosphere(int level, double radius, const double centre[3],
+                    float **verts, int **tris, int *ntri)
+{
+  static const int f[20][3] = {
+      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+      {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+      {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+      {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  const double t = (1.0 + sqrt(5.0)) / 2.0;
+  const double b[12][3] = {{-1, t, 0}, {1, t, 0},   {-1, -t, 0}, {1, -t, 0},
+                           {0, -1, t}, {0, 1, t},   {0, -1, -t}, {0, 1, -t},
+                           {t, 0, -1}, {t, 0, 1},   {-t, 0, -1}, {-t, 0, 1}};
+  int nt = 20;
+  for (int l = 0; l < level; l++)
+    nt *= 4;
+  const int nv = nt / 2 + 2;
+  struct ico s = {malloc(3 * (size_t)nv * sizeof(float)), 12,
+                  malloc(3 * (size_t)nt * sizeof(long long)),
+                  malloc(3 * (size_t)nt * sizeof(int)), 3 * nt};
+  int *tri = malloc(3 * (size_t)nt * sizeof *tri);
+  int *next = malloc(3 * (size_t)nt * sizeof *next);
+  for (int i = 0; i < 12; i++)
+    for (int c = 0; c < 3; c++)
+      s.v[3 * i + c] = (float)(b[i][c] / sqrt(1.0 + t * t));
+  memcpy(tri, f, sizeof f);
+  int cur = 20;
+  for (int l = 0; l < level; l++) {
+    for (int q = 0; q < s.cap; q++)
+      s.key[q] = -1;
+    for (int k = 0; k < cur; k++) {
+      const int a = tri[3 * k], bb = tri[3 * k + 1], c = tri[3 * k + 2];
+      const int ab = ico_mid(&s, a, bb), bc = ico_mid(&s, bb, c),
+                ca = ico_mid(&s, c, a);
+      const int four[12] = {a, ab, ca, bb, bc, ab, c, ca, bc, ab, bc, ca};
+      memcpy(next + 12 * k, four, sizeof four);
+    }
+    cur *= 4;
+    memcpy(tri, next, 3 * (size_t)cur * sizeof *tri);
+  }
+  for (int i = 0; i < s.nv; i++)
+    for (int c = 0; c < 3; c++)
+      s.v[3 * i + c] = (float)(centre[c] + radius * s.v[3 * i + c]);
+  free(s.key);
+  free(s.mid);
+  free(next);
+  *verts = s.v;
+  *tris = tri;
+  *ntri = nt;
+  return s.nv;
+}

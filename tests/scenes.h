@@ -35,6 +35,14 @@ void scene_teardown(void);
 #include <check.h>
 int scene_run(Suite *su);
 
+/* An icosphere: the icosahedron subdivided `level` times, its vertices
+ * on the sphere of `radius` about centre, triangles wound outward (seen
+ * from outside, counter-clockwise). Returns the vertex count; *verts (3
+ * floats a vertex) and *tris (3 ints a triangle, *ntri of them) are
+ * malloc'd. */
+int scene_icosphere(int level, double radius, const double centre[3],
+                    float **verts, int **tris, int *ntri);
+
 /* max |a - b| over n floats. */
 double scene_max_diff(const float *a, const float *b, int n);
 

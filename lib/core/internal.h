@@ -104,6 +104,15 @@ void msocl__live_drop(msocl_model *m); /* msocl_model_destroy's part */
 int msocl__live_refuse(const msocl_model *m, const char *what,
                        const char *instead);
 
+/* A triangle-mesh collider (model/mesh_collider.c): its vertices and
+ * triangles, copied when added; the simulation moves its own copy. */
+struct msocl__mesh_collider {
+  int nv, nt;
+  float *verts; /* 3 nv */
+  int *tris;    /* 3 nt */
+  float thickness, friction;
+};
+
 struct msocl_model {
   struct msocl__live *live; /* NULL until a simulation is made from it */
   int n, cap;            /* points */
@@ -120,6 +129,8 @@ struct msocl_model {
   float air; /* velocity factor a step, (0, 1] */
   int ncol;
   struct msocl__collider col[MSOCL__MAX_COLLIDERS];
+  int nmesh;             /* mesh colliders, ids 0 .. nmesh - 1 */
+  struct msocl__mesh_collider *mesh;
   /* Set by msocl_model_cloth_grid (nz 0) and msocl_model_lattice (nz >=
    * 2): the grid the GRID layout recomputes neighbours from; valid while
    * no springs or points were added since (msocl__grid_intact); or by
@@ -133,6 +144,9 @@ struct msocl_model {
     float damp;
   } grid;
 };
+
+/* Frees m's mesh colliders (msocl_model_destroy's part). */
+void msocl__mesh_colliders_free(msocl_model *m);
 
 /* Per-point adjacency in slot order: slot s of point i is spring
  * adj[off[i] + s], the other end other[off[i] + s]. Springs appear in the

@@ -315,6 +315,7 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     rc = build_options(s, m, opt, sizeof opt);
   if (rc == MSOCL_OK)
     rc = msocl__program_get(s->dev, opt, &prog);
+  s->prog = prog;
   if (rc == MSOCL_OK)
     rc = make_kernels(s, prog);
   if (rc == MSOCL_OK)

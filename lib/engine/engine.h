@@ -99,6 +99,8 @@ struct msocl__engine {
   float soft_f;           /* the anchors' place from `from` to `to` */
   cl_kernel soft_k;
   cl_mem soft_at, soft_from, soft_to;
+  cl_program prog;        /* the library's program (the device's cache
+                             owns it): mesh colliders' kernels */
 };
 
 /* What a phase of a step leaves that other engines' next phase reads. */
@@ -207,6 +209,24 @@ int msocl__field_create(msocl__engine *s, cl_program prog);
 int msocl__field_set(msocl__engine *s, const float *xyz, int forces);
 int msocl__field_pass(msocl__engine *s);
 void msocl__field_release(msocl__engine *s);
+/* Mesh colliders (mesh_collider.c, kernels/mesh_collider.cl), planes
+ * only: create: collider c's device copy on the engine; vertices: the
+ * positions it reaches at the end of the next call (3 nv floats); begin:
+ * before a call of n steps, its end vertices uploaded and its grid built
+ * if it moves or has none; pass: its push after a step that ran from
+ * fraction f0 to f1 of the call's motion; end: after the call, its end is
+ * the next call's start. */
+struct msocl__mesh_collider;
+struct msocl__mesh_dev;
+int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
+                       struct msocl__mesh_dev **out);
+void msocl__mesh_vertices(struct msocl__mesh_dev *d, const float *verts);
+int msocl__mesh_nv(const struct msocl__mesh_dev *d);
+int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n);
+int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
+                     float f1);
+void msocl__mesh_end(struct msocl__mesh_dev *d);
+void msocl__mesh_free(struct msocl__mesh_dev *d);
 /* Energy of the engine's points (waits for the device). */
 int msocl__energy(msocl__engine *s, msocl_energy *e);
 /* Sets argument i of kernel k to a buffer, a float, an int (launch.c). */

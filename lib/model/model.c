@@ -292,6 +292,7 @@ void msocl_model_destroy(msocl_model *m) {
   free(m->rest);
   free(m->damp);
   free(m->tri);
+  msocl__mesh_colliders_free(m);
   free(m);
 }
 

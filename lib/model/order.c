@@ -276,6 +276,8 @@ int msocl__model_permuted(const msocl_model *m, const int *perm,
   p->pinned = NULL;
   p->ij = p->tri = NULL;
   p->live = NULL; /* the copy's simulations are its own */
+  p->mesh = NULL; /* mesh colliders: the simulation reads the caller's */
+  p->nmesh = 0;
   p->pos = room((size_t)m->cap * 3, sizeof *p->pos, &failed);
   p->mass = room((size_t)m->cap, sizeof *p->mass, &failed);
   p->pinned = room((size_t)m->cap, sizeof *p->pinned, &failed);

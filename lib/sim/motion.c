@@ -1,18 +1,19 @@
 /* A stepping call that moves something along a path over its steps (pins
  * toward their targets, sim_controls.c; soft pins' anchors,
- * sim_soft_pins.c; colliders toward their poses, sim_colliders.c) runs one
- * step at a time: before step j of the call's N, each mover sits at j / N
- * of its path and moves toward (j + 1) / N; after the last, it is at its
- * path's end. The
- * fractions are computed in float as (float)j / (float)N, so that a caller
- * giving the same ends to N one-step calls gets the same steps. */
+ * sim_soft_pins.c; colliders toward their poses, sim_colliders.c; mesh
+ * colliders, sim_mesh.c, which also act after each step when they do not
+ * move) runs one step at a time: before step j of the call's N, each mover
+ * sits at j / N of its path and moves toward (j + 1) / N; after the last,
+ * it is at its path's end. The fractions are computed in float as
+ * (float)j / (float)N, so that a caller giving the same ends to N one-step
+ * calls gets the same steps. */
 #include "config.h"
 #include "sim.h"
 
 void msocl__motion_call(msocl_sim *s, int n)
 {
   if (n > 0 && (msocl__pins_pending(s) || msocl__soft_pins_moving(s) ||
-                msocl__colliders_pending(s))) {
+                msocl__colliders_pending(s) || msocl__meshes_active(s))) {
     s->call_n = n;
     s->call_j = 0;
   }
@@ -32,6 +33,9 @@ int msocl__motion_steps(msocl_sim *s, int n)
   const float N = (float)s->call_n;
   const int pins = msocl__pins_pending(s), soft = msocl__soft_pins_moving(s);
   const int cols = msocl__colliders_pending(s);
+  const int meshes = msocl__meshes_active(s);
+  if (meshes && s->call_j == 0 && n > 0)
+    MSOCL__TRY(msocl__meshes_begin(s, s->call_n));
   for (int q = 0; q < n && s->call_j < s->call_n; q++) {
     const float f0 = (float)s->call_j / N;
     const float f1 = (float)(s->call_j + 1) / N;
@@ -42,6 +46,8 @@ int msocl__motion_steps(msocl_sim *s, int n)
     if (cols)
       MSOCL__TRY(msocl__colliders_place(s, f0, f1));
     MSOCL__TRY(msocl__integrate(e, 1));
+    if (meshes)
+      MSOCL__TRY(msocl__meshes_step(s, f0, f1));
     s->steps++;
     s->call_j++;
     if (s->call_j % 64 == 0)
@@ -57,6 +63,8 @@ int msocl__motion_steps(msocl_sim *s, int n)
       msocl__soft_pins_place(s, 1.0f);
     if (cols)
       MSOCL__TRY(msocl__colliders_done(s));
+    if (meshes)
+      msocl__meshes_end(s);
     s->call_n = 0;
   }
   return MSOCL_OK;

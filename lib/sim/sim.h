@@ -116,6 +116,9 @@ struct msocl_sim {
   struct msocl__moving *mov;    /* collider poses (sim_colliders.c), or NULL */
   int call_n, call_j;     /* a moving call's steps, and those done (motion.c) */
   struct msocl__soft *soft;     /* soft pins (sim_soft_pins.c), or NULL */
+  int nmesh;              /* mesh colliders (sim_mesh.c) */
+  struct msocl__mesh_dev **mesh;
+  unsigned char *mesh_on;
 };
 
 /* Live controls (sim_controls.c): frees them; whether pins have targets
@@ -140,6 +143,17 @@ void msocl__colliders_free(msocl_sim *s);
 int msocl__colliders_pending(const msocl_sim *s);
 int msocl__colliders_place(msocl_sim *s, float f0, float f1);
 int msocl__colliders_done(msocl_sim *s);
+/* Mesh colliders (sim_mesh.c): their device copies from the caller's
+ * model (refused unless the simulation runs in planes on one device);
+ * freed; whether a call must run step by step for them; before a call of
+ * n steps; after each step, from fraction f0 to f1 of the call; after the
+ * call. */
+int msocl__meshes_create(msocl_sim *s, const msocl_model *m);
+void msocl__meshes_free(msocl_sim *s);
+int msocl__meshes_active(const msocl_sim *s);
+int msocl__meshes_begin(msocl_sim *s, int n);
+int msocl__meshes_step(msocl_sim *s, float f0, float f1);
+void msocl__meshes_end(msocl_sim *s);
 /* A call that moves things over its steps (motion.c): begun before a
  * stepping call of n steps; whether it moves anything; `n` of its steps. */
 void msocl__motion_call(msocl_sim *s, int n);

@@ -387,6 +387,8 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
       o.tuning.layout = s->part[0]->lay.kind;
     }
   }
+  if (rc == MSOCL_OK)
+    rc = msocl__meshes_create(s, model);
   if (rc == MSOCL_OK && s->nparts > 1)
     rc = msocl__exchange_plan(s);
   if (rc == MSOCL_OK && s->nparts > 1)
@@ -414,6 +416,7 @@ void msocl_sim_destroy(msocl_sim *s)
   msocl__controls_free(s);
   msocl__soft_pins_free(s);
   msocl__colliders_free(s);
+  msocl__meshes_free(s);
   msocl__live_leave(s->live);
   free(s);
 }

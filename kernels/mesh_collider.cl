@@ -1,0 +1,277 @@
+/* Triangle-mesh colliders in the planes engine (lib/engine/mesh_collider.c):
+ * after each step, each point is kept `thickness` from the mesh, and out
+ * of a closed one. The mesh's vertices move linearly from va (the call's
+ * start) to vb (its end); this step runs from fraction f0 to f1 of that
+ * motion. A uniform grid over the call's swept bounds lists, per cell, the
+ * triangles whose swept bounds (grown by the reach) touch it, so a point
+ * looks only at its own cell. Needs planes.cl before it (MSOCL_PLANES_AT). */
+#if defined(MSOCL_PLANES)
+
+/* The closest point to p on triangle abc as barycentric weights (wa, wb,
+ * wc) in *w, and the feature it lies on: 0 inside, 1 2 4 edges ab bc ca,
+ * 8 16 32 corners a b c (Ericson, Real-Time Collision Detection 5.1.5). */
+static inline int msocl_mesh_closest(float3 p, float3 a, float3 b, float3 c,
+                                     float3 *w)
+{
+  const float3 ab = b - a, ac = c - a, ap = p - a;
+  const float d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0.0f && d2 <= 0.0f) {
+    *w = (float3)(1.0f, 0.0f, 0.0f);
+    return 8;
+  }
+  const float3 bp = p - b;
+  const float d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.0f && d4 <= d3) {
+    *w = (float3)(0.0f, 1.0f, 0.0f);
+    return 16;
+  }
+  const float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+    const float t = d1 / (d1 - d3);
+    *w = (float3)(1.0f - t, t, 0.0f);
+    return 1;
+  }
+  const float3 cp = p - c;
+  const float d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.0f && d5 <= d6) {
+    *w = (float3)(0.0f, 0.0f, 1.0f);
+    return 32;
+  }
+  const float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+    const float t = d2 / (d2 - d6);
+    *w = (float3)(1.0f - t, 0.0f, t);
+    return 4;
+  }
+  const float va = d3 * d6 - d5 * d4;
+  if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
+    const float t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    *w = (float3)(0.0f, 1.0f - t, t);
+    return 2;
+  }
+  const float s = 1.0f / (va + vb + vc);
+  *w = (float3)(va * s, vb * s, vc * s);
+  return 0;
+}
+
+/* Vertex k of a mesh whose vertices lie in three planes of nv floats. */
+static inline float3 msocl_mesh_vertex(__global const float *m, int k, int nv)
+{
+  return (float3)(m[k], m[nv + k], m[2 * nv + k]);
+}
+
+/* One mesh collider on every point of the planes state: p and v (this
+ * step's end, changed in place), pp (its start), aux (pins: left alone).
+ * tri: three planes of nt corner indices; rim: each triangle's features on
+ * the open mesh's boundary (msocl_mesh_closest's bits); the grid: cells
+ * gx * gy * gz of size 1 / origin.w from origin.xyz, cell c's triangles
+ * cell_tri[cell_start[c] .. cell_start[c + 1]). prm: (f0, f1, thickness,
+ * friction); orient: +1 or -1 for a closed mesh (the side its normals
+ * point to is outside), 0 for an open one (a point stays on the side of
+ * the triangle it was on at the step's start). */
+/* The grid cell of the point at a, or -1 (pinned, outside the grid or
+ * NaN: every comparison false), without a branch. */
+static inline int msocl_mesh_cell(__global const float *p,
+                                  __global const float *aux, float4 origin,
+                                  int gx, int gy, int gz, int plane, int a)
+{
+  const float fx = floor((p[a] - origin.x) * origin.w),
+              fy = floor((p[plane + a] - origin.y) * origin.w),
+              fz = floor((p[2 * plane + a] - origin.z) * origin.w);
+  const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]);
+  const bool in = fx >= 0.0f && fy >= 0.0f && fz >= 0.0f && fx < (float)gx &&
+                  fy < (float)gy && fz < (float)gz && free;
+  const int c = ((int)fz * gy + (int)fy) * gx + (int)fx;
+  return in ? c : -1;
+}
+
+static inline void msocl_mesh_point(
+    __global float *p, __global float *v, __global const float *pp,
+    __global const float *aux, __global const float *va,
+    __global const float *vb, __global const int *tri,
+    __global const int *rim, __global const int *cell_start,
+    __global const int *cell_tri, float4 origin, int gx, int gy, int gz,
+    float4 prm, float orient, float dt, int nv, int nt, int plane,
+    __global const float4 *cur, float reach2, int cell, int a)
+{
+  if (cell < 0)
+    return;
+  const float3 P = (float3)(p[a], p[plane + a], p[2 * plane + a]);
+  const float f0 = prm.x, f1 = prm.y, thick = prm.z;
+  float best = reach2; /* farther than the reach: no contact */
+  int bt = -1, bfeat = 0;
+  float3 bw = (float3)(0.0f);
+  for (int q = cell_start[cell]; q < cell_start[cell + 1]; q++) {
+    const int t = cell_tri[q];
+    /* the distances to its bounding sphere and to its plane bound the
+     * distance to the triangle: most triangles end there */
+    const float4 s4 = cur[4 * t + 3];
+    const float3 e = P - s4.xyz;
+    const float r = s4.w * s4.w, e2 = dot(e, e);
+    if (e2 > r && e2 - 2.0f * s4.w * sqrt(e2) + r >= best)
+      continue;
+    const float4 a4 = cur[4 * t], b4 = cur[4 * t + 1], c4 = cur[4 * t + 2];
+    const float3 A = a4.xyz, B = b4.xyz, C = c4.xyz;
+    const float h = dot(P - A, (float3)(a4.w, b4.w, c4.w));
+    if (h * h >= best)
+      continue;
+    float3 w;
+    const int feat = msocl_mesh_closest(P, A, B, C, &w);
+    const float3 d = P - (w.x * A + w.y * B + w.z * C);
+    const float d2 = dot(d, d);
+    if (d2 < best) {
+      best = d2;
+      bt = t;
+      bw = w;
+      bfeat = feat;
+    }
+  }
+  if (bt < 0)
+    return;
+  const int i0 = tri[bt], i1 = tri[nt + bt], i2 = tri[2 * nt + bt];
+  const float3 A0 = msocl_mesh_vertex(va, i0, nv),
+               B0 = msocl_mesh_vertex(va, i1, nv),
+               C0 = msocl_mesh_vertex(va, i2, nv);
+  const float3 DA = msocl_mesh_vertex(vb, i0, nv) - A0,
+               DB = msocl_mesh_vertex(vb, i1, nv) - B0,
+               DC = msocl_mesh_vertex(vb, i2, nv) - C0;
+  const float4 a4 = cur[4 * bt], b4 = cur[4 * bt + 1], c4 = cur[4 * bt + 2];
+  const float3 A1 = a4.xyz, B1 = b4.xyz, C1 = c4.xyz;
+  const float3 n1 = (float3)(a4.w, b4.w, c4.w);
+  /* the side the point belongs on */
+  float side = orient;
+  if (orient == 0.0f) {
+    const float3 As = A0 + f0 * DA, Bs = B0 + f0 * DB, Cs = C0 + f0 * DC;
+    const float3 PP = (float3)(pp[a], pp[plane + a], pp[2 * plane + a]);
+    side = dot(PP - As, cross(Bs - As, Cs - As)) >= 0.0f ? 1.0f : -1.0f;
+  }
+  const float3 c1 = bw.x * A1 + bw.y * B1 + bw.z * C1;
+  const float3 D = P - c1;
+  const float dist = sqrt(best);
+  const bool behind = dot(D, n1) * side < 0.0f;
+  /* behind an open mesh's boundary the point went round its rim, not
+   * through it: kept off the rim like a point in front */
+  const bool through = behind && (orient != 0.0f || (rim[bt] & bfeat) == 0);
+  if (!through && dist >= thick)
+    return;
+  const float tiny = 1e-6f * thick;
+  float3 nrm = dist > tiny ? D / dist : side * n1;
+  if (through)
+    nrm = dist > tiny ? -nrm : side * n1;
+  /* the mesh's velocity at the contact over this step */
+  const float3 u =
+      (f1 - f0) / dt * (bw.x * DA + bw.y * DB + bw.z * DC);
+  const float3 V = (float3)(v[a], v[plane + a], v[2 * plane + a]);
+  const float3 rel = V - u;
+  const float vn = dot(rel, nrm);
+  const float3 vt = rel - vn * nrm;
+  const float3 Vn = u + fmax(vn, 0.0f) * nrm + (1.0f - prm.w) * vt;
+  /* the step moved the point by dt v: friction takes back its share of
+   * the tangential part too, or a point held still by friction would
+   * move without velocity, a step that is unstable near the stable dt */
+  const float3 Pn = c1 + thick * nrm - (dt * prm.w) * vt;
+  p[a] = Pn.x;
+  p[plane + a] = Pn.y;
+  p[2 * plane + a] = Pn.z;
+  v[a] = Vn.x;
+  v[plane + a] = Vn.y;
+  v[2 * plane + a] = Vn.z;
+}
+
+/* The triangles at fraction f of the motion from va to vb, each as four
+ * float4s: its corners, in their w its unit normal, and its bounding
+ * sphere (centroid, radius) (a work-item a triangle; those past nt do
+ * nothing). */
+__kernel void msocl_mesh_place(__global const float *va,
+                               __global const float *vb,
+                               __global const int *tri, __global float4 *cur,
+                               float f, int nv, int nt)
+{
+  const int t = get_global_id(0);
+  if (t >= nt)
+    return;
+  const int i0 = tri[t], i1 = tri[nt + t], i2 = tri[2 * nt + t];
+  const float3 A = mix(msocl_mesh_vertex(va, i0, nv),
+                       msocl_mesh_vertex(vb, i0, nv), f);
+  const float3 B = mix(msocl_mesh_vertex(va, i1, nv),
+                       msocl_mesh_vertex(vb, i1, nv), f);
+  const float3 C = mix(msocl_mesh_vertex(va, i2, nv),
+                       msocl_mesh_vertex(vb, i2, nv), f);
+  const float3 n = normalize(cross(B - A, C - A));
+  const float3 m = (A + B + C) / 3.0f;
+  const float r = sqrt(fmax(dot(A - m, A - m),
+                            fmax(dot(B - m, B - m), dot(C - m, C - m))));
+  cur[4 * t] = (float4)(A, n.x);
+  cur[4 * t + 1] = (float4)(B, n.y);
+  cur[4 * t + 2] = (float4)(C, n.z);
+  cur[4 * t + 3] = (float4)(m, r * 1.0001f);
+}
+
+#define MSOCL_MESH_PARAMS                                                     \
+  __global float *p, __global float *v, __global const float *pp,             \
+      __global const float *aux, __global const float *va,                    \
+      __global const float *vb, __global const int *tri,                      \
+      __global const int *rim, __global const int *cell_start,                \
+      __global const int *cell_tri, float4 origin, int gx, int gy, int gz,    \
+      float4 prm, float orient, float dt, int nv, int nt, int nx, int pitch,  \
+      int slab, int plane, __global const float4 *cur, float reach2,          \
+      __global const int *cellof
+#define MSOCL_MESH_ARGS(c, a)                                                 \
+  p, v, pp, aux, va, vb, tri, rim, cell_start, cell_tri, origin, gx, gy, gz,  \
+      prm, orient, dt, nv, nt, plane, cur, reach2, c, a
+
+/* A work-item a point (GPUs). */
+__kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab; (void)cellof;
+  if (x < nx)
+    msocl_mesh_point(MSOCL_MESH_ARGS(
+        msocl_mesh_cell(p, aux, origin, gx, gy, gz, plane, a), a));
+}
+
+/* CPU devices, first: each point's cell in cellof, -1 where it has no
+ * triangles (or is pinned, or outside the grid, or padding); written
+ * without a branch, each coordinate in its own shape, so that PoCL
+ * vectorises it. */
+__kernel void msocl_mesh_cells(__global const float *p,
+                               __global const float *aux,
+                               __global const int *cell_start,
+                               __global int *cellof, float4 origin, int gx,
+                               int gy, int gz, int nx, int pitch, int slab,
+                               int plane)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab;
+  const float w = origin.w;
+  const float fx = floor((p[a] - origin.x) * w),
+              fy = floor(fma(p[plane + a], w, -(origin.y * w))),
+              fz = floor(p[2 * plane + a] * w - origin.z * w);
+  const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]);
+  const bool in = fx >= 0.0f && fy >= 0.0f && fz >= 0.0f && fx < (float)gx &&
+                  fy < (float)gy && fz < (float)gz && free && x < nx;
+  const int c = in ? ((int)fz * gy + (int)fy) * gx + (int)fx : 0;
+  const bool any = cell_start[c + 1] > cell_start[c];
+  cellof[a] = in && any ? c : -1;
+}
+
+/* CPU devices, then: a work-item a run of MSOCL_MESH_RUN points of a row,
+ * (run, y, z) = its ids, the points msocl_mesh_cells found in a cell with
+ * triangles (the search cannot be vectorised, and a work-item a point
+ * costs more to schedule than most points take). */
+#define MSOCL_MESH_RUN 256
+__kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
+{
+  const int y = get_global_id(1), z = get_global_id(2);
+  const int x0 = get_global_id(0) * MSOCL_MESH_RUN;
+  const int x1 = min(nx, x0 + MSOCL_MESH_RUN);
+  (void)y; (void)z; (void)slab;
+  for (int x = x0; x < x1; x++) {
+    const int a = MSOCL_PLANES_AT(x, y, z);
+    msocl_mesh_point(MSOCL_MESH_ARGS(cellof[a], a));
+  }
+}
+
+#endif

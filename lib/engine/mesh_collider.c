@@ -1,0 +1,528 @@
+/* A mesh collider's device copy (kernels/mesh_collider.cl): its vertices
+ * at the call's start and end as planes, its triangles with their rims,
+ * and the uniform grid over the call's swept bounds, built on the host
+ * once per call that moves it (a counting sort: two passes over the
+ * triangles, O(triangles + cells)) and uploaded; each step only runs the
+ * per-point pass, which interpolates the vertices itself. */
+#include "config.h"
+#include "planes.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define TRY MSOCL__TRY
+
+struct msocl__mesh_dev {
+  int nv, nt;            /* vertices; triangles with an area */
+  float *at[2];          /* host: start and end, 3 nv interleaved */
+  int *tri;              /* host: 3 nt corners */
+  int moving, built;     /* end differs from start; a grid exists */
+  int a;                 /* at[a], vert[a]: the start */
+  int rows;              /* the kernel runs a row a work-item (CPUs) */
+  float thick, friction, orient;
+  cl_mem vert[2];        /* 3 planes of nv floats each */
+  cl_mem dtri, drim, start, list;
+  size_t start_cap, list_cap; /* ints the grid's buffers hold */
+  /* host staging for the writes, kept until the next call's (a call
+   * ends with the queue finished), so the writes need not block */
+  float *hvert;
+  int *hstart, *hlist;
+  size_t hstart_cap, hlist_cap;
+  cl_kernel k, place;    /* the pass; the triangles at a step's end */
+  cl_kernel cells;       /* CPUs: each point's cell first, into cellof */
+  cl_mem cellof;
+  cl_mem cur;            /* ... there: 4 float4s a triangle */
+  int placed;            /* cur holds a static mesh */
+  cl_float4 origin;      /* the grid: origin, 1 / cell size */
+  int g[3];
+};
+
+static cl_mem buffer(msocl__engine *s, size_t bytes, void *host, int *rc)
+{
+  cl_int e;
+  cl_mem b = clCreateBuffer(s->dev->ctx,
+                            CL_MEM_READ_WRITE |
+                                (host ? CL_MEM_COPY_HOST_PTR : 0),
+                            bytes, host, &e);
+  if (e != CL_SUCCESS && *rc == MSOCL_OK)
+    *rc = msocl__fail(e, "clCreateBuffer(%zu bytes for a mesh collider): %s",
+                      bytes, msocl_err_name(e));
+  return e == CL_SUCCESS ? b : NULL;
+}
+
+static int cmp_u64(const void *x, const void *y)
+{
+  const uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
+  return (a > b) - (a < b);
+}
+
+static uint64_t edge_key(int i, int j)
+{
+  const uint32_t lo = (uint32_t)(i < j ? i : j), hi = (uint32_t)(i < j ? j : i);
+  return (uint64_t)lo << 32 | hi;
+}
+
+/* Is edge (i, j) on one triangle only? keys: every edge's key, sorted. */
+static int on_rim(const uint64_t *keys, size_t n, int i, int j)
+{
+  const uint64_t k = edge_key(i, j);
+  size_t lo = 0, hi = n;
+  while (lo < hi) { /* the first key >= k */
+    const size_t mid = (lo + hi) / 2;
+    if (keys[mid] < k)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return !(lo + 1 < n && keys[lo + 1] == k);
+}
+
+/* The rims of an open mesh (bits of msocl_mesh_closest's features on an
+ * edge of one triangle, or a corner on such an edge); closed: every edge
+ * on two triangles, then orient is the side its normals point to by the
+ * sign of its volume. */
+static int topology(struct msocl__mesh_dev *d, int *rim)
+{
+  const size_t ne = 3 * (size_t)d->nt;
+  uint64_t *keys = malloc(ne * sizeof *keys);
+  unsigned char *corner = calloc((size_t)d->nv, 1);
+  if (!keys || !corner) {
+    free(keys);
+    free(corner);
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's edges");
+  }
+  for (int t = 0; t < d->nt; t++)
+    for (int c = 0; c < 3; c++)
+      keys[3 * t + c] = edge_key(d->tri[3 * t + c], d->tri[3 * t + (c + 1) % 3]);
+  qsort(keys, ne, sizeof *keys, cmp_u64);
+  int open = 0;
+  for (int t = 0; t < d->nt; t++) {
+    const int *k = d->tri + 3 * t;
+    rim[t] = 0;
+    for (int c = 0; c < 3; c++)
+      if (on_rim(keys, ne, k[c], k[(c + 1) % 3])) {
+        rim[t] |= 1 << c; /* ab 1, bc 2, ca 4 */
+        corner[k[c]] = corner[k[(c + 1) % 3]] = 1;
+        open = 1;
+      }
+  }
+  for (int t = 0; t < d->nt; t++)
+    for (int c = 0; c < 3; c++)
+      if (corner[d->tri[3 * t + c]])
+        rim[t] |= 8 << c;
+  double vol = 0;
+  for (int t = 0; !open && t < d->nt; t++) {
+    const float *a = d->at[0] + 3 * d->tri[3 * t],
+                *b = d->at[0] + 3 * d->tri[3 * t + 1],
+                *c = d->at[0] + 3 * d->tri[3 * t + 2];
+    vol += (double)a[0] * ((double)b[1] * c[2] - (double)b[2] * c[1]) +
+           (double)a[1] * ((double)b[2] * c[0] - (double)b[0] * c[2]) +
+           (double)a[2] * ((double)b[0] * c[1] - (double)b[1] * c[0]);
+  }
+  d->orient = open ? 0.0f : vol >= 0 ? 1.0f : -1.0f;
+  free(keys);
+  free(corner);
+  return MSOCL_OK;
+}
+
+/* Vertices as three planes, for the device. */
+static void to_planes(const struct msocl__mesh_dev *d, const float *xyz,
+                      float *pl)
+{
+  for (int i = 0; i < d->nv; i++)
+    for (int c = 0; c < 3; c++)
+      pl[(size_t)c * d->nv + i] = xyz[3 * i + c];
+}
+
+static int upload(msocl__engine *s, struct msocl__mesh_dev *d, int which)
+{
+  to_planes(d, d->at[which], d->hvert);
+  MSOCL__CL(clEnqueueWriteBuffer(s->dev->queue, d->vert[which], CL_FALSE, 0,
+                                 3 * (size_t)d->nv * sizeof *d->hvert,
+                                 d->hvert, 0, NULL, NULL));
+  return MSOCL_OK;
+}
+
+static int has_area(const float *v, const int *t)
+{
+  double e1[3], e2[3];
+  for (int k = 0; k < 3; k++) {
+    e1[k] = (double)v[3 * t[1] + k] - v[3 * t[0] + k];
+    e2[k] = (double)v[3 * t[2] + k] - v[3 * t[0] + k];
+  }
+  const double nx = e1[1] * e2[2] - e1[2] * e2[1],
+               ny = e1[2] * e2[0] - e1[0] * e2[2],
+               nz = e1[0] * e2[1] - e1[1] * e2[0];
+  return nx * nx + ny * ny + nz * nz > 0;
+}
+
+int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
+                       struct msocl__mesh_dev **out)
+{
+  struct msocl__mesh_dev *d = calloc(1, sizeof *d);
+  if (!d)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider");
+  *out = d;
+  d->nv = c->nv;
+  d->thick = c->thickness;
+  d->friction = c->friction;
+  const size_t nv3 = 3 * (size_t)c->nv;
+  d->at[0] = malloc(nv3 * sizeof(float));
+  d->at[1] = malloc(nv3 * sizeof(float));
+  d->hvert = malloc(nv3 * sizeof(float));
+  d->tri = malloc(3 * (size_t)c->nt * sizeof *d->tri);
+  int *rim = malloc((size_t)c->nt * sizeof *rim);
+  int *planes = malloc(3 * (size_t)c->nt * sizeof *planes);
+  int rc = MSOCL_OK;
+  if (!d->at[0] || !d->at[1] || !d->hvert || !d->tri || !rim || !planes)
+    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider");
+  if (rc == MSOCL_OK) {
+    memcpy(d->at[0], c->verts, nv3 * sizeof(float));
+    memcpy(d->at[1], c->verts, nv3 * sizeof(float));
+    for (int t = 0; t < c->nt; t++) {
+      const int *k = c->tris + 3 * t;
+      if (k[0] != k[1] && k[1] != k[2] && k[0] != k[2] &&
+          has_area(c->verts, k)) {
+        memcpy(d->tri + 3 * d->nt, k, 3 * sizeof *k);
+        d->nt++;
+      }
+    }
+    rc = topology(d, rim);
+  }
+  for (int t = 0; rc == MSOCL_OK && t < d->nt; t++)
+    for (int q = 0; q < 3; q++)
+      planes[(size_t)q * d->nt + t] = d->tri[3 * t + q];
+  if (rc == MSOCL_OK) {
+    d->dtri = buffer(s, 3 * (size_t)d->nt * sizeof(int), planes, &rc);
+    d->drim = buffer(s, (size_t)d->nt * sizeof(int), rim, &rc);
+    d->vert[0] = buffer(s, nv3 * sizeof(float), NULL, &rc);
+    d->vert[1] = buffer(s, nv3 * sizeof(float), NULL, &rc);
+  }
+  free(rim);
+  free(planes);
+  if (rc == MSOCL_OK) /* one staging area: each write finished in turn */
+    rc = upload(s, d, 0);
+  if (rc == MSOCL_OK && clFinish(s->dev->queue) != CL_SUCCESS)
+    rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "mesh collider's vertices");
+  if (rc == MSOCL_OK)
+    rc = upload(s, d, 1);
+  if (rc == MSOCL_OK && clFinish(s->dev->queue) != CL_SUCCESS)
+    rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "mesh collider's vertices");
+  TRY(rc);
+  cl_int e;
+  d->rows = s->dev->info.type == MSOCL_DEVICE_CPU;
+  const char *name = d->rows ? "msocl_mesh_collide_rows" : "msocl_mesh_collide";
+  d->k = clCreateKernel(s->prog, name, &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateKernel(%s): %s", name, msocl_err_name(e));
+  d->place = clCreateKernel(s->prog, "msocl_mesh_place", &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateKernel(msocl_mesh_place): %s",
+                       msocl_err_name(e));
+  int rc2 = MSOCL_OK;
+  d->cur = buffer(s, 16 * (size_t)d->nt * sizeof(float), NULL, &rc2);
+  TRY(rc2);
+  TRY(msocl__arg_mem(d->place, 2, d->dtri));
+  TRY(msocl__arg_mem(d->place, 3, d->cur));
+  TRY(msocl__arg_int(d->place, 5, d->nv));
+  TRY(msocl__arg_int(d->place, 6, d->nt));
+  TRY(msocl__arg_mem(d->k, 23, d->cur));
+  d->cellof = buffer(s, (size_t)s->pl_plane * sizeof(int), NULL, &rc2);
+  TRY(rc2);
+  TRY(msocl__arg_mem(d->k, 25, d->cellof));
+  if (d->rows) {
+    d->cells = clCreateKernel(s->prog, "msocl_mesh_cells", &e);
+    if (e != CL_SUCCESS)
+      return msocl__fail(e, "clCreateKernel(msocl_mesh_cells): %s",
+                         msocl_err_name(e));
+    TRY(msocl__arg_mem(d->cells, 1, s->pl_aux));
+    TRY(msocl__arg_mem(d->cells, 3, d->cellof));
+    TRY(msocl__pl_shape(s, d->cells, 8, 1));
+  }
+  TRY(msocl__arg_mem(d->k, 3, s->pl_aux));
+  TRY(msocl__arg_mem(d->k, 6, d->dtri));
+  TRY(msocl__arg_mem(d->k, 7, d->drim));
+  TRY(msocl__arg_float(d->k, 15, d->orient));
+  TRY(msocl__arg_float(d->k, 16, s->o.dt));
+  TRY(msocl__arg_int(d->k, 17, d->nv));
+  TRY(msocl__arg_int(d->k, 18, d->nt));
+  return msocl__pl_shape(s, d->k, 19, 1);
+}
+
+int msocl__mesh_nv(const struct msocl__mesh_dev *d)
+{
+  return d->nv;
+}
+
+void msocl__mesh_vertices(struct msocl__mesh_dev *d, const float *verts)
+{
+  memcpy(d->at[1 - d->a], verts, 3 * (size_t)d->nv * sizeof(float));
+  d->moving = 1;
+}
+
+/* A buffer of at least `need` ints, grown by half again when short. */
+static int room(msocl__engine *s, cl_mem *b, size_t *cap, size_t need)
+{
+  if (*b && *cap >= need)
+    return MSOCL_OK;
+  if (*b)
+    clReleaseMemObject(*b);
+  *cap = need + need / 2 + 64;
+  int rc = MSOCL_OK;
+  *b = buffer(s, *cap * sizeof(int), NULL, &rc);
+  return rc;
+}
+
+/* A host array of at least `need` ints. */
+static int grow(int **a, size_t *cap, size_t need)
+{
+  if (*a && *cap >= need)
+    return MSOCL_OK;
+  free(*a);
+  *cap = need + need / 2 + 64;
+  *a = malloc(*cap * sizeof **a);
+  if (!*a) {
+    *cap = 0;
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
+  }
+  return MSOCL_OK;
+}
+
+/* The cells a bound [lo, hi] covers along axis c, clamped to the grid. */
+static inline void span(const struct msocl__mesh_dev *d, float h, int c, float lo,
+                 float hi, int *a, int *b)
+{
+  const float o = d->origin.s[c];
+  *a = (int)floorf((lo - o) / h);
+  *b = (int)floorf((hi - o) / h);
+  *a = *a < 0 ? 0 : *a >= d->g[c] ? d->g[c] - 1 : *a;
+  *b = *b < 0 ? 0 : *b >= d->g[c] ? d->g[c] - 1 : *b;
+}
+
+/* Each triangle's bounds over the call, from start to end, grown by the
+ * reach: the thickness and the mesh's largest motion a step. A point held
+ * at the thickness that crosses a triangle within one step ends up at
+ * most its motion less the thickness behind it, so it is seen while the
+ * cloth moves less than twice the thickness a step (beside the mesh's own
+ * motion). */
+static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
+{
+  const float *p0 = d->at[d->a], *p1 = d->at[1 - d->a];
+  const float reach = (d->thick + step) * 1.001f;
+  float *box = malloc(6 * (size_t)d->nt * sizeof *box);
+  if (!box)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
+  float lo[3] = {INFINITY, INFINITY, INFINITY},
+        hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  double size = 0;
+  for (int t = 0; t < d->nt; t++) {
+    float *b = box + 6 * t;
+    for (int c = 0; c < 3; c++) {
+      b[c] = INFINITY;
+      b[3 + c] = -INFINITY;
+      for (int q = 0; q < 6; q++) {
+        const float x = (q < 3 ? p0 : p1)[3 * d->tri[3 * t + q % 3] + c];
+        b[c] = x < b[c] ? x : b[c];
+        b[3 + c] = x > b[3 + c] ? x : b[3 + c];
+      }
+      size += (double)(b[3 + c] - b[c]) / 3.0;
+      b[c] -= reach;
+      b[3 + c] += reach;
+      lo[c] = fminf(lo[c], b[c]);
+      hi[c] = fmaxf(hi[c], b[3 + c]);
+    }
+  }
+  /* cells about as wide as a triangle's swept bounds, or the reach if
+   * that is more: a point near the surface then looks at the triangles
+   * within about reach plus two cells of it; at most 16 cells a triangle
+   * (or 2^16), 2^22 in all */
+  double h = 1.5 * fmax(size / d->nt, (double)reach);
+  double most = fmax(16.0 * d->nt, 65536.0);
+  most = fmin(most, 4194304.0);
+  for (;;) {
+    double cells = 1;
+    for (int c = 0; c < 3; c++)
+      cells *= floor((double)(hi[c] - lo[c]) / h) + 1;
+    if (cells <= most)
+      break;
+    h *= 1.1 * cbrt(cells / most);
+  }
+  for (int c = 0; c < 3; c++) {
+    d->origin.s[c] = lo[c];
+    d->g[c] = (int)floor((double)(hi[c] - lo[c]) / h) + 1;
+  }
+  d->origin.s[3] = (float)(1.0 / h);
+  const float hf = (float)h;
+  const size_t ncell = (size_t)d->g[0] * d->g[1] * d->g[2];
+  int rc = grow(&d->hstart, &d->hstart_cap, ncell + 1);
+  int *start = d->hstart;
+  if (rc == MSOCL_OK)
+    memset(start, 0, (ncell + 1) * sizeof *start);
+  int a[3], b[3];
+  size_t total = 0;
+  for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
+    for (int c = 0; c < 3; c++)
+      span(d, hf, c, box[6 * t + c], box[6 * t + 3 + c], &a[c], &b[c]);
+    for (int z = a[2]; z <= b[2]; z++)
+      for (int y = a[1]; y <= b[1]; y++)
+        for (int x = a[0]; x <= b[0]; x++)
+          start[((size_t)z * d->g[1] + y) * d->g[0] + x + 1]++;
+  }
+  for (size_t q = 0; rc == MSOCL_OK && q < ncell; q++)
+    start[q + 1] += start[q];
+  if (rc == MSOCL_OK)
+    total = (size_t)start[ncell];
+  int *fill = rc == MSOCL_OK ? malloc(ncell * sizeof *fill) : NULL;
+  if (rc == MSOCL_OK && !fill)
+    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
+  if (rc == MSOCL_OK)
+    rc = grow(&d->hlist, &d->hlist_cap, total + 1);
+  int *list = d->hlist;
+  if (rc == MSOCL_OK)
+    memcpy(fill, start, ncell * sizeof *fill);
+  for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
+    for (int c = 0; c < 3; c++)
+      span(d, hf, c, box[6 * t + c], box[6 * t + 3 + c], &a[c], &b[c]);
+    for (int z = a[2]; z <= b[2]; z++)
+      for (int y = a[1]; y <= b[1]; y++)
+        for (int x = a[0]; x <= b[0]; x++)
+          list[fill[((size_t)z * d->g[1] + y) * d->g[0] + x]++] = t;
+  }
+  if (rc == MSOCL_OK)
+    rc = room(s, &d->start, &d->start_cap, ncell + 1);
+  if (rc == MSOCL_OK)
+    rc = room(s, &d->list, &d->list_cap, total + 1);
+  cl_int e = CL_SUCCESS;
+  if (rc == MSOCL_OK)
+    e = clEnqueueWriteBuffer(s->dev->queue, d->start, CL_FALSE, 0,
+                             (ncell + 1) * sizeof *start, start, 0, NULL, NULL);
+  if (rc == MSOCL_OK && e == CL_SUCCESS)
+    e = clEnqueueWriteBuffer(s->dev->queue, d->list, CL_FALSE, 0,
+                             (total + 1) * sizeof *list, list, 0, NULL, NULL);
+  if (rc == MSOCL_OK && e != CL_SUCCESS)
+    rc = msocl__fail(e, "mesh collider's grid: %s", msocl_err_name(e));
+  free(box);
+  free(fill);
+  TRY(rc);
+  d->built = 1;
+  TRY(msocl__arg_float(d->k, 24, reach * reach));
+  if (d->cells) {
+    TRY(msocl__arg_mem(d->cells, 2, d->start));
+    MSOCL__CL(clSetKernelArg(d->cells, 4, sizeof d->origin, &d->origin));
+    TRY(msocl__arg_int(d->cells, 5, d->g[0]));
+    TRY(msocl__arg_int(d->cells, 6, d->g[1]));
+    TRY(msocl__arg_int(d->cells, 7, d->g[2]));
+  }
+  TRY(msocl__arg_mem(d->k, 8, d->start));
+  TRY(msocl__arg_mem(d->k, 9, d->list));
+  MSOCL__CL(clSetKernelArg(d->k, 10, sizeof d->origin, &d->origin));
+  TRY(msocl__arg_int(d->k, 11, d->g[0]));
+  TRY(msocl__arg_int(d->k, 12, d->g[1]));
+  return msocl__arg_int(d->k, 13, d->g[2]);
+}
+
+/* The call's largest vertex motion a step. */
+static float motion(const struct msocl__mesh_dev *d, int n)
+{
+  const float *p0 = d->at[d->a], *p1 = d->at[1 - d->a];
+  double st = 0;
+  for (int i = 0; i < d->nv; i++) {
+    double l2 = 0;
+    for (int c = 0; c < 3; c++) {
+      const double e = (double)p1[3 * i + c] - p0[3 * i + c];
+      l2 += e * e;
+    }
+    st = fmax(st, l2);
+  }
+  return (float)(sqrt(st) / (n > 0 ? n : 1));
+}
+
+/* A moving mesh's grid is built again each call, tight around the call's
+ * swept bounds (slack for later calls would grow every point's search
+ * more than it saves); a static mesh's once. */
+int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n)
+{
+  /* the staging areas are free once the queue is (a failed call may
+   * have left it running) */
+  if (d->moving || !d->built)
+    MSOCL__CL(clFinish(s->dev->queue));
+  if (d->moving)
+    TRY(upload(s, d, 1 - d->a));
+  if (d->moving || !d->built)
+    TRY(build(s, d, d->moving ? motion(d, n) : 0.0f));
+  const cl_mem a = d->vert[d->a], b = d->vert[d->moving ? 1 - d->a : d->a];
+  TRY(msocl__arg_mem(d->place, 0, a));
+  TRY(msocl__arg_mem(d->place, 1, b));
+  TRY(msocl__arg_mem(d->k, 4, a));
+  return msocl__arg_mem(d->k, 5, b);
+}
+
+int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
+                     float f1)
+{
+  if (d->moving || !d->placed) { /* a static mesh's, once */
+    TRY(msocl__arg_float(d->place, 4, f1));
+    const size_t tris = ((size_t)d->nt + 63) / 64 * 64;
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->place, 1, NULL, &tris,
+                                     NULL, 0, NULL, NULL));
+    d->placed = !d->moving;
+  }
+  const int set = s->pl_set;
+  TRY(msocl__arg_mem(d->k, 0, s->pl_p[set]));
+  TRY(msocl__arg_mem(d->k, 1, s->pl_v[set]));
+  TRY(msocl__arg_mem(d->k, 2, s->pl_p[1 - set]));
+  const cl_float4 prm = {{f0, f1, d->thick, d->friction}};
+  MSOCL__CL(clSetKernelArg(d->k, 14, sizeof prm, &prm));
+  if (d->rows) {
+    TRY(msocl__arg_mem(d->cells, 0, s->pl_p[set]));
+    const size_t local[3] = {s->pl_group, 1, 1};
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->cells, 3, NULL,
+                                     s->pl_global, local, 0, NULL, NULL));
+    const size_t rows[3] = {(s->pl_global[0] + 255) / 256, s->pl_global[1],
+                            s->pl_global[2]}; /* the kernel's runs */
+    const size_t one[3] = {1, 1, 1}; /* a group a run, spread over cores */
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->k, 3, NULL, rows, one,
+                                     0, NULL, NULL));
+    return MSOCL_OK;
+  }
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->k, 3, NULL, s->pl_global,
+                                   NULL, 0, NULL, NULL));
+  return MSOCL_OK;
+}
+
+void msocl__mesh_end(struct msocl__mesh_dev *d)
+{
+  if (!d->moving)
+    return;
+  d->a = 1 - d->a;
+  d->placed = 0;
+  /* the host's copies agree again, for a later partial move */
+  memcpy(d->at[1 - d->a], d->at[d->a], 3 * (size_t)d->nv * sizeof(float));
+  d->moving = 0;
+}
+
+void msocl__mesh_free(struct msocl__mesh_dev *d)
+{
+  if (!d)
+    return;
+  if (d->k)
+    clReleaseKernel(d->k);
+  if (d->place)
+    clReleaseKernel(d->place);
+  if (d->cells)
+    clReleaseKernel(d->cells);
+  cl_mem b[8] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start, d->list,
+                 d->cur, d->cellof};
+  for (int q = 0; q < 8; q++)
+    if (b[q])
+      clReleaseMemObject(b[q]);
+  free(d->at[0]);
+  free(d->at[1]);
+  free(d->hvert);
+  free(d->hstart);
+  free(d->hlist);
+  free(d->tri);
+  free(d);
+}
