@@ -292,3 +292,23 @@ int cli_frames_parse(const char *prog, const char *usage, int argc,
     rc = cli_bad(prog, "-o %s: %s", a->dir, strerror(errno));
   return rc;
 }
+
+int cli_frames_sim(const char *prog, const msocl_model *m,
+                   const struct cli_frames *a, msocl_runtime **rt,
+                   msocl_sim **s, int *per_frame, float *dt)
+{
+  int rc = msocl_safe_dt(m, MSOCL_SYMPLECTIC_EULER, dt);
+  if (rc != MSOCL_OK)
+    return cli_fail(prog, "stable step", rc);
+  *dt *= 0.5f;
+  *per_frame = (int)ceil(1.0 / (a->fps * (double)*dt));
+  *dt = (float)(1.0 / (a->fps * (double)*per_frame));
+  if ((rc = msocl_runtime_create(rt, a->spec)) != MSOCL_OK)
+    return cli_fail(prog, "choosing a device", rc);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = *dt;
+  if ((rc = msocl_sim_create(s, *rt, m, &o)) != MSOCL_OK)
+    return cli_fail(prog, "creating the simulation", rc);
+  return 0;
+}

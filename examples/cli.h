@@ -98,5 +98,11 @@ struct cli_frames {
 };
 int cli_frames_parse(const char *prog, const char *usage, int argc,
                      char **argv, struct cli_frames *a, int *done);
+/* Their simulation of m on a->spec's device: symplectic Euler at half
+ * msocl_safe_dt, shortened to a whole number of steps a frame (*per_frame,
+ * *dt). 0, or 1 after cli_fail's message. */
+int cli_frames_sim(const char *prog, const msocl_model *m,
+                   const struct cli_frames *a, msocl_runtime **rt,
+                   msocl_sim **s, int *per_frame, float *dt);
 
 #endif /* CLI_H */

@@ -80,20 +80,11 @@ int main(int argc, char **argv)
   if (!m)
     return cli_fail(PROG, "building the flag", MSOCL_ERR_BAD_VALUE);
   float dt = 0.0f;
-  if ((rc = msocl_safe_dt(m, MSOCL_SYMPLECTIC_EULER, &dt)) != MSOCL_OK)
-    return cli_fail(PROG, "stable step", rc);
-  dt *= 0.5f;
-  const int per_frame = (int)ceil(1.0 / (a.fps * (double)dt));
-  dt = (float)(1.0 / (a.fps * (double)per_frame));
+  int per_frame = 0;
   msocl_runtime *rt = NULL;
-  if ((rc = msocl_runtime_create(&rt, a.spec)) != MSOCL_OK)
-    return cli_fail(PROG, "choosing a device", rc);
-  msocl_sim_options o;
-  msocl_sim_options_init(&o);
-  o.dt = dt;
   msocl_sim *s = NULL;
-  if ((rc = msocl_sim_create(&s, rt, m, &o)) != MSOCL_OK)
-    return cli_fail(PROG, "creating the simulation", rc);
+  if (cli_frames_sim(PROG, m, &a, &rt, &s, &per_frame, &dt))
+    return 1;
   const int n = nu * a.n, frames = (int)ceil(a.seconds * a.fps);
   int ntri = 0;
   const int *tri = NULL;
