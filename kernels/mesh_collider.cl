@@ -274,4 +274,177 @@ __kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
   }
 }
 
+/* The grid, built on the device each call that moves the mesh
+ * (mesh_collider.c picks origin, cell size and dims): count the cells
+ * each triangle's swept bounds cover, an exclusive scan of the counts,
+ * fill, and each cell's list sorted by triangle, so that the lists are
+ * the host reference build's whatever order the atomics ran in. */
+
+/* The cells lo[c] .. hi[c] that triangle t's bounds over the call (its
+ * corners at va and vb, grown by reach) cover, clamped to the grid: the
+ * same float operations as the host's build. */
+static inline void msocl_mesh_span(__global const float *va,
+                                   __global const float *vb,
+                                   __global const int *tri, int t, int nv,
+                                   int nt, float4 origin, int4 g, float reach,
+                                   int4 *lo, int4 *hi)
+{
+  const int k0 = tri[t], k1 = tri[nt + t], k2 = tri[2 * nt + t];
+  float mn[3], mx[3];
+  for (int c = 0; c < 3; c++) {
+    const float x0 = va[c * nv + k0], x1 = va[c * nv + k1],
+                x2 = va[c * nv + k2], y0 = vb[c * nv + k0],
+                y1 = vb[c * nv + k1], y2 = vb[c * nv + k2];
+    mn[c] = fmin(fmin(fmin(x0, x1), fmin(x2, y0)), fmin(y1, y2));
+    mx[c] = fmax(fmax(fmax(x0, x1), fmax(x2, y0)), fmax(y1, y2));
+  }
+  const float3 o = origin.xyz;
+  const float3 a = floor(((float3)(mn[0], mn[1], mn[2]) - reach - o) *
+                         origin.w),
+               b = floor(((float3)(mx[0], mx[1], mx[2]) + reach - o) *
+                         origin.w);
+  const int4 top = g - 1;
+  *lo = clamp((int4)(convert_int3(a), 0), (int4)(0), top);
+  *hi = clamp((int4)(convert_int3(b), 0), (int4)(0), top);
+}
+
+/* Per triangle (a work-item each, those past nt idle): count[c] + 1 for
+ * each cell c it covers. */
+__kernel void msocl_mesh_count(__global const float *va,
+                               __global const float *vb,
+                               __global const int *tri,
+                               volatile __global int *count, float4 origin,
+                               int4 g, float reach, int nv, int nt)
+{
+  const int t = get_global_id(0);
+  if (t >= nt)
+    return;
+  int4 lo, hi;
+  msocl_mesh_span(va, vb, tri, t, nv, nt, origin, g, reach, &lo, &hi);
+  for (int z = lo.z; z <= hi.z; z++)
+    for (int y = lo.y; y <= hi.y; y++)
+      for (int x = lo.x; x <= hi.x; x++)
+        atomic_inc(&count[(z * g.y + y) * g.x + x]);
+}
+
+/* Per triangle: itself into each cell it covers, at start[c] plus the
+ * cell's count so far (count zeroed again before). The triangles run in
+ * reverse so that, where a device runs the atomics in order, a list the
+ * sort left unsorted shows in the tests. */
+__kernel void msocl_mesh_fill(__global const float *va,
+                              __global const float *vb,
+                              __global const int *tri,
+                              volatile __global int *count,
+                              __global const int *start,
+                              __global int *list, float4 origin, int4 g,
+                              float reach, int nv, int nt)
+{
+  const int t = nt - 1 - (int)get_global_id(0);
+  if (t < 0)
+    return;
+  int4 lo, hi;
+  msocl_mesh_span(va, vb, tri, t, nv, nt, origin, g, reach, &lo, &hi);
+  for (int z = lo.z; z <= hi.z; z++)
+    for (int y = lo.y; y <= hi.y; y++)
+      for (int x = lo.x; x <= hi.x; x++) {
+        const int c = (z * g.y + y) * g.x + x;
+        list[start[c] + atomic_inc(&count[c])] = t;
+      }
+}
+
+/* The scan, first: sums[i] = the counts of cells [i chunk, (i + 1)
+ * chunk) (a work-item a chunk, those past the cells idle). */
+__kernel void msocl_mesh_scan_sums(__global const int *count,
+                                   __global int *sums, int n, int chunk)
+{
+  const int i = get_global_id(0), j0 = i * chunk;
+  if (j0 >= n)
+    return;
+  const int j1 = min(n, j0 + chunk);
+  int s = 0;
+  for (int j = j0; j < j1; j++)
+    s += count[j];
+  sums[i] = s;
+}
+
+/* Then one work-item: the m chunks' sums scanned exclusively in place. */
+__kernel void msocl_mesh_scan_top(__global int *sums, int m)
+{
+  if (get_global_id(0) != 0)
+    return;
+  int run = 0;
+  for (int i = 0; i < m; i++) {
+    const int s = sums[i];
+    sums[i] = run;
+    run += s;
+  }
+}
+
+/* Then per chunk: start[j] = the counts before cell j, and start[n] the
+ * total. */
+__kernel void msocl_mesh_scan_out(__global const int *count,
+                                  __global const int *sums,
+                                  __global int *start, int n, int chunk)
+{
+  const int i = get_global_id(0), j0 = i * chunk;
+  if (j0 >= n)
+    return;
+  const int j1 = min(n, j0 + chunk);
+  int run = sums[i];
+  for (int j = j0; j < j1; j++) {
+    start[j] = run;
+    run += count[j];
+  }
+  if (j1 == n)
+    start[n] = run;
+}
+
+/* Heap sort's sift down of l[root] within l[0 .. n). */
+static inline void msocl_mesh_sift(__global int *l, int root, int n)
+{
+  for (;;) {
+    int c = 2 * root + 1;
+    if (c >= n)
+      return;
+    if (c + 1 < n && l[c + 1] > l[c])
+      c++;
+    if (l[root] >= l[c])
+      return;
+    const int t = l[root];
+    l[root] = l[c];
+    l[c] = t;
+    root = c;
+  }
+}
+
+/* Per cell: its list in ascending triangle order (insertion sort for the
+ * short lists most cells have, heap sort past that). */
+__kernel void msocl_mesh_sort(__global const int *start, __global int *list,
+                              int ncell)
+{
+  const int c = get_global_id(0);
+  if (c >= ncell)
+    return;
+  __global int *l = list + start[c];
+  const int n = start[c + 1] - start[c];
+  if (n <= 32) {
+    for (int i = 1; i < n; i++) {
+      const int t = l[i];
+      int j = i;
+      for (; j > 0 && l[j - 1] > t; j--)
+        l[j] = l[j - 1];
+      l[j] = t;
+    }
+    return;
+  }
+  for (int i = n / 2 - 1; i >= 0; i--)
+    msocl_mesh_sift(l, i, n);
+  for (int e = n - 1; e > 0; e--) {
+    const int t = l[0];
+    l[0] = l[e];
+    l[e] = t;
+    msocl_mesh_sift(l, 0, e);
+  }
+}
+
 #endif

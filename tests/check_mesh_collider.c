@@ -4,6 +4,7 @@
  * static icosphere holds a dropped cloth where the analytic sphere of the
  * same radius does; an open sheet keeps points on their side; bad input
  * refused. Distances are computed here in double from the exact mesh. */
+#include "engine/engine.h" /* msocl__mesh_host_grid: the reference grid */
 #include "scenes.h"
 
 #include <check.h>
@@ -433,6 +434,71 @@ START_TEST(static_in_buffer)
 }
 END_TEST
 
+/* The icosphere of `level` swept through the hanging cloth at `speed`
+ * for `calls` calls, every call's positions into out (calls * 3 N N). */
+static void swept_run(int level, double speed, int calls, float *out)
+{
+  float *v, *now;
+  int *t, nt;
+  const double c[3] = {0.0, -0.55, -0.3};
+  const int nv = scene_icosphere(level, 0.2, c, &v, &t, &nt);
+  msocl_model *m = hanging();
+  ck_assert_int_eq(msocl_model_add_mesh_collider(m, v, nv, t, nt,
+                                                 (float)THICK, 0.3f),
+                   MSOCL_OK);
+  float dt;
+  msocl_sim *s = sim_of(m, &dt);
+  now = malloc(3 * (size_t)nv * sizeof *now);
+  for (int k = 1; k <= calls; k++) {
+    shifted(v, nv, speed * dt * SUB * k, now);
+    ck_assert_int_eq(msocl_sim_set_mesh_collider_vertices(s, 0, now),
+                     MSOCL_OK);
+    ck_assert_msg(msocl_sim_step(s, SUB) == MSOCL_OK, "%s",
+                  msocl_last_error());
+    ck_assert_int_eq(
+        msocl_sim_read_positions(s, out + (size_t)(k - 1) * 3 * N * N),
+        MSOCL_OK);
+  }
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+  free(now);
+  free(v);
+  free(t);
+}
+
+/* The grid built on the device holds the host's reference lists (mode 2
+ * fails a call where they differ) and gives bitwise the host build's
+ * cloth, call after call of a moving mesh: at 5 m/s, and a
+ * finer sphere at 40 m/s, whose long reach puts dozens of triangles in a
+ * cell (the device's sort past its short lists). */
+START_TEST(device_grid_is_host_grid)
+{
+  static const struct { int level; double speed; int calls; } run[2] = {
+      {3, 5.0, 60}, {4, 40.0, 12}};
+  for (int r = 0; r < 2; r++) {
+    const size_t n = (size_t)run[r].calls * 3 * N * N;
+    float *host = malloc(n * sizeof *host), *dev = malloc(n * sizeof *dev);
+    msocl__mesh_host_grid(1);
+    swept_run(run[r].level, run[r].speed, run[r].calls, host);
+    msocl__mesh_host_grid(2);
+    swept_run(run[r].level, run[r].speed, run[r].calls, dev);
+    msocl__mesh_host_grid(0);
+    size_t moved = 0;
+    for (size_t q = 0; q < n; q++) {
+      ck_assert_msg(memcmp(host + q, dev + q, sizeof *host) == 0,
+                    "run %d: call %zu, point %zu, axis %zu: host grid %.9g, "
+                    "device grid %.9g", r, q / (3 * N * N) + 1,
+                    q % (3 * N * N) / 3, q % 3, host[q], dev[q]);
+      moved += q >= n - 3 * N * N && q % 3 == 2 && fabsf(dev[q]) > 1e-3f;
+    }
+    /* the sphere reached the cloth: some points pushed off z = 0 */
+    ck_assert_msg(moved > 20, "run %d: only %zu points pushed", r, moved);
+    free(host);
+    free(dev);
+  }
+}
+END_TEST
+
 START_TEST(bad_input)
 {
   const float v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
@@ -513,6 +579,7 @@ int main(void)
   tcase_add_test(tc, open_sheet_keeps_side);
   tcase_add_test(tc, static_and_disabled);
   tcase_add_test(tc, static_in_buffer);
+  tcase_add_test(tc, device_grid_is_host_grid);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }

@@ -1,9 +1,12 @@
 /* A mesh collider's device copy (kernels/mesh_collider.cl): its vertices
  * at the call's start and end as planes, its triangles with their rims,
- * and the uniform grid over the call's swept bounds, built on the host
- * once per call that moves it (a counting sort: two passes over the
- * triangles, O(triangles + cells)) and uploaded; each step only runs the
- * per-point pass, which interpolates the vertices itself. */
+ * and the uniform grid over the call's swept bounds, built once per call
+ * that moves it: the host picks origin, cell size and dims from the
+ * call's bounds (a pass over the triangles' corners), the device counts
+ * each triangle's cells, scans the counts, fills and sorts each cell's
+ * list (one small read of the total between); each step only runs the
+ * per-point pass, which interpolates the vertices itself. The host's
+ * counting sort is kept as the tests' reference (msocl__mesh_host_grid). */
 #include "config.h"
 #include "planes.h"
 
@@ -13,6 +16,13 @@
 #include <string.h>
 
 #define TRY MSOCL__TRY
+
+static int host_grid; /* tests: msocl__mesh_host_grid */
+
+void msocl__mesh_host_grid(int mode)
+{
+  host_grid = mode;
+}
 
 struct msocl__mesh_dev {
   int nv, nt;            /* vertices; triangles with an area */
@@ -32,6 +42,10 @@ struct msocl__mesh_dev {
   size_t hstart_cap, hlist_cap;
   cl_kernel k, place;    /* the pass; the triangles at a step's end */
   cl_kernel cells;       /* CPUs: each point's cell first, into cellof */
+  cl_kernel count, scan_sums, scan_top, scan_out, fill, sort; /* the grid */
+  cl_mem dcount, sums;   /* per cell; per chunk of cells */
+  size_t count_cap, sums_cap;
+  int host;              /* tests: msocl__mesh_host_grid's mode */
   cl_mem cellof;
   cl_mem cur;            /* ... there: 4 float4s a triangle */
   int placed;            /* cur holds a static mesh */
@@ -167,6 +181,7 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   *out = d;
   d->nv = c->nv;
   d->thick = c->thickness;
+  d->host = host_grid;
   d->friction = c->friction;
   const size_t nv3 = 3 * (size_t)c->nv;
   d->at[0] = malloc(nv3 * sizeof(float));
@@ -241,6 +256,17 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
     TRY(msocl__arg_mem(d->cells, 3, d->cellof));
     TRY(msocl__pl_shape(s, d->cells, 8, 1));
   }
+  cl_kernel *grid[6] = {&d->count, &d->scan_sums, &d->scan_top,
+                        &d->scan_out, &d->fill, &d->sort};
+  static const char *const gname[6] = {
+      "msocl_mesh_count", "msocl_mesh_scan_sums", "msocl_mesh_scan_top",
+      "msocl_mesh_scan_out", "msocl_mesh_fill", "msocl_mesh_sort"};
+  for (int q = 0; q < 6; q++) {
+    *grid[q] = clCreateKernel(s->prog, gname[q], &e);
+    if (e != CL_SUCCESS)
+      return msocl__fail(e, "clCreateKernel(%s): %s", gname[q],
+                         msocl_err_name(e));
+  }
   TRY(msocl__arg_mem(d->k, 3, s->pl_aux));
   TRY(msocl__arg_mem(d->k, 6, d->dtri));
   TRY(msocl__arg_mem(d->k, 7, d->drim));
@@ -290,15 +316,197 @@ static int grow(int **a, size_t *cap, size_t need)
   return MSOCL_OK;
 }
 
-/* The cells a bound [lo, hi] covers along axis c, clamped to the grid. */
-static inline void span(const struct msocl__mesh_dev *d, float h, int c, float lo,
-                 float hi, int *a, int *b)
+/* The cells a bound [lo, hi] covers along axis c, clamped to the grid
+ * (msocl_mesh_span's float operations). */
+static inline void span(const struct msocl__mesh_dev *d, int c, float lo,
+                        float hi, int *a, int *b)
 {
-  const float o = d->origin.s[c];
-  *a = (int)floorf((lo - o) / h);
-  *b = (int)floorf((hi - o) / h);
+  const float o = d->origin.s[c], w = d->origin.s[3];
+  *a = (int)floorf((lo - o) * w);
+  *b = (int)floorf((hi - o) * w);
   *a = *a < 0 ? 0 : *a >= d->g[c] ? d->g[c] - 1 : *a;
   *b = *b < 0 ? 0 : *b >= d->g[c] ? d->g[c] - 1 : *b;
+}
+
+/* The reference build on the host, a counting sort over the triangles'
+ * bounds box (6 floats each), into hstart and hlist (*total entries). */
+static int host_lists(struct msocl__mesh_dev *d, const float *box,
+                      size_t *total)
+{
+  const size_t ncell = (size_t)d->g[0] * d->g[1] * d->g[2];
+  int rc = grow(&d->hstart, &d->hstart_cap, ncell + 1);
+  int *start = d->hstart;
+  if (rc == MSOCL_OK)
+    memset(start, 0, (ncell + 1) * sizeof *start);
+  int a[3], b[3];
+  size_t sum = 0;
+  for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
+    for (int c = 0; c < 3; c++)
+      span(d, c, box[6 * t + c], box[6 * t + 3 + c], &a[c], &b[c]);
+    for (int z = a[2]; z <= b[2]; z++)
+      for (int y = a[1]; y <= b[1]; y++)
+        for (int x = a[0]; x <= b[0]; x++)
+          start[((size_t)z * d->g[1] + y) * d->g[0] + x + 1]++;
+  }
+  for (size_t q = 0; rc == MSOCL_OK && q < ncell; q++)
+    start[q + 1] += start[q];
+  if (rc == MSOCL_OK)
+    sum = (size_t)start[ncell];
+  int *fill = rc == MSOCL_OK ? malloc(ncell * sizeof *fill) : NULL;
+  if (rc == MSOCL_OK && !fill)
+    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
+  if (rc == MSOCL_OK)
+    rc = grow(&d->hlist, &d->hlist_cap, sum + 1);
+  int *list = d->hlist;
+  if (rc == MSOCL_OK)
+    memcpy(fill, start, ncell * sizeof *fill);
+  for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
+    for (int c = 0; c < 3; c++)
+      span(d, c, box[6 * t + c], box[6 * t + 3 + c], &a[c], &b[c]);
+    for (int z = a[2]; z <= b[2]; z++)
+      for (int y = a[1]; y <= b[1]; y++)
+        for (int x = a[0]; x <= b[0]; x++)
+          list[fill[((size_t)z * d->g[1] + y) * d->g[0] + x]++] = t;
+  }
+  free(fill);
+  *total = rc == MSOCL_OK ? sum : 0;
+  return rc;
+}
+
+/* The host's lists, uploaded. */
+static int build_host(msocl__engine *s, struct msocl__mesh_dev *d,
+                      const float *box)
+{
+  const size_t ncell = (size_t)d->g[0] * d->g[1] * d->g[2];
+  size_t total;
+  int rc = host_lists(d, box, &total);
+  const int *start = d->hstart, *list = d->hlist;
+  if (rc == MSOCL_OK)
+    rc = room(s, &d->start, &d->start_cap, ncell + 1);
+  if (rc == MSOCL_OK)
+    rc = room(s, &d->list, &d->list_cap, total + 1);
+  cl_int e = CL_SUCCESS;
+  if (rc == MSOCL_OK)
+    e = clEnqueueWriteBuffer(s->dev->queue, d->start, CL_FALSE, 0,
+                             (ncell + 1) * sizeof *start, start, 0, NULL, NULL);
+  if (rc == MSOCL_OK && e == CL_SUCCESS)
+    e = clEnqueueWriteBuffer(s->dev->queue, d->list, CL_FALSE, 0,
+                             (total + 1) * sizeof *list, list, 0, NULL, NULL);
+  if (rc == MSOCL_OK && e != CL_SUCCESS)
+    rc = msocl__fail(e, "mesh collider's grid: %s", msocl_err_name(e));
+  return rc;
+}
+
+static int launch(msocl__engine *s, cl_kernel k, size_t n)
+{
+  if (n == 0)
+    return MSOCL_OK;
+  const size_t global = (n + 63) / 64 * 64;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &global, NULL,
+                                   0, NULL, NULL));
+  return MSOCL_OK;
+}
+
+/* The per-triangle kernels' common arguments, from 0: the call's start
+ * and end vertices, the triangles, the counts. */
+static int span_args(struct msocl__mesh_dev *d, cl_kernel k, float reach,
+                     int at)
+{
+  const cl_int4 g = {{d->g[0], d->g[1], d->g[2], 0}};
+  TRY(msocl__arg_mem(k, 0, d->vert[d->a]));
+  TRY(msocl__arg_mem(k, 1, d->vert[d->moving ? 1 - d->a : d->a]));
+  TRY(msocl__arg_mem(k, 2, d->dtri));
+  TRY(msocl__arg_mem(k, 3, d->dcount));
+  MSOCL__CL(clSetKernelArg(k, at, sizeof d->origin, &d->origin));
+  MSOCL__CL(clSetKernelArg(k, at + 1, sizeof g, &g));
+  TRY(msocl__arg_float(k, at + 2, reach));
+  TRY(msocl__arg_int(k, at + 3, d->nv));
+  return msocl__arg_int(k, at + 4, d->nt);
+}
+
+/* The build on the device: counts, their scan into start, the total read
+ * back to size the list, the fill, each cell's list sorted. */
+static int build_dev(msocl__engine *s, struct msocl__mesh_dev *d, float reach)
+{
+  const size_t ncell = (size_t)d->g[0] * d->g[1] * d->g[2];
+  /* chunks of about sqrt(cells): the top level runs on one work-item */
+  int chunk = (int)ceil(sqrt((double)ncell));
+  chunk = chunk < 64 ? 64 : chunk;
+  const size_t nchunk = (ncell + chunk - 1) / chunk;
+  TRY(room(s, &d->dcount, &d->count_cap, ncell));
+  TRY(room(s, &d->sums, &d->sums_cap, nchunk));
+  TRY(room(s, &d->start, &d->start_cap, ncell + 1));
+  const cl_int zero = 0;
+  cl_command_queue q = s->dev->queue;
+  MSOCL__CL(clEnqueueFillBuffer(q, d->dcount, &zero, sizeof zero, 0,
+                                ncell * sizeof zero, 0, NULL, NULL));
+  TRY(span_args(d, d->count, reach, 4));
+  TRY(launch(s, d->count, (size_t)d->nt));
+  TRY(msocl__arg_mem(d->scan_sums, 0, d->dcount));
+  TRY(msocl__arg_mem(d->scan_sums, 1, d->sums));
+  TRY(msocl__arg_int(d->scan_sums, 2, (int)ncell));
+  TRY(msocl__arg_int(d->scan_sums, 3, chunk));
+  TRY(launch(s, d->scan_sums, nchunk));
+  TRY(msocl__arg_mem(d->scan_top, 0, d->sums));
+  TRY(msocl__arg_int(d->scan_top, 1, (int)nchunk));
+  const size_t one = 1;
+  MSOCL__CL(clEnqueueNDRangeKernel(q, d->scan_top, 1, NULL, &one, NULL, 0,
+                                   NULL, NULL));
+  TRY(msocl__arg_mem(d->scan_out, 0, d->dcount));
+  TRY(msocl__arg_mem(d->scan_out, 1, d->sums));
+  TRY(msocl__arg_mem(d->scan_out, 2, d->start));
+  TRY(msocl__arg_int(d->scan_out, 3, (int)ncell));
+  TRY(msocl__arg_int(d->scan_out, 4, chunk));
+  TRY(launch(s, d->scan_out, nchunk));
+  cl_int total = 0;
+  MSOCL__CL(clEnqueueReadBuffer(q, d->start, CL_TRUE,
+                                ncell * sizeof total, sizeof total, &total, 0,
+                                NULL, NULL));
+  TRY(room(s, &d->list, &d->list_cap, (size_t)total + 1));
+  MSOCL__CL(clEnqueueFillBuffer(q, d->dcount, &zero, sizeof zero, 0,
+                                ncell * sizeof zero, 0, NULL, NULL));
+  TRY(span_args(d, d->fill, reach, 6));
+  TRY(msocl__arg_mem(d->fill, 4, d->start));
+  TRY(msocl__arg_mem(d->fill, 5, d->list));
+  TRY(launch(s, d->fill, (size_t)d->nt));
+  TRY(msocl__arg_mem(d->sort, 0, d->start));
+  TRY(msocl__arg_mem(d->sort, 1, d->list));
+  TRY(msocl__arg_int(d->sort, 2, (int)ncell));
+  return launch(s, d->sort, ncell);
+}
+
+/* Tests: the device's lists read back against the host's, bitwise. */
+static int verify(msocl__engine *s, struct msocl__mesh_dev *d,
+                  const float *box)
+{
+  const size_t ncell = (size_t)d->g[0] * d->g[1] * d->g[2];
+  size_t total;
+  TRY(host_lists(d, box, &total));
+  int *got = malloc((ncell + 1 + total) * sizeof *got);
+  if (!got)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid check");
+  cl_int e = clEnqueueReadBuffer(s->dev->queue, d->start, CL_TRUE, 0,
+                                 (ncell + 1) * sizeof *got, got, 0, NULL,
+                                 NULL);
+  if (e == CL_SUCCESS && total > 0)
+    e = clEnqueueReadBuffer(s->dev->queue, d->list, CL_TRUE, 0,
+                            total * sizeof *got, got + ncell + 1, 0, NULL,
+                            NULL);
+  int rc = e == CL_SUCCESS ? MSOCL_OK
+                           : msocl__fail(e, "mesh collider's grid check: %s",
+                                         msocl_err_name(e));
+  for (size_t q = 0; rc == MSOCL_OK && q <= ncell; q++)
+    if (got[q] != d->hstart[q])
+      rc = msocl__fail(MSOCL_ERR_INVALID_ARG,
+                       "device grid: cell %zu starts at %d, host's at %d", q,
+                       got[q], d->hstart[q]);
+  for (size_t q = 0; rc == MSOCL_OK && q < total; q++)
+    if (got[ncell + 1 + q] != d->hlist[q])
+      rc = msocl__fail(MSOCL_ERR_INVALID_ARG,
+                       "device grid: entry %zu is triangle %d, host's %d", q,
+                       got[ncell + 1 + q], d->hlist[q]);
+  free(got);
+  return rc;
 }
 
 /* Each triangle's bounds over the call, from start to end, grown by the
@@ -311,14 +519,14 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
 {
   const float *p0 = d->at[d->a], *p1 = d->at[1 - d->a];
   const float reach = (d->thick + step) * 1.001f;
-  float *box = malloc(6 * (size_t)d->nt * sizeof *box);
-  if (!box)
+  float *box = d->host ? malloc(6 * (size_t)d->nt * sizeof *box) : NULL;
+  if (d->host && !box)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
   float lo[3] = {INFINITY, INFINITY, INFINITY},
         hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   double size = 0;
   for (int t = 0; t < d->nt; t++) {
-    float *b = box + 6 * t;
+    float b[6];
     for (int c = 0; c < 3; c++) {
       b[c] = INFINITY;
       b[3 + c] = -INFINITY;
@@ -333,6 +541,8 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
       lo[c] = fminf(lo[c], b[c]);
       hi[c] = fmaxf(hi[c], b[3 + c]);
     }
+    if (box)
+      memcpy(box + 6 * t, b, sizeof b);
   }
   /* cells about as wide as a triangle's swept bounds, or the reach if
    * that is more: a point near the surface then looks at the triangles
@@ -354,57 +564,10 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
     d->g[c] = (int)floor((double)(hi[c] - lo[c]) / h) + 1;
   }
   d->origin.s[3] = (float)(1.0 / h);
-  const float hf = (float)h;
-  const size_t ncell = (size_t)d->g[0] * d->g[1] * d->g[2];
-  int rc = grow(&d->hstart, &d->hstart_cap, ncell + 1);
-  int *start = d->hstart;
-  if (rc == MSOCL_OK)
-    memset(start, 0, (ncell + 1) * sizeof *start);
-  int a[3], b[3];
-  size_t total = 0;
-  for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
-    for (int c = 0; c < 3; c++)
-      span(d, hf, c, box[6 * t + c], box[6 * t + 3 + c], &a[c], &b[c]);
-    for (int z = a[2]; z <= b[2]; z++)
-      for (int y = a[1]; y <= b[1]; y++)
-        for (int x = a[0]; x <= b[0]; x++)
-          start[((size_t)z * d->g[1] + y) * d->g[0] + x + 1]++;
-  }
-  for (size_t q = 0; rc == MSOCL_OK && q < ncell; q++)
-    start[q + 1] += start[q];
-  if (rc == MSOCL_OK)
-    total = (size_t)start[ncell];
-  int *fill = rc == MSOCL_OK ? malloc(ncell * sizeof *fill) : NULL;
-  if (rc == MSOCL_OK && !fill)
-    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
-  if (rc == MSOCL_OK)
-    rc = grow(&d->hlist, &d->hlist_cap, total + 1);
-  int *list = d->hlist;
-  if (rc == MSOCL_OK)
-    memcpy(fill, start, ncell * sizeof *fill);
-  for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
-    for (int c = 0; c < 3; c++)
-      span(d, hf, c, box[6 * t + c], box[6 * t + 3 + c], &a[c], &b[c]);
-    for (int z = a[2]; z <= b[2]; z++)
-      for (int y = a[1]; y <= b[1]; y++)
-        for (int x = a[0]; x <= b[0]; x++)
-          list[fill[((size_t)z * d->g[1] + y) * d->g[0] + x]++] = t;
-  }
-  if (rc == MSOCL_OK)
-    rc = room(s, &d->start, &d->start_cap, ncell + 1);
-  if (rc == MSOCL_OK)
-    rc = room(s, &d->list, &d->list_cap, total + 1);
-  cl_int e = CL_SUCCESS;
-  if (rc == MSOCL_OK)
-    e = clEnqueueWriteBuffer(s->dev->queue, d->start, CL_FALSE, 0,
-                             (ncell + 1) * sizeof *start, start, 0, NULL, NULL);
-  if (rc == MSOCL_OK && e == CL_SUCCESS)
-    e = clEnqueueWriteBuffer(s->dev->queue, d->list, CL_FALSE, 0,
-                             (total + 1) * sizeof *list, list, 0, NULL, NULL);
-  if (rc == MSOCL_OK && e != CL_SUCCESS)
-    rc = msocl__fail(e, "mesh collider's grid: %s", msocl_err_name(e));
+  int rc = d->host == 1 ? build_host(s, d, box) : build_dev(s, d, reach);
+  if (rc == MSOCL_OK && d->host == 2)
+    rc = verify(s, d, box);
   free(box);
-  free(fill);
   TRY(rc);
   d->built = 1;
   TRY(msocl__arg_float(d->k, 24, reach * reach));
@@ -511,11 +674,14 @@ void msocl__mesh_free(struct msocl__mesh_dev *d)
     clReleaseKernel(d->k);
   if (d->place)
     clReleaseKernel(d->place);
-  if (d->cells)
-    clReleaseKernel(d->cells);
-  cl_mem b[8] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start, d->list,
-                 d->cur, d->cellof};
-  for (int q = 0; q < 8; q++)
+  cl_kernel k[7] = {d->cells, d->count, d->scan_sums, d->scan_top,
+                    d->scan_out, d->fill, d->sort};
+  for (int q = 0; q < 7; q++)
+    if (k[q])
+      clReleaseKernel(k[q]);
+  cl_mem b[10] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start,
+                  d->list, d->cur, d->cellof, d->dcount, d->sums};
+  for (int q = 0; q < 10; q++)
     if (b[q])
       clReleaseMemObject(b[q]);
   free(d->at[0]);
