@@ -308,23 +308,25 @@ static inline void msocl_mesh_span(__global const float *va,
   *hi = clamp((int4)(convert_int3(b), 0), (int4)(0), top);
 }
 
-/* Per triangle (a work-item each, those past nt idle): count[c] + 1 for
- * each cell c it covers. */
+/* Per triangle: count[c] + 1 for each cell c it covers. This kernel, the
+ * fill and the sort take `run` items a work-item (CPUs: a work-item costs
+ * more to schedule than an item takes; GPUs: 1). */
 __kernel void msocl_mesh_count(__global const float *va,
                                __global const float *vb,
                                __global const int *tri,
                                volatile __global int *count, float4 origin,
-                               int4 g, float reach, int nv, int nt)
+                               int4 g, float reach, int nv, int nt,
+                               int run)
 {
-  const int t = get_global_id(0);
-  if (t >= nt)
-    return;
-  int4 lo, hi;
-  msocl_mesh_span(va, vb, tri, t, nv, nt, origin, g, reach, &lo, &hi);
-  for (int z = lo.z; z <= hi.z; z++)
-    for (int y = lo.y; y <= hi.y; y++)
-      for (int x = lo.x; x <= hi.x; x++)
-        atomic_inc(&count[(z * g.y + y) * g.x + x]);
+  const int t0 = get_global_id(0) * run, t1 = min(nt, t0 + run);
+  for (int t = t0; t < t1; t++) {
+    int4 lo, hi;
+    msocl_mesh_span(va, vb, tri, t, nv, nt, origin, g, reach, &lo, &hi);
+    for (int z = lo.z; z <= hi.z; z++)
+      for (int y = lo.y; y <= hi.y; y++)
+        for (int x = lo.x; x <= hi.x; x++)
+          atomic_inc(&count[(z * g.y + y) * g.x + x]);
+  }
 }
 
 /* Per triangle: itself into each cell it covers, at start[c] plus the
@@ -337,19 +339,20 @@ __kernel void msocl_mesh_fill(__global const float *va,
                               volatile __global int *count,
                               __global const int *start,
                               __global int *list, float4 origin, int4 g,
-                              float reach, int nv, int nt)
+                              float reach, int nv, int nt, int run)
 {
-  const int t = nt - 1 - (int)get_global_id(0);
-  if (t < 0)
-    return;
-  int4 lo, hi;
-  msocl_mesh_span(va, vb, tri, t, nv, nt, origin, g, reach, &lo, &hi);
-  for (int z = lo.z; z <= hi.z; z++)
-    for (int y = lo.y; y <= hi.y; y++)
-      for (int x = lo.x; x <= hi.x; x++) {
-        const int c = (z * g.y + y) * g.x + x;
-        list[start[c] + atomic_inc(&count[c])] = t;
-      }
+  const int u0 = get_global_id(0) * run, u1 = min(nt, u0 + run);
+  for (int u = u0; u < u1; u++) {
+    const int t = nt - 1 - u;
+    int4 lo, hi;
+    msocl_mesh_span(va, vb, tri, t, nv, nt, origin, g, reach, &lo, &hi);
+    for (int z = lo.z; z <= hi.z; z++)
+      for (int y = lo.y; y <= hi.y; y++)
+        for (int x = lo.x; x <= hi.x; x++) {
+          const int c = (z * g.y + y) * g.x + x;
+          list[start[c] + atomic_inc(&count[c])] = t;
+        }
+  }
 }
 
 /* The scan, first: sums[i] = the counts of cells [i chunk, (i + 1)
@@ -417,16 +420,10 @@ static inline void msocl_mesh_sift(__global int *l, int root, int n)
   }
 }
 
-/* Per cell: its list in ascending triangle order (insertion sort for the
+/* A cell's list of n in ascending triangle order (insertion sort for the
  * short lists most cells have, heap sort past that). */
-__kernel void msocl_mesh_sort(__global const int *start, __global int *list,
-                              int ncell)
+static inline void msocl_mesh_sort_cell(__global int *l, int n)
 {
-  const int c = get_global_id(0);
-  if (c >= ncell)
-    return;
-  __global int *l = list + start[c];
-  const int n = start[c + 1] - start[c];
   if (n <= 32) {
     for (int i = 1; i < n; i++) {
       const int t = l[i];
@@ -445,6 +442,15 @@ __kernel void msocl_mesh_sort(__global const int *start, __global int *list,
     l[e] = t;
     msocl_mesh_sift(l, 0, e);
   }
+}
+
+/* Per cell: its list sorted. */
+__kernel void msocl_mesh_sort(__global const int *start, __global int *list,
+                              int ncell, int run)
+{
+  const int c0 = get_global_id(0) * run, c1 = min(ncell, c0 + run);
+  for (int c = c0; c < c1; c++)
+    msocl_mesh_sort_cell(list + start[c], start[c + 1] - start[c]);
 }
 
 #endif

@@ -397,13 +397,18 @@ static int build_host(msocl__engine *s, struct msocl__mesh_dev *d,
   return rc;
 }
 
-static int launch(msocl__engine *s, cl_kernel k, size_t n)
+/* Kernel k over n items, `run` a work-item (its last argument, at). */
+static int launch(msocl__engine *s, cl_kernel k, size_t n, int run, int at)
 {
   if (n == 0)
     return MSOCL_OK;
-  const size_t global = (n + 63) / 64 * 64;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &global, NULL,
-                                   0, NULL, NULL));
+  if (at >= 0)
+    TRY(msocl__arg_int(k, (cl_uint)at, run));
+  const size_t items = (n + run - 1) / run;
+  /* runs: a group each, spread over the cores */
+  const size_t global = run > 1 ? items : (items + 63) / 64 * 64, one = 1;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &global,
+                                   run > 1 ? &one : NULL, 0, NULL, NULL));
   return MSOCL_OK;
 }
 
@@ -441,12 +446,13 @@ static int build_dev(msocl__engine *s, struct msocl__mesh_dev *d, float reach)
   MSOCL__CL(clEnqueueFillBuffer(q, d->dcount, &zero, sizeof zero, 0,
                                 ncell * sizeof zero, 0, NULL, NULL));
   TRY(span_args(d, d->count, reach, 4));
-  TRY(launch(s, d->count, (size_t)d->nt));
+  const int run = d->rows ? 256 : 1; /* items a work-item */
+  TRY(launch(s, d->count, (size_t)d->nt, run, 9));
   TRY(msocl__arg_mem(d->scan_sums, 0, d->dcount));
   TRY(msocl__arg_mem(d->scan_sums, 1, d->sums));
   TRY(msocl__arg_int(d->scan_sums, 2, (int)ncell));
   TRY(msocl__arg_int(d->scan_sums, 3, chunk));
-  TRY(launch(s, d->scan_sums, nchunk));
+  TRY(launch(s, d->scan_sums, nchunk, 1, -1));
   TRY(msocl__arg_mem(d->scan_top, 0, d->sums));
   TRY(msocl__arg_int(d->scan_top, 1, (int)nchunk));
   const size_t one = 1;
@@ -457,7 +463,7 @@ static int build_dev(msocl__engine *s, struct msocl__mesh_dev *d, float reach)
   TRY(msocl__arg_mem(d->scan_out, 2, d->start));
   TRY(msocl__arg_int(d->scan_out, 3, (int)ncell));
   TRY(msocl__arg_int(d->scan_out, 4, chunk));
-  TRY(launch(s, d->scan_out, nchunk));
+  TRY(launch(s, d->scan_out, nchunk, 1, -1));
   cl_int total = 0;
   MSOCL__CL(clEnqueueReadBuffer(q, d->start, CL_TRUE,
                                 ncell * sizeof total, sizeof total, &total, 0,
@@ -468,11 +474,11 @@ static int build_dev(msocl__engine *s, struct msocl__mesh_dev *d, float reach)
   TRY(span_args(d, d->fill, reach, 6));
   TRY(msocl__arg_mem(d->fill, 4, d->start));
   TRY(msocl__arg_mem(d->fill, 5, d->list));
-  TRY(launch(s, d->fill, (size_t)d->nt));
+  TRY(launch(s, d->fill, (size_t)d->nt, run, 11));
   TRY(msocl__arg_mem(d->sort, 0, d->start));
   TRY(msocl__arg_mem(d->sort, 1, d->list));
   TRY(msocl__arg_int(d->sort, 2, (int)ncell));
-  return launch(s, d->sort, ncell);
+  return launch(s, d->sort, ncell, run, 3);
 }
 
 /* Tests: the device's lists read back against the host's, bitwise. */
