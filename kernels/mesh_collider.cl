@@ -303,7 +303,7 @@ static inline void msocl_mesh_span(__global const float *va,
                          origin.w),
                b = floor(((float3)(mx[0], mx[1], mx[2]) + reach - o) *
                          origin.w);
-  const int4 top = g - 1;
+  const int4 top = (int4)(g.xyz - 1, 0); /* w: unused, kept in range */
   *lo = clamp((int4)(convert_int3(a), 0), (int4)(0), top);
   *hi = clamp((int4)(convert_int3(b), 0), (int4)(0), top);
 }
