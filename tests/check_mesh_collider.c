@@ -482,7 +482,7 @@ START_TEST(device_grid_is_host_grid)
     swept_run(run[r].level, run[r].speed, run[r].calls, host);
     msocl__mesh_host_grid(2);
     swept_run(run[r].level, run[r].speed, run[r].calls, dev);
-    msocl__mesh_host_grid(0);
+    msocl__mesh_host_grid(-1);
     size_t moved = 0;
     for (size_t q = 0; q < n; q++) {
       ck_assert_msg(memcmp(host + q, dev + q, sizeof *host) == 0,

@@ -228,9 +228,10 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
 void msocl__mesh_end(struct msocl__mesh_dev *d);
 void msocl__mesh_free(struct msocl__mesh_dev *d);
 /* Tests only: mesh colliders created from now on build their grid on the
- * device (mode 0, the default), on the host (1: the reference), or on the
- * device checked against the host's lists, failing the call that builds
- * it where they differ (2). */
+ * device (mode 0), on the host (1: the reference), on the device checked
+ * against the host's lists, failing the call that builds it where they
+ * differ (2), or (-1, the default) on the host for CPU devices and on the
+ * device for others. */
 void msocl__mesh_host_grid(int mode);
 /* Energy of the engine's points (waits for the device). */
 int msocl__energy(msocl__engine *s, msocl_energy *e);
