@@ -1,6 +1,6 @@
 /* Symplectic Euler on a cloth grid in planes, one sweep a step, each
  * spring computed once (lib/engine/planes_rows.c takes it where it applies: a
- * CPU device, no dashpots, no strain limit, rows at least MSOCL_ROWS_W
+ * CPU device, no strain limit, rows at least MSOCL_ROWS_W
  * points wide). Needs common.cl and planes.cl before it (MSOCL_DOT3,
  * MSOCL_PLANES_COL), and keeps planes.cl's layout: point (x, y) at
  * (y + 2) * pitch + x + 2 of each plane, aux the inverse masses then
@@ -16,7 +16,9 @@
  * backward spring is a forward one negated, bit for bit, as its d is -d
  * and its length the same - and moves the point, both passes at once as
  * in msocl_planes_fused: its velocity in place (no other point reads
- * it), its position into the other plane set.
+ * it) or, with wind or dashpots, which read the neighbours' velocities
+ * before the step, into the other plane set; its position into the
+ * other plane set.
  *
  * The position planes' padding holds NaN (engine/planes_rows.c): a missing
  * neighbour's length is NaN, `len > 0` fails and its term is the zero
@@ -297,9 +299,10 @@ msocl_rows_sum(__global const float *r0,
 }
 
 /* Row y's kick and drift (msocl_planes_fused) from ring rows r0, r1, r2,
- * the velocities in place (only the point reads its own). The last
- * vector moves back to end at the row's last point, over points the one
- * before it has updated: its velocities are read before that. */
+ * the velocities into v_out (v itself without wind or dashpots: only the
+ * point reads its own). The last vector moves back to end at the row's
+ * last point, over points the one before it has updated: its velocities
+ * are read before that. */
 static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
                             __global const float *v, __global float *v_out,
                             __global float *p_out,
