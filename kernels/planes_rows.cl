@@ -1,6 +1,6 @@
 /* Symplectic Euler on a cloth grid in planes, one sweep a step, each
  * spring computed once (lib/engine/planes_rows.c takes it where it applies: a
- * CPU device, no dashpots, no strain limit, rows at least MSOCL_ROWS_W
+ * CPU device, no strain limit, rows at least MSOCL_ROWS_W
  * points wide). Needs common.cl and planes.cl before it (MSOCL_DOT3,
  * MSOCL_PLANES_COL), and keeps planes.cl's layout: point (x, y) at
  * (y + 2) * pitch + x + 2 of each plane, aux the inverse masses then
@@ -16,7 +16,9 @@
  * backward spring is a forward one negated, bit for bit, as its d is -d
  * and its length the same - and moves the point, both passes at once as
  * in msocl_planes_fused: its velocity in place (no other point reads
- * it), its position into the other plane set.
+ * it) or, with wind or dashpots, which read the neighbours' velocities
+ * before the step, into the other plane set; its position into the
+ * other plane set.
  *
  * The position planes' padding holds NaN (engine/planes_rows.c): a missing
  * neighbour's length is NaN, `len > 0` fails and its term is the zero
@@ -24,7 +26,7 @@
  * order and arithmetic as msocl_planes_kick, so the result is bitwise
  * GRID's (tests/check_planes.c). */
 #if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID) && \
-    !defined(MSOCL_GRID_3D) && !defined(MSOCL_DAMPING)
+    !defined(MSOCL_GRID_3D)
 
 #ifndef MSOCL_ROWS_W
 #define MSOCL_ROWS_W 16
@@ -48,10 +50,18 @@ typedef int8 msocl_rows_m;
 #define MSOCL_ROWS_SEL(c, a, b)                                               \
   select((msocl_rows_f)(b), (msocl_rows_f)(a), (msocl_rows_m)(c))
 
-/* Floats of one ring row: six forward springs' x, y, z terms, then wind's
- * on the quad's two triangles (A, B as wind.cl's msocl_wind_quads), each
- * `ring_w` floats (a padded row's columns) */
+/* Terms of one ring row: six forward springs' x, y, z terms, then wind's
+ * on the quad's two triangles (A, B as wind.cl's msocl_wind_quads), then
+ * with dashpots the six springs' dashpot terms (term 8 + f: summed apart,
+ * as msocl_force adds a slot's spring and dashpot one after the other),
+ * each `ring_w` floats (a padded row's columns); engine/planes_rows.c
+ * sizes the ring by the same count */
+#define MSOCL_ROWS_DASH 8
+#ifdef MSOCL_DAMPING
+#define MSOCL_ROWS_TERMS 42
+#else
 #define MSOCL_ROWS_TERMS 24
+#endif
 
 /* The forward springs: offset in a plane, kind and rest index (as
  * common.cl's slots 2, 3, 6, 7, 10, 11). */
@@ -69,20 +79,33 @@ typedef int8 msocl_rows_m;
 #define MSOCL_ROWS_HAS(f) ((MSOCL_GRID_KINDS >> MSOCL_ROWS_KIND(f)) & 1)
 
 /* Row y's forward spring terms at padded columns 0..nx + 2 (x from -2 to
- * nx) into ring row t: msocl_planes_force's `on ? t * d : 0`. The last
- * vector is moved back to end at column nx + 2, and overlaps the one
- * before it (the same terms again), so no load passes the planes. */
+ * nx) into ring row t: msocl_planes_pull's `on ? t * d : 0`, and with
+ * dashpots its `onh ? u * d : 0` from the velocities before the step (a
+ * backward one negates exactly: w and d both flip, w . d and len2 stay).
+ * The last vector is moved back to end at column nx + 2, and overlaps the
+ * one before it (the same terms again), so no load passes the planes. */
 static void msocl_rows_springs(MSOCL_CONN, __global const float *p,
-                               int pitch, int plane, int y,
-                               __global float *t, int ring_w)
+                               __global const float *v, int pitch,
+                               int plane, int y, __global float *t,
+                               int ring_w)
 {
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
+#ifdef MSOCL_DAMPING
+  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
+  const float cc = MSOCL_GRID_C;
+#endif
+  (void)v;
   const int row = (y + 2) * pitch, cols = grid_nx + 3;
   for (int c0 = 0; c0 < cols; c0 += MSOCL_ROWS_W) {
     const int c = min(c0, cols - MSOCL_ROWS_W), a = row + c;
     const msocl_rows_f px = MSOCL_ROWS_LOAD(p + a),
                        py = MSOCL_ROWS_LOAD(py_ + a),
                        pz = MSOCL_ROWS_LOAD(pz_ + a);
+#ifdef MSOCL_DAMPING
+    const msocl_rows_f vx = MSOCL_ROWS_LOAD(v + a),
+                       vy = MSOCL_ROWS_LOAD(vy_ + a),
+                       vz = MSOCL_ROWS_LOAD(vz_ + a);
+#endif
 #pragma unroll
     for (int f = 0; f < 6; f++) {
       if (!MSOCL_ROWS_HAS(f))
@@ -92,13 +115,26 @@ static void msocl_rows_springs(MSOCL_CONN, __global const float *p,
       const msocl_rows_f dx = MSOCL_ROWS_LOAD(p + b) - px,
                          dy = MSOCL_ROWS_LOAD(py_ + b) - py,
                          dz = MSOCL_ROWS_LOAD(pz_ + b) - pz;
-      const msocl_rows_f len = MSOCL_SQRT(dx * dx + dy * dy + dz * dz);
+      const msocl_rows_f len2 = dx * dx + dy * dy + dz * dz;
+      const msocl_rows_f len = MSOCL_SQRT(len2);
       const msocl_rows_f k = kk * MSOCL_DIV(len - rest, len);
       const msocl_rows_m on = len > 0.0f;
       __global float *q = t + 3 * f * ring_w + c;
       MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dx, 0.0f), q);
       MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dy, 0.0f), q + ring_w);
       MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dz, 0.0f), q + 2 * ring_w);
+#ifdef MSOCL_DAMPING
+      const msocl_rows_f wx = MSOCL_ROWS_LOAD(v + b) - vx,
+                         wy = MSOCL_ROWS_LOAD(vy_ + b) - vy,
+                         wz = MSOCL_ROWS_LOAD(vz_ + b) - vz;
+      const msocl_rows_f u =
+          cc * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
+      const msocl_rows_m onh = len2 > 0.0f;
+      __global float *h = t + 3 * (MSOCL_ROWS_DASH + f) * ring_w + c;
+      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(onh, u * dx, 0.0f), h);
+      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(onh, u * dy, 0.0f), h + ring_w);
+      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(onh, u * dz, 0.0f), h + 2 * ring_w);
+#endif
     }
   }
 }
@@ -221,6 +257,16 @@ static void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
 #define MSOCL_ROWS_T(r, f, q, c)                                              \
   MSOCL_ROWS_LOAD((r) + (3 * (f) + (q)) * ring_w + (c))
 
+/* One slot: forward spring f's term in ring row r at column c, forward
+ * (+) or backward (-), then its dashpot's, as msocl_planes_pull adds them */
+#ifdef MSOCL_DAMPING
+#define MSOCL_ROWS_ADD(sg, r, f, c)                                           \
+  g += sg MSOCL_ROWS_T(r, f, q, c);                                           \
+  g += sg MSOCL_ROWS_T(r, MSOCL_ROWS_DASH + (f), q, c)
+#else
+#define MSOCL_ROWS_ADD(sg, r, f, c) g += sg MSOCL_ROWS_T(r, f, q, c)
+#endif
+
 /* One component of a point's force: its twelve slots in common.cl's order
  * from ring rows r0, r1, r2 (rows y - 2, y - 1, y) at column c; kinds the
  * model leaves out add nothing, as in msocl_planes_force. */
@@ -232,30 +278,31 @@ msocl_rows_sum(__global const float *r0,
 {
   msocl_rows_f g = 0.0f;
   if (MSOCL_ROWS_HAS(0)) {
-    g += -MSOCL_ROWS_T(r1, 1, q, c);
-    g += -MSOCL_ROWS_T(r2, 0, q, c - 1);
-    g += MSOCL_ROWS_T(r2, 0, q, c);
-    g += MSOCL_ROWS_T(r2, 1, q, c);
+    MSOCL_ROWS_ADD(-, r1, 1, c);
+    MSOCL_ROWS_ADD(-, r2, 0, c - 1);
+    MSOCL_ROWS_ADD(+, r2, 0, c);
+    MSOCL_ROWS_ADD(+, r2, 1, c);
   }
   if (MSOCL_ROWS_HAS(2)) {
-    g += -MSOCL_ROWS_T(r1, 3, q, c - 1);
-    g += -MSOCL_ROWS_T(r1, 2, q, c + 1);
-    g += MSOCL_ROWS_T(r2, 2, q, c);
-    g += MSOCL_ROWS_T(r2, 3, q, c);
+    MSOCL_ROWS_ADD(-, r1, 3, c - 1);
+    MSOCL_ROWS_ADD(-, r1, 2, c + 1);
+    MSOCL_ROWS_ADD(+, r2, 2, c);
+    MSOCL_ROWS_ADD(+, r2, 3, c);
   }
   if (MSOCL_ROWS_HAS(4)) {
-    g += -MSOCL_ROWS_T(r0, 5, q, c);
-    g += -MSOCL_ROWS_T(r2, 4, q, c - 2);
-    g += MSOCL_ROWS_T(r2, 4, q, c);
-    g += MSOCL_ROWS_T(r2, 5, q, c);
+    MSOCL_ROWS_ADD(-, r0, 5, c);
+    MSOCL_ROWS_ADD(-, r2, 4, c - 2);
+    MSOCL_ROWS_ADD(+, r2, 4, c);
+    MSOCL_ROWS_ADD(+, r2, 5, c);
   }
   return g;
 }
 
 /* Row y's kick and drift (msocl_planes_fused) from ring rows r0, r1, r2,
- * the velocities in place (only the point reads its own). The last
- * vector moves back to end at the row's last point, over points the one
- * before it has updated: its velocities are read before that. */
+ * the velocities into v_out (v itself without wind or dashpots: only the
+ * point reads its own). The last vector moves back to end at the row's
+ * last point, over points the one before it has updated: its velocities
+ * are read before that. */
 static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
                             __global const float *v, __global float *v_out,
                             __global float *p_out,
@@ -369,7 +416,7 @@ __kernel void msocl_planes_rows(MSOCL_CONN, __global const float *p,
   __global float *mine = ring + (size_t)b * 3 * one;
   __constant const float *cf = (__constant const float *)col;
   for (int y = y0 - 2; y < y1; y++) {
-    msocl_rows_springs(MSOCL_CONN_ARGS, p, pitch, plane, y,
+    msocl_rows_springs(MSOCL_CONN_ARGS, p, v, pitch, plane, y,
                        mine + (size_t)((y + 3) % 3) * one, ring_w);
     if (wind && y >= y0 - 1)
       msocl_rows_wind(MSOCL_CONN_ARGS, p, v, pitch, plane, y, wind_air,

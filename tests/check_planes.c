@@ -937,13 +937,14 @@ START_TEST(auto_meshes)
 }
 END_TEST
 
-/* The one-sweep symplectic Euler (lib/engine/planes_rows.c: no dashpots, rows
- * of at least 16 points) is bitwise float4's, two passes or fused: rows a
+/* The one-sweep symplectic Euler (lib/engine/planes_rows.c: rows of at
+ * least 16 points) is bitwise float4's, two passes or fused: rows a
  * vector wide, one more, two rows (the least a cloth has), three, many
  * rows a work-item; each collider kind alone, all three, none; pins at
- * corners and along the edges; and a grid narrower than a vector, which
- * the planes passes run. colliders: 1 table, 2 sphere, 4 plane; pins: 1
- * two corners, 2 also edge midpoints. */
+ * corners and along the edges; dashpots on every other case; and a grid
+ * narrower than a vector, which the planes passes run. colliders: 1
+ * table, 2 sphere, 4 plane; pins: 1 two corners, 2 also edge
+ * midpoints. */
 static const struct {
   int nx, ny, colliders, pins;
 } rows_cases[] = {{16, 16, 1, 0}, {17, 9, 7, 2}, {47, 3, 4, 1},
@@ -966,6 +967,7 @@ static msocl_model *rows_cloth(int q)
   d.k_stretch = 50.0f;
   d.k_shear = 10.0f;
   d.k_bend = 10.0f;
+  d.damping = q % 2 ? 2e-3f : 0.0f;
   msocl_model *m = NULL;
   ck_assert_int_eq(msocl_model_cloth_grid(&m, &d), MSOCL_OK);
   const float top[3] = {-0.1f, 0.0f, 0.0f}, ball[3] = {0.35f, -0.05f, 0.1f};
@@ -1002,9 +1004,10 @@ START_TEST(rows_bitwise)
   struct state pl = run(m, 1, MSOCL_MATH_PRECISE, dt, 4, 100);
   struct state fu = run(m, 2, MSOCL_MATH_PRECISE, dt, 57, 7);
   char what[96];
-  snprintf(what, sizeof what, "%d x %d cloth, colliders %d, pins %d",
+  snprintf(what, sizeof what,
+           "%d x %d cloth, colliders %d, pins %d, dashpots %d",
            rows_cases[_i].nx, rows_cases[_i].ny, rows_cases[_i].colliders,
-           rows_cases[_i].pins);
+           rows_cases[_i].pins, _i % 2);
   ck_assert_int_eq(pl.planes, 1);
   assert_bitwise(&f4, &pl, what);
   struct state f4b = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 399);
@@ -1017,6 +1020,33 @@ START_TEST(rows_bitwise)
   state_free(&f4b);
   state_free(&pl);
   state_free(&fu);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* Dashpotted cloth in the sweep (the hanging cloth, 48 points a row) is
+ * bitwise BUFFER's, in float4 and in its planes passes, after 200
+ * symplectic steps that swing it. */
+START_TEST(rows_dashpots_buffer)
+{
+  msocl_model *m = scene_hanging(48);
+  const float dt = scene_tablecloth_dt(48);
+  struct state g = run(m, 1, MSOCL_MATH_PRECISE, dt, 4, 50);
+  layout_ = MSOCL_LAYOUT_BUFFER;
+  struct state b4 = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 200);
+  struct state bp = run(m, 1, MSOCL_MATH_PRECISE, dt, 2, 100);
+  layout_ = MSOCL_LAYOUT_GRID;
+  ck_assert_int_eq(g.planes, 1);
+  ck_assert_int_eq(bp.planes, 1);
+  assert_bitwise(&b4, &g, "hanging cloth, GRID's sweep against BUFFER");
+  assert_bitwise(&b4, &bp, "hanging cloth, BUFFER's planes");
+  double far = 0.0;
+  for (int i = 0; i < g.n; i++)
+    far = fmax(far, fabs(g.vel[3 * i + 1]));
+  ck_assert_msg(far > 0.1, "fastest vertical speed %g m/s", far);
+  state_free(&g);
+  state_free(&b4);
+  state_free(&bp);
   msocl_model_destroy(m);
 }
 END_TEST
@@ -1058,6 +1088,7 @@ int main(void)
   tcase_set_timeout(rows, 300);
   tcase_add_loop_test(rows, rows_bitwise, 0,
                       (int)(sizeof rows_cases / sizeof rows_cases[0]));
+  tcase_add_test(rows, rows_dashpots_buffer);
   suite_add_tcase(su, rows);
   return scene_run(su);
 }

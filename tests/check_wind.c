@@ -217,8 +217,9 @@ START_TEST(sweep_bitwise)
   ck_assert_int_eq(msocl_model_cloth_grid(&m, &d), MSOCL_OK);
   ck_assert_int_eq(msocl_model_pin(m, 0, 1), MSOCL_OK);
   ck_assert_int_eq(msocl_model_pin(m, M - 1, 1), MSOCL_OK);
-  /* viscous damping, which the sweep runs (dashpots it does not): without
-   * any, the flutter grows the float rounding 50x in 200 steps */
+  /* viscous damping, which the sweep blows wind in (with dashpots wind's
+   * own passes run before it): without any, the flutter grows the float
+   * rounding 50x in 200 steps */
   ck_assert_int_eq(msocl_model_set_viscous_damping(m, 2.0f * d.point_mass),
                    MSOCL_OK);
   msocl_wind w;

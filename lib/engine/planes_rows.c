@@ -1,7 +1,7 @@
 /* Symplectic Euler on a cloth grid in planes in one sweep a step, each
  * spring computed once (kernels/planes_rows.cl), where it applies: a CPU
- * device, a cloth (not a lattice), no dashpots, no strain limit, rows of
- * at least one vector. Elsewhere planes.c's passes run. */
+ * device, a cloth (not a lattice), no strain limit, rows of at least one
+ * vector. Elsewhere planes.c's passes run. */
 #include "config.h"
 #include "planes.h"
 
@@ -30,7 +30,7 @@ static int applies(const msocl__engine *s)
          s->lo == 0 && s->hi == s->n &&
          s->lay.grid_nz == 0 && s->lay.grid_nx >= ROWS_W &&
          s->o.integrator == MSOCL_SYMPLECTIC_EULER &&
-         s->o.strain == MSOCL_STRAIN_NONE && s->lay.grid_k.s[3] == 0.0f;
+         s->o.strain == MSOCL_STRAIN_NONE;
 }
 
 int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
@@ -48,10 +48,12 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   if (blocks > (size_t)s->lay.grid_ny)
     blocks = (size_t)s->lay.grid_ny;
   s->pl_blocks = blocks;
-  /* a ring row: 24 terms (springs' 18, wind's 6) of a padded row's
-   * columns -2..nx, whole vectors */
+  /* a ring row: 24 terms (springs' 18, wind's 6), with dashpots 18 more
+   * (the kernel's MSOCL_ROWS_TERMS), of a padded row's columns -2..nx,
+   * whole vectors */
   const int ring_w = (s->lay.grid_nx + 3 + ROWS_W - 1) / ROWS_W * ROWS_W;
-  const size_t bytes = blocks * 3 * 24 * (size_t)ring_w * sizeof(float);
+  const size_t terms = s->damped ? 42 : 24;
+  const size_t bytes = blocks * 3 * terms * (size_t)ring_w * sizeof(float);
   s->pl_ring = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes, NULL, &e);
   if (e != CL_SUCCESS)
     return msocl__fail(e, "clCreateBuffer(%zu bytes of rings): %s", bytes,
@@ -109,9 +111,9 @@ int msocl__pl_rows_forces(msocl__engine *s)
 
 int msocl__pl_rows_step(msocl__engine *s, int r, int w)
 {
-  /* without wind the velocities move in place; with it, into set w, as
-   * its triangles read the neighbours' velocities before the step */
-  const int out = s->pl_rows_wind ? w : r;
+  /* without wind or dashpots the velocities move in place; with them,
+   * into set w, as they read the neighbours' velocities before the step */
+  const int out = s->pl_rows_wind || s->damped ? w : r;
   const cl_mem bufs[3] = {s->pl_p[r], s->pl_v[r], s->pl_p[w]};
   for (cl_uint q = 0; q < 3; q++)
     MSOCL__TRY(arg(s->pl_rows, s->pl_conn + q, sizeof bufs[q],

@@ -196,8 +196,10 @@ int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "wind pushes on triangles, and the model has none "
                        "(msocl_model_add_triangles)");
-  if (s->wind_quads && s->pl_rows) {
-    /* the one-sweep kernel blows it on the quads as it goes */
+  if (s->wind_quads && s->pl_rows && !s->damped) {
+    /* the one-sweep kernel blows it on the quads as it goes; dashpots
+     * read the neighbours' velocities after the wind's kick, which the
+     * sweep has not made yet, so with them wind's own passes run first */
     s->wind_on = 1;
     return msocl__pl_rows_wind(s, air, kd, kl);
   }
