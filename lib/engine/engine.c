@@ -172,7 +172,7 @@ static int make_buffers(msocl__engine *s, const msocl_model *m)
     }
   }
 out:
-  free(inv);
+  s->inv_host = inv; /* soft pins' stiffness check reads it */
   free(off);
   free(ab);
   return rc;
@@ -367,6 +367,7 @@ void msocl__engine_destroy(msocl__engine *s)
   msocl__layout_release(&s->lay);
   free(s->stage);
   free(s->partial_host);
+  free(s->inv_host);
   free(s);
 }
 

@@ -53,6 +53,7 @@ struct msocl__engine {
   int ncol;
   float *stage;           /* 4n floats, the initial upload */
   cl_float4 *partial_host;
+  float *inv_host; /* the points' inverse masses, in the engine's order */
   /* GRID in planes (planes.c, kernels/planes.cl): the state as x, y, z
    * planes of padded rows, kept there between calls */
   int planes;

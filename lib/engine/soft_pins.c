@@ -43,28 +43,15 @@ static int buffers(msocl__engine *s, int m)
   return MSOCL_OK;
 }
 
-/* The largest inverse mass of the engine's points k[0..m). */
-static int largest_inverse_mass(msocl__engine *s, const int *k, int m,
-                                double *w)
+/* The largest inverse mass of the engine's points k[0..m), from the host
+ * copy the engine keeps: masses never change, and a device read here
+ * would cost O(n) every frame that moves the anchors. */
+static double largest_inverse_mass(const msocl__engine *s, const int *k, int m)
 {
-  const size_t P = (size_t)s->pl_plane;
-  *w = 0.0;
-  float *inv = malloc(P * sizeof *inv);
-  if (!inv)
-    return msocl__fail(MSOCL_ERR_NO_MEMORY, "soft pins' masses");
-  int rc = msocl__planes_enter(s); /* packs the inverse masses into aux */
-  cl_int e = rc == MSOCL_OK ? clEnqueueReadBuffer(s->dev->queue, s->pl_aux,
-                                                  CL_TRUE, 0, P * sizeof *inv,
-                                                  inv, 0, NULL, NULL)
-                            : CL_SUCCESS;
-  if (e != CL_SUCCESS)
-    rc = msocl__fail(e, "reading the inverse masses: %s", msocl_err_name(e));
-  for (int q = 0; rc == MSOCL_OK && q < m; q++) {
-    const double x = inv[msocl__pl_address(s, k[q])];
-    *w = x > *w ? x : *w;
-  }
-  free(inv);
-  return rc;
+  double w = 0.0;
+  for (int q = 0; q < m; q++)
+    w = s->inv_host[k[q]] > w ? s->inv_host[k[q]] : w;
+  return w;
 }
 
 int msocl__soft_set(msocl__engine *s, int m, const int *k, const float *xyz,
@@ -79,8 +66,7 @@ int msocl__soft_set(msocl__engine *s, int m, const int *k, const float *xyz,
                        "soft pins need the planes engine, and this "
                        "simulation runs float4 (tuning.planes off, or its "
                        "layout)");
-  double w;
-  TRY(largest_inverse_mass(s, k, m, &w));
+  const double w = largest_inverse_mass(s, k, m);
   /* alone, the point and its anchor are an oscillator of w^2 = k / m:
    * a first-order kick holds while dt w stays well inside 2 */
   const double h2 = (double)s->o.dt * s->o.dt * stiffness * w;
