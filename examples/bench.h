@@ -84,6 +84,11 @@ void bench_progress(int i, int n, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+/* The tablecloth's cloth: n x n points of TC_MASS in all, its springs,
+ * placed at origin along u and v (1 m each); the rest as
+ * msocl_cloth_desc_init leaves it. */
+void bench_cloth(msocl_cloth_desc *d, int n, const float origin[3],
+                 const float u[3], const float v[3]);
 /* Prints the library's error and returns 1. */
 int bench_fail(const char *what, int rc);
 /* The runtime o->spec names, and its first device's info: 0, or 1 after

@@ -23,17 +23,9 @@ static const char *const scene_names[SCENES] = {
 static msocl_model *build(int n, int scene)
 {
   msocl_cloth_desc d;
-  msocl_cloth_desc_init(&d);
-  d.nx = d.ny = n;
-  d.origin[0] = -0.5f;
-  d.origin[1] = TC_HEIGHT;
-  d.origin[2] = -0.5f;
-  d.u[0] = 0.0f; d.u[1] = 0.0f; d.u[2] = 1.0f;
-  d.v[0] = 1.0f; d.v[1] = 0.0f; d.v[2] = 0.0f;
-  d.point_mass = TC_MASS / (float)(n * n);
-  d.k_stretch = TC_K_STRETCH;
-  d.k_shear = TC_K_SHEAR;
-  d.k_bend = TC_K_BEND;
+  const float origin[3] = {-0.5f, TC_HEIGHT, -0.5f}, u[3] = {0, 0, 1},
+              v[3] = {1, 0, 0};
+  bench_cloth(&d, n, origin, u, v);
   msocl_model *m = NULL;
   if (msocl_model_cloth_grid(&m, &d) != MSOCL_OK)
     return NULL;

@@ -14,15 +14,8 @@ enum { CALL = 10, LAT = 51, LON = 100 }; /* 2 LON (LAT - 1) = 10 000 */
 static msocl_model *cloth(int n)
 {
   msocl_cloth_desc d;
-  msocl_cloth_desc_init(&d);
-  d.nx = d.ny = n;
-  d.origin[0] = -0.5f;
-  d.u[0] = 1.0f;
-  d.v[0] = 0.0f, d.v[1] = -1.0f, d.v[2] = 0.0f;
-  d.point_mass = TC_MASS / (float)(n * n);
-  d.k_stretch = TC_K_STRETCH;
-  d.k_shear = TC_K_SHEAR;
-  d.k_bend = TC_K_BEND;
+  const float origin[3] = {-0.5f, 0, 0}, u[3] = {1, 0, 0}, v[3] = {0, -1, 0};
+  bench_cloth(&d, n, origin, u, v);
   msocl_model *m = NULL;
   if (msocl_model_cloth_grid(&m, &d) != MSOCL_OK)
     return NULL;

@@ -21,17 +21,9 @@
 static msocl_model *build(int n)
 {
   msocl_cloth_desc d;
-  msocl_cloth_desc_init(&d);
-  d.nx = d.ny = n;
   const float origin[3] = {-0.5f, 0.0f, -0.5f}, u[3] = {1, 0, 0},
               v[3] = {0, 0, 1};
-  memcpy(d.origin, origin, sizeof origin);
-  memcpy(d.u, u, sizeof u);
-  memcpy(d.v, v, sizeof v);
-  d.point_mass = TC_MASS / (float)(n * n);
-  d.k_stretch = TC_K_STRETCH;
-  d.k_shear = TC_K_SHEAR;
-  d.k_bend = TC_K_BEND;
+  bench_cloth(&d, n, origin, u, v);
   d.damping = HANG_DAMPING;
   msocl_model *m = NULL;
   int rc = msocl_model_cloth_grid(&m, &d);

@@ -78,18 +78,10 @@ static const char *layout_name(int layout, int variant)
 static msocl_model *build(int n, float *dt)
 {
   msocl_cloth_desc d;
-  msocl_cloth_desc_init(&d);
-  d.nx = d.ny = n;
   /* u = z, v = x: the tablecloth example's cloth, normals up */
   const float origin[3] = {-0.5f, TC_HEIGHT, -0.5f}, u[3] = {0, 0, 1},
               v[3] = {1, 0, 0}, top[3] = {0, 0, 0};
-  memcpy(d.origin, origin, sizeof origin);
-  memcpy(d.u, u, sizeof u);
-  memcpy(d.v, v, sizeof v);
-  d.point_mass = TC_MASS / (float)(n * n);
-  d.k_stretch = TC_K_STRETCH;
-  d.k_shear = TC_K_SHEAR;
-  d.k_bend = TC_K_BEND;
+  bench_cloth(&d, n, origin, u, v);
   msocl_model *m = NULL;
   int rc = msocl_model_cloth_grid(&m, &d);
   if (rc == MSOCL_OK)

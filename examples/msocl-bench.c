@@ -396,6 +396,20 @@ void bench_progress(int i, int n, const char *fmt, ...)
   fflush(stderr);
 }
 
+void bench_cloth(msocl_cloth_desc *d, int n, const float origin[3],
+                 const float u[3], const float v[3])
+{
+  msocl_cloth_desc_init(d);
+  d->nx = d->ny = n;
+  memcpy(d->origin, origin, sizeof d->origin);
+  memcpy(d->u, u, sizeof d->u);
+  memcpy(d->v, v, sizeof d->v);
+  d->point_mass = TC_MASS / (float)(n * n);
+  d->k_stretch = TC_K_STRETCH;
+  d->k_shear = TC_K_SHEAR;
+  d->k_bend = TC_K_BEND;
+}
+
 int bench_fail(const char *what, int rc)
 {
   fprintf(stderr, "msocl-bench: %s: %s (%s)\n%s\n", what, msocl_strerror(rc),

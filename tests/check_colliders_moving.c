@@ -61,17 +61,9 @@ static msocl_sim *make_checked(const msocl_model *m, msocl_integrator in,
                                msocl_layout layout, msocl_choice planes,
                                int check)
 {
-  msocl_sim_options o;
-  msocl_sim_options_init(&o);
-  OK(msocl_stable_dt(m, in, &o.dt));
-  o.integrator = in;
-  if (!check)
-    o.check_every = 0;
-  o.tuning.layout = layout;
-  o.tuning.planes = planes;
-  msocl_sim *s = NULL;
-  OK(msocl_sim_create(&s, rt, m, &o));
-  return s;
+  float dt;
+  OK(msocl_stable_dt(m, in, &dt));
+  return scene_sim(m, in, dt, layout, planes, check ? -1 : 0);
 }
 
 static msocl_sim *make(const msocl_model *m, msocl_integrator in,

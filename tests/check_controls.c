@@ -31,16 +31,7 @@ static float dt_for(const msocl_model *m, msocl_integrator in)
 static msocl_sim *make(const msocl_model *m, msocl_integrator in,
                        msocl_layout layout, msocl_choice planes)
 {
-  msocl_sim_options o;
-  msocl_sim_options_init(&o);
-  o.dt = dt_for(m, in);
-  o.integrator = in;
-  o.check_every = 0;
-  o.tuning.layout = layout;
-  o.tuning.planes = planes;
-  msocl_sim *s = NULL;
-  OK(msocl_sim_create(&s, rt, m, &o));
-  return s;
+  return scene_sim(m, in, dt_for(m, in), layout, planes, 0);
 }
 
 static msocl_reference *make_ref(const msocl_model *m, msocl_integrator in)

@@ -18,15 +18,7 @@ enum { N = 16, P = N * N };
 
 static msocl_sim *sim_in(const msocl_model *m, float dt, msocl_layout l)
 {
-  msocl_sim_options o;
-  msocl_sim_options_init(&o);
-  o.dt = dt;
-  o.tuning.planes = MSOCL_ON;
-  o.tuning.layout = l;
-  msocl_sim *s = NULL;
-  ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK, "%s",
-                msocl_last_error());
-  return s;
+  return scene_sim(m, MSOCL_SYMPLECTIC_EULER, dt, l, MSOCL_ON, -1);
 }
 
 static msocl_sim *sim_of(const msocl_model *m, float dt)
