@@ -389,8 +389,8 @@ typedef struct {
    * half the device's cache, where the step is bound by memory bandwidth. */
   msocl_choice classes;
   /* The state as x, y, z planes of floats, which a CPU runs many points
-   * to an instruction; 3 P < 2^31; a split only without boundary first
-   * (overlap OFF; ON with overlap AUTO turns it off). GRID: rows padded
+   * to an instruction; 3 P < 2^31; splits too, with or without boundary
+   * first (a split's spans are cut at whole rows). GRID: rows padded
    * at the edges, P = (ceil(nx / w) w + 4) (ny + 4) (nz + 4) points (a
    * cloth: nz + 4 -> 1), w = 64 halved down to 8 while nx <= w / 2;
    * BUFFER and IMAGE2D: unpadded, P = n rounded up to 64 (BUFFER also
@@ -398,9 +398,8 @@ typedef struct {
    * memory: 4 P F bytes, F = 14 floats, Verlet +3, RK4 and implicit Euler
    * +18, a strain limit +3, Provot's +3. AUTO: GRID and BUFFER on a CPU
    * device, unless GRID's P is over 4 points a point and its planes over
-   * 64 MiB; not IMAGE2D, whose texel reads PoCL does not vectorise; not
-   * a split with overlap on. EDGES always (as BUFFER; OFF is refused for
-   * it). */
+   * 64 MiB; not IMAGE2D, whose texel reads PoCL does not vectorise.
+   * EDGES always (as BUFFER; OFF is refused for it). */
   msocl_choice planes;
 } msocl_tuning;
 

@@ -190,6 +190,9 @@ void msocl__wind_release(msocl__engine *s);
 /* Where the engine's point j sits in each plane (planes.c; planes.cl's
  * MSOCL_PLANES_AT). */
 int msocl__pl_address(const msocl__engine *s, int j);
+/* The points a planes pass runs in one piece (a row, a lattice's layer,
+ * a work-group): a split's spans are cut at its multiples; 1 in float4. */
+int msocl__planes_unit(const msocl__engine *s);
 /* Soft pins (soft_pins.c): set: the engine's points k[0..m) pulled by
  * springs of `stiffness` toward anchors xyz (3 m floats), from the next
  * step; `move`: the anchors move there over the next moving call from

@@ -594,10 +594,14 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
 }
 
 /* A split engine's passes: the rows (a lattice's layers; BUFFER's and
- * IMAGE2D's work-groups) that hold its points, into off and size. The
- * few points of a neighbour's range this covers are computed from stale
- * inputs and never read: what others read of them arrives by the
- * exchange. The copies in and out of the planes cover everything. */
+ * IMAGE2D's work-groups) that hold its points, or those of the span a
+ * boundary-first phase runs (sim_step.c run_span), into off and size.
+ * The few points outside it this covers are computed from stale inputs
+ * and never read: what others read of them arrives by the exchange, and
+ * a row two spans share is computed twice alike (every pass a span runs
+ * writes out of place, but Verlet's drift: exchange_plan.c cuts spans at
+ * msocl__planes_unit). The copies in and out of the planes cover
+ * everything. */
 static void own_part(const msocl__engine *s, int k, size_t off[3],
                      size_t size[3])
 {
@@ -605,17 +609,28 @@ static void own_part(const msocl__engine *s, int k, size_t off[3],
     off[d] = 0;
     size[d] = s->pl_global[d];
   }
-  if ((s->lo == 0 && s->hi == s->n) || k == PL_PACK || k == PL_UNPACK ||
+  const int span = s->run_offset != s->offset || s->run_global != s->global;
+  const size_t lo = span ? s->run_offset : (size_t)s->lo,
+               hi = span ? s->run_offset + s->run_global : (size_t)s->hi;
+  if ((lo == 0 && hi == (size_t)s->n) || k == PL_PACK || k == PL_UNPACK ||
       k == PL_IN || k == PL_OUT)
     return;
   const int grid = s->lay.kind == MSOCL_LAYOUT_GRID,
             dim = !grid ? 0 : s->lay.grid_nz > 0 ? 2 : 1;
-  const size_t per = !grid ? s->pl_group
-                     : dim == 2 ? (size_t)s->lay.grid_nx * s->lay.grid_ny
-                                : (size_t)s->lay.grid_nx,
-               a = (size_t)s->lo / per, b = ((size_t)s->hi - 1) / per + 1;
+  const size_t per = (size_t)msocl__planes_unit(s), a = lo / per,
+               b = (hi - 1) / per + 1;
   off[dim] = !grid ? a * per : a;
   size[dim] = !grid ? (b - a) * per : b - a;
+}
+
+int msocl__planes_unit(const msocl__engine *s)
+{
+  if (!s->planes)
+    return 1;
+  if (s->lay.kind != MSOCL_LAYOUT_GRID)
+    return (int)s->pl_group;
+  return s->lay.grid_nz > 0 ? s->lay.grid_nx * s->lay.grid_ny
+                            : s->lay.grid_nx;
 }
 
 /* A pass over the padded grid; CPU devices in work-groups of a row's

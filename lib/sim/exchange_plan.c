@@ -13,11 +13,18 @@ static void plan_spans(msocl_sim *s, int d)
 {
   struct msocl__exchange *x = &s->x;
   const int lo = s->halo[d][d][0], hi = s->halo[d][d][1];
+  /* the planes run whole rows: a row cut between two spans would run
+   * twice, and Verlet's drift is in place */
+  const int unit = msocl__planes_unit(s->part[d]);
   int iv[MSOCL__MAX_PARTS][2], n = 0;
   for (int r = 0; r < s->nparts; r++) {
     const int *h = s->halo[r][d];
-    int a = h[0] > lo ? h[0] : lo, b = h[1] < hi ? h[1] : hi;
-    if (r == d || a >= b)
+    if (r == d || h[0] >= h[1])
+      continue;
+    int a = h[0] / unit * unit, b = (h[1] + unit - 1) / unit * unit;
+    a = a > lo ? a : lo;
+    b = b < hi ? b : hi;
+    if (a >= b)
       continue;
     int q = n++; /* insertion by start */
     for (; q > 0 && iv[q - 1][0] > a; q--) {
@@ -126,10 +133,8 @@ int msocl__exchange_plan(msocl_sim *s)
     for (int k = 0; k < MSOCL__X_SLOTS; k++)
       x->area[p][k] = (unsigned char *)x->host +
                       (size_t)(p * MSOCL__X_SLOTS + k) * one;
-  /* Boundary first runs a phase once a span; the planes' passes cover the
-   * whole grid and some update in place (Verlet's drift), so they run
-   * each phase once. */
-  x->overlap = s->o.tuning.overlap != MSOCL_OFF && !s->part[0]->planes;
+  /* Boundary first runs a phase once a span. */
+  x->overlap = s->o.tuning.overlap != MSOCL_OFF;
   for (int d = 0; x->overlap && d < s->nparts; d++) {
     plan_spans(s, d);
     int rc = plan_copies(s, d, one);

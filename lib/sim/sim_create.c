@@ -344,20 +344,6 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
   const msocl_tuning *t = &o.tuning;
   s->nparts = t->ndevices < 0 ? rt->ndev - t->device
                               : t->ndevices == 0 ? 1 : t->ndevices;
-  /* Boundary first (tuning.overlap; AUTO: on) runs a phase span by span;
-   * the planes' passes cover the whole grid, so a split runs in planes
-   * only without it: AUTO then takes float4, and planes forced on refuse
-   * overlap forced on. */
-  if (s->nparts > 1 && t->planes == MSOCL_ON && t->overlap == MSOCL_ON) {
-    msocl_model_destroy(renumbered);
-    msocl_sim_destroy(s);
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "a split in planes runs without boundary first: "
-                       "tuning.overlap must be AUTO or OFF where "
-                       "tuning.planes is ON");
-  }
-  if (s->nparts > 1 && t->planes == MSOCL_AUTO && t->overlap != MSOCL_OFF)
-    o.tuning.planes = MSOCL_OFF;
   scene_scale(s, m);
   s->stage = malloc(4 * (size_t)m->n * sizeof(float));
   s->pinned = malloc((size_t)m->n);
