@@ -14,14 +14,14 @@
  * the GPU is not first, so the default's preference shows. */
 static const msocl_device_info devs[] = {
     {0, 0, "Portable Computing Language", "pthread-skylake-avx512",
-     "OpenCL 3.0", MSOCL_DEVICE_CPU, 4, 1ULL << 33, 1, 8192, 8192, 1},
+     "OpenCL 3.0", MSOCL_DEVICE_CPU, 4, 1ULL << 33, 1, 8192, 8192, 1, 0},
     {0, 1, "Portable Computing Language", "pthread-zen2", "OpenCL 3.0",
-     MSOCL_DEVICE_CPU, 4, 1ULL << 33, 1, 8192, 8192, 1},
+     MSOCL_DEVICE_CPU, 4, 1ULL << 33, 1, 8192, 8192, 1, 0},
     {1, 0, "NVIDIA CUDA", "NVIDIA H100 80GB HBM3", "OpenCL 3.0 CUDA",
-     MSOCL_DEVICE_GPU, 132, 1ULL << 36, 1, 32768, 32768, 1},
+     MSOCL_DEVICE_GPU, 132, 1ULL << 36, 1, 32768, 32768, 1, 0},
     {2, 0, "Intel(R) FPGA Emulation Platform",
      "Intel(R) FPGA Emulation Device", "OpenCL 1.2",
-     MSOCL_DEVICE_ACCELERATOR, 1, 1ULL << 30, 0, 0, 0, 0},
+     MSOCL_DEVICE_ACCELERATOR, 1, 1ULL << 30, 0, 0, 0, 0, 0},
 };
 #define NDEVS 4
 
@@ -40,7 +40,7 @@ static void expect(const char *spec, const msocl_device_info *d, int nd,
                   show(spec), i, chosen[i], want[i]);
 }
 
-#define EXPECT(spec, ...)                                                     \
+#define CHOOSES(spec, ...)                                                    \
   do {                                                                        \
     const int w_[] = {__VA_ARGS__};                                           \
     expect(spec, devs, NDEVS, w_, (int)(sizeof w_ / sizeof w_[0]));           \
@@ -68,10 +68,10 @@ START_TEST(test_default) {
   msocl_device_info neither[2];
   const int cpu = 1, first = 0;
 
-  EXPECT(NULL, 2);
-  EXPECT("", 2);
-  EXPECT("   ", 2);
-  EXPECT(" \t\n", 2);
+  CHOOSES(NULL, 2);
+  CHOOSES("", 2);
+  CHOOSES("   ", 2);
+  CHOOSES(" \t\n", 2);
   expect(NULL, no_gpu, 3, &cpu, 1); /* the first CPU, not the first device */
   expect("", no_gpu, 3, &cpu, 1);
   neither[0] = devs[3];
@@ -83,58 +83,58 @@ START_TEST(test_default) {
 END_TEST
 
 START_TEST(test_kinds) {
-  EXPECT("cpu", 0);
-  EXPECT("CPU", 0);
-  EXPECT("Cpu", 0);
-  EXPECT("gpu", 2);
-  EXPECT("GpU", 2);
-  EXPECT("acc", 3);
-  EXPECT("ACC", 3);
-  EXPECT("accelerator", 3);
-  EXPECT("Accelerator", 3);
-  EXPECT("all", 0, 1, 2, 3);
-  EXPECT("ALL", 0, 1, 2, 3);
-  EXPECT(" all ", 0, 1, 2, 3);
+  CHOOSES("cpu", 0);
+  CHOOSES("CPU", 0);
+  CHOOSES("Cpu", 0);
+  CHOOSES("gpu", 2);
+  CHOOSES("GpU", 2);
+  CHOOSES("acc", 3);
+  CHOOSES("ACC", 3);
+  CHOOSES("accelerator", 3);
+  CHOOSES("Accelerator", 3);
+  CHOOSES("all", 0, 1, 2, 3);
+  CHOOSES("ALL", 0, 1, 2, 3);
+  CHOOSES(" all ", 0, 1, 2, 3);
 }
 END_TEST
 
 START_TEST(test_indices) {
-  EXPECT("0:0", 0);
-  EXPECT("0:1", 1);
-  EXPECT("1:0", 2);
-  EXPECT("2:0", 3);
-  EXPECT("00:01", 1);
-  EXPECT(" 1:0\t", 2);
-  EXPECT("0", 0);
-  EXPECT("1", 1);
-  EXPECT("3", 3);
-  EXPECT("03", 3);
+  CHOOSES("0:0", 0);
+  CHOOSES("0:1", 1);
+  CHOOSES("1:0", 2);
+  CHOOSES("2:0", 3);
+  CHOOSES("00:01", 1);
+  CHOOSES(" 1:0\t", 2);
+  CHOOSES("0", 0);
+  CHOOSES("1", 1);
+  CHOOSES("3", 3);
+  CHOOSES("03", 3);
 }
 END_TEST
 
 START_TEST(test_names) {
-  EXPECT("h100", 2); /* device name */
-  EXPECT("ZEN2", 1);
-  EXPECT("pthread", 0); /* the first of two that match */
-  EXPECT("cuda", 2);    /* platform name */
-  EXPECT("portable", 0);
-  EXPECT("computing language", 0);      /* spaces inside a term stay */
-  EXPECT("FPGA Emulation Platform", 3); /* platform only */
-  EXPECT("Emulation Device", 3);        /* device only */
-  EXPECT("Intel(R)", 3);
-  EXPECT("80GB", 2); /* starts with digits, yet a name */
+  CHOOSES("h100", 2); /* device name */
+  CHOOSES("ZEN2", 1);
+  CHOOSES("pthread", 0); /* the first of two that match */
+  CHOOSES("cuda", 2);    /* platform name */
+  CHOOSES("portable", 0);
+  CHOOSES("computing language", 0);      /* spaces inside a term stay */
+  CHOOSES("FPGA Emulation Platform", 3); /* platform only */
+  CHOOSES("Emulation Device", 3);        /* device only */
+  CHOOSES("Intel(R)", 3);
+  CHOOSES("80GB", 2); /* starts with digits, yet a name */
 }
 END_TEST
 
 START_TEST(test_lists) {
-  EXPECT("gpu,cpu", 2, 0);
-  EXPECT(" gpu , cpu ", 2, 0);
-  EXPECT("\tgpu\t,\ncpu\n", 2, 0);
-  EXPECT("1:0, 0:1 ,3", 2, 1, 3);
-  EXPECT("zen2,GPU,acc", 1, 2, 3);
-  EXPECT("cpu,0:1", 0, 1);
-  EXPECT("3,2,1,0", 3, 2, 1, 0);
-  EXPECT("acc,portable,pthread-zen2,cuda", 3, 0, 1, 2);
+  CHOOSES("gpu,cpu", 2, 0);
+  CHOOSES(" gpu , cpu ", 2, 0);
+  CHOOSES("\tgpu\t,\ncpu\n", 2, 0);
+  CHOOSES("1:0, 0:1 ,3", 2, 1, 3);
+  CHOOSES("zen2,GPU,acc", 1, 2, 3);
+  CHOOSES("cpu,0:1", 0, 1);
+  CHOOSES("3,2,1,0", 3, 2, 1, 0);
+  CHOOSES("acc,portable,pthread-zen2,cuda", 3, 0, 1, 2);
 }
 END_TEST
 
