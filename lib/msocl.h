@@ -396,7 +396,7 @@ typedef struct {
    * BUFFER and IMAGE2D: unpadded, P = n rounded up to 64 (BUFFER also
    * copies its slot table with that stride, at most 64 slots). Device
    * memory: 4 P F bytes, F = 14 floats, Verlet +3, RK4 and implicit Euler
-   * +18, a strain limit +3, Provot's +3. AUTO: GRID and BUFFER on a CPU
+   * +18, a strain limit +3, Provot's +3. AUTO: GRID and BUFFER on every
    * device, unless GRID's P is over 4 points a point and its planes over
    * 64 MiB; not IMAGE2D, whose texel reads PoCL does not vectorise.
    * EDGES always (as BUFFER; OFF is refused for it). */

@@ -143,16 +143,16 @@ static int lavish(const msocl_model *m, const msocl_sim_options *o)
 }
 
 /* Whether GRID would run in planes: where it fits, when forced, or by
- * default on CPU devices, where it is measured faster
- * (docs/PERFORMANCE.md), unless the padding would multiply the memory; a
- * GPU gathers float4 as well, and is not measured. */
+ * default (the one engine issue 15 asks for: on PoCL measured faster,
+ * docs/PERFORMANCE.md; on a GPU its 12 bytes a state against float4's 16,
+ * measured by bench/gpu.sh's -P and -F rows when one is lent), unless the
+ * padding would multiply the memory. */
 static int chosen(const struct msocl__device *dev, const msocl_sim_options *o,
                   const msocl_model *m, const char *why)
 {
+  (void)dev;
   const msocl_choice c = o->tuning.planes;
-  return !why && (c == MSOCL_ON ||
-                  (c == MSOCL_AUTO && dev->info.type == MSOCL_DEVICE_CPU &&
-                   !lavish(m, o)));
+  return !why && (c == MSOCL_ON || (c == MSOCL_AUTO && !lavish(m, o)));
 }
 
 int msocl__planes_would(const struct msocl__device *dev,
@@ -177,15 +177,13 @@ int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
 /* The widest BUFFER table the planes kernels unroll. */
 #define MSOCL__PLANES_SLOTS 64
 
-/* Whether AUTO runs BUFFER or IMAGE2D in planes: BUFFER on CPU devices,
- * where its gather vectorises (docs/PERFORMANCE.md); IMAGE2D's texel
- * reads are float4-typed, which stops PoCL vectorising, so it keeps
- * float4. */
+/* Whether AUTO runs BUFFER or IMAGE2D in planes: BUFFER (and EDGES, its
+ * table) on every device, as GRID; IMAGE2D's texel reads are
+ * float4-typed, which stops PoCL vectorising, so it keeps float4. */
 static int row_auto(const msocl__engine *s)
 {
   return s->lay.kind == MSOCL_LAYOUT_EDGES ||
-         (s->lay.kind == MSOCL_LAYOUT_BUFFER &&
-          s->dev->info.type == MSOCL_DEVICE_CPU);
+         s->lay.kind == MSOCL_LAYOUT_BUFFER;
 }
 
 /* Why BUFFER's, EDGES's or IMAGE2D's connectivity cannot run in planes;
