@@ -10,6 +10,7 @@
  * tests choose either, or check one against the other
  * (msocl__mesh_host_grid). */
 #include "config.h"
+#include "mesh_area.h"
 #include "planes.h"
 
 #include <math.h>
@@ -161,19 +162,6 @@ static int upload(msocl__engine *s, struct msocl__mesh_dev *d, int which)
   return MSOCL_OK;
 }
 
-static int has_area(const float *v, const int *t)
-{
-  double e1[3], e2[3];
-  for (int k = 0; k < 3; k++) {
-    e1[k] = (double)v[3 * t[1] + k] - v[3 * t[0] + k];
-    e2[k] = (double)v[3 * t[2] + k] - v[3 * t[0] + k];
-  }
-  const double nx = e1[1] * e2[2] - e1[2] * e2[1],
-               ny = e1[2] * e2[0] - e1[0] * e2[2],
-               nz = e1[0] * e2[1] - e1[1] * e2[0];
-  return nx * nx + ny * ny + nz * nz > 0;
-}
-
 int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
                        struct msocl__mesh_dev **out)
 {
@@ -201,7 +189,7 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
     for (int t = 0; t < c->nt; t++) {
       const int *k = c->tris + 3 * t;
       if (k[0] != k[1] && k[1] != k[2] && k[0] != k[2] &&
-          has_area(c->verts, k)) {
+          msocl__tri_has_area(c->verts, k)) {
         memcpy(d->tri + 3 * d->nt, k, 3 * sizeof *k);
         d->nt++;
       }
