@@ -4,7 +4,9 @@
  * start) to vb (its end); this step runs from fraction f0 to f1 of that
  * motion. A uniform grid over the call's swept bounds lists, per cell, the
  * triangles whose swept bounds (grown by the reach) touch it, so a point
- * looks only at its own cell. Needs planes.cl before it (MSOCL_PLANES_AT). */
+ * looks only at its own cell (a grid culled to where the cloth will be
+ * leaves a point outside it, within the mesh's bounds, all triangles).
+ * Needs planes.cl before it (MSOCL_PLANES_AT). */
 #if defined(MSOCL_PLANES)
 
 /* The closest point to p on triangle abc as barycentric weights (wa, wb,
@@ -69,20 +71,50 @@ static inline float3 msocl_mesh_vertex(__global const float *m, int k, int nv)
  * friction); orient: +1 or -1 for a closed mesh (the side its normals
  * point to is outside), 0 for an open one (a point stays on the side of
  * the triangle it was on at the step's start). */
-/* The grid cell of the point at a, or -1 (pinned, outside the grid or
+/* The grid cell of the point at a; -2 outside the grid but inside the
+ * mesh's whole bounds box [lo, hi] (a grid culled to the cloth's reach:
+ * the point searches every triangle); else -1 (pinned, outside both, or
  * NaN: every comparison false), without a branch. */
 static inline int msocl_mesh_cell(__global const float *p,
                                   __global const float *aux, float4 origin,
-                                  int gx, int gy, int gz, int plane, int a)
+                                  int gx, int gy, int gz, float4 lo,
+                                  float4 hi, int plane, int a)
 {
-  const float fx = floor((p[a] - origin.x) * origin.w),
-              fy = floor((p[plane + a] - origin.y) * origin.w),
-              fz = floor((p[2 * plane + a] - origin.z) * origin.w);
+  const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
+  const float fx = floor((px - origin.x) * origin.w),
+              fy = floor((py - origin.y) * origin.w),
+              fz = floor((pz - origin.z) * origin.w);
   const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]);
   const bool in = fx >= 0.0f && fy >= 0.0f && fz >= 0.0f && fx < (float)gx &&
                   fy < (float)gy && fz < (float)gz && free;
+  const bool box = px >= lo.x && py >= lo.y && pz >= lo.z && px <= hi.x &&
+                   py <= hi.y && pz <= hi.z && free;
   const int c = ((int)fz * gy + (int)fy) * gx + (int)fx;
-  return in ? c : -1;
+  return in ? c : box ? -2 : -1;
+}
+
+/* Triangle t at fraction f of its motion, as msocl_mesh_place writes it
+ * into cur (q[0 .. 3]). */
+static inline void msocl_mesh_at(__global const float *va,
+                                 __global const float *vb,
+                                 __global const int *tri, int t, float f,
+                                 int nv, int nt, float4 *q)
+{
+  const int i0 = tri[t], i1 = tri[nt + t], i2 = tri[2 * nt + t];
+  const float3 A = mix(msocl_mesh_vertex(va, i0, nv),
+                       msocl_mesh_vertex(vb, i0, nv), f);
+  const float3 B = mix(msocl_mesh_vertex(va, i1, nv),
+                       msocl_mesh_vertex(vb, i1, nv), f);
+  const float3 C = mix(msocl_mesh_vertex(va, i2, nv),
+                       msocl_mesh_vertex(vb, i2, nv), f);
+  const float3 n = normalize(cross(B - A, C - A));
+  const float3 m = (A + B + C) / 3.0f;
+  const float r = sqrt(fmax(dot(A - m, A - m),
+                            fmax(dot(B - m, B - m), dot(C - m, C - m))));
+  q[0] = (float4)(A, n.x);
+  q[1] = (float4)(B, n.y);
+  q[2] = (float4)(C, n.z);
+  q[3] = (float4)(m, r * 1.0001f);
 }
 
 static inline void msocl_mesh_point(
@@ -92,25 +124,41 @@ static inline void msocl_mesh_point(
     __global const int *rim, __global const int *cell_start,
     __global const int *cell_tri, float4 origin, int gx, int gy, int gz,
     float4 prm, float orient, float dt, int nv, int nt, int plane,
-    __global const float4 *cur, float reach2, int cell, int a)
+    __global const float4 *cur, float reach2, __global int *esc, int cell,
+    int a)
 {
-  if (cell < 0)
+  if (cell == -1)
     return;
   const float3 P = (float3)(p[a], p[plane + a], p[2 * plane + a]);
   const float f0 = prm.x, f1 = prm.y, thick = prm.z;
   float best = reach2; /* farther than the reach: no contact */
   int bt = -1, bfeat = 0;
   float3 bw = (float3)(0.0f);
-  for (int q = cell_start[cell]; q < cell_start[cell + 1]; q++) {
-    const int t = cell_tri[q];
+  /* outside the culled grid (cell -2): every triangle, placed here */
+  const bool all = cell < 0;
+  if (all)
+    *esc = 1; /* for the host: the next calls' grids not culled */
+  const int q0 = all ? 0 : cell_start[cell], q1 = all ? nt : cell_start[cell + 1];
+  for (int q = q0; q < q1; q++) {
+    const int t = all ? q : cell_tri[q];
+    float4 g[4];
+    if (all)
+      msocl_mesh_at(va, vb, tri, t, f1, nv, nt, g);
+    else
+      g[3] = cur[4 * t + 3];
     /* the distances to its bounding sphere and to its plane bound the
      * distance to the triangle: most triangles end there */
-    const float4 s4 = cur[4 * t + 3];
+    const float4 s4 = g[3];
     const float3 e = P - s4.xyz;
     const float r = s4.w * s4.w, e2 = dot(e, e);
     if (e2 > r && e2 - 2.0f * s4.w * sqrt(e2) + r >= best)
       continue;
-    const float4 a4 = cur[4 * t], b4 = cur[4 * t + 1], c4 = cur[4 * t + 2];
+    if (!all) {
+      g[0] = cur[4 * t];
+      g[1] = cur[4 * t + 1];
+      g[2] = cur[4 * t + 2];
+    }
+    const float4 a4 = g[0], b4 = g[1], c4 = g[2];
     const float3 A = a4.xyz, B = b4.xyz, C = c4.xyz;
     const float h = dot(P - A, (float3)(a4.w, b4.w, c4.w));
     if (h * h >= best)
@@ -135,9 +183,16 @@ static inline void msocl_mesh_point(
   const float3 DA = msocl_mesh_vertex(vb, i0, nv) - A0,
                DB = msocl_mesh_vertex(vb, i1, nv) - B0,
                DC = msocl_mesh_vertex(vb, i2, nv) - C0;
-  const float4 a4 = cur[4 * bt], b4 = cur[4 * bt + 1], c4 = cur[4 * bt + 2];
-  const float3 A1 = a4.xyz, B1 = b4.xyz, C1 = c4.xyz;
-  const float3 n1 = (float3)(a4.w, b4.w, c4.w);
+  float4 g[4]; /* as the search saw it */
+  if (all) {
+    msocl_mesh_at(va, vb, tri, bt, f1, nv, nt, g);
+  } else {
+    g[0] = cur[4 * bt];
+    g[1] = cur[4 * bt + 1];
+    g[2] = cur[4 * bt + 2];
+  }
+  const float3 A1 = g[0].xyz, B1 = g[1].xyz, C1 = g[2].xyz;
+  const float3 n1 = (float3)(g[0].w, g[1].w, g[2].w);
   /* the side the point belongs on */
   float side = orient;
   if (orient == 0.0f) {
@@ -180,31 +235,25 @@ static inline void msocl_mesh_point(
 
 /* The triangles at fraction f of the motion from va to vb, each as four
  * float4s: its corners, in their w its unit normal, and its bounding
- * sphere (centroid, radius) (a work-item a triangle; those past nt do
+ * sphere (centroid, radius) (a work-item a triangle: live[i] where
+ * nlive >= 0, the grid's triangles, else i; those past the count do
  * nothing). */
 __kernel void msocl_mesh_place(__global const float *va,
                                __global const float *vb,
                                __global const int *tri, __global float4 *cur,
-                               float f, int nv, int nt)
+                               float f, int nv, int nt,
+                               __global const int *live, int nlive)
 {
-  const int t = get_global_id(0);
-  if (t >= nt)
+  const int i = get_global_id(0);
+  if (i >= (nlive >= 0 ? nlive : nt))
     return;
-  const int i0 = tri[t], i1 = tri[nt + t], i2 = tri[2 * nt + t];
-  const float3 A = mix(msocl_mesh_vertex(va, i0, nv),
-                       msocl_mesh_vertex(vb, i0, nv), f);
-  const float3 B = mix(msocl_mesh_vertex(va, i1, nv),
-                       msocl_mesh_vertex(vb, i1, nv), f);
-  const float3 C = mix(msocl_mesh_vertex(va, i2, nv),
-                       msocl_mesh_vertex(vb, i2, nv), f);
-  const float3 n = normalize(cross(B - A, C - A));
-  const float3 m = (A + B + C) / 3.0f;
-  const float r = sqrt(fmax(dot(A - m, A - m),
-                            fmax(dot(B - m, B - m), dot(C - m, C - m))));
-  cur[4 * t] = (float4)(A, n.x);
-  cur[4 * t + 1] = (float4)(B, n.y);
-  cur[4 * t + 2] = (float4)(C, n.z);
-  cur[4 * t + 3] = (float4)(m, r * 1.0001f);
+  const int t = nlive >= 0 ? live[i] : i;
+  float4 q[4];
+  msocl_mesh_at(va, vb, tri, t, f, nv, nt, q);
+  cur[4 * t] = q[0];
+  cur[4 * t + 1] = q[1];
+  cur[4 * t + 2] = q[2];
+  cur[4 * t + 3] = q[3];
 }
 
 #define MSOCL_MESH_PARAMS                                                     \
@@ -215,10 +264,10 @@ __kernel void msocl_mesh_place(__global const float *va,
       __global const int *cell_tri, float4 origin, int gx, int gy, int gz,    \
       float4 prm, float orient, float dt, int nv, int nt, int nx, int pitch,  \
       int slab, int plane, __global const float4 *cur, float reach2,          \
-      __global const int *cellof
+      __global const int *cellof, float4 lo, float4 hi, __global int *esc
 #define MSOCL_MESH_ARGS(c, a)                                                 \
   p, v, pp, aux, va, vb, tri, rim, cell_start, cell_tri, origin, gx, gy, gz,  \
-      prm, orient, dt, nv, nt, plane, cur, reach2, c, a
+      prm, orient, dt, nv, nt, plane, cur, reach2, esc, c, a
 
 /* A work-item a point (GPUs). */
 __kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
@@ -228,33 +277,61 @@ __kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
   (void)slab; (void)cellof;
   if (x < nx)
     msocl_mesh_point(MSOCL_MESH_ARGS(
-        msocl_mesh_cell(p, aux, origin, gx, gy, gz, plane, a), a));
+        msocl_mesh_cell(p, aux, origin, gx, gy, gz, lo, hi, plane, a), a));
 }
 
 /* CPU devices, first: each point's cell in cellof, -1 where it has no
- * triangles (or is pinned, or outside the grid, or padding); written
+ * triangles (or is pinned, or outside the grid and the mesh's bounds box
+ * [lo, hi], or padding), -2 outside the grid inside that box; written
  * without a branch, each coordinate in its own shape, so that PoCL
  * vectorises it. */
-__kernel void msocl_mesh_cells(__global const float *p,
-                               __global const float *aux,
-                               __global const int *cell_start,
-                               __global int *cellof, float4 origin, int gx,
-                               int gy, int gz, int nx, int pitch, int slab,
-                               int plane)
+static inline __attribute__((always_inline)) void msocl_mesh_cells_of(
+    __global const float *p, __global const float *aux,
+    __global const int *cell_start, __global int *cellof, float4 origin,
+    int gx, int gy, int gz, int nx, int pitch, int slab, int plane,
+    float4 lo, float4 hi, const bool culled)
 {
   MSOCL_PLANES_XYZ;
   const int a = MSOCL_PLANES_AT(x, y, z);
   (void)slab;
   const float w = origin.w;
-  const float fx = floor((p[a] - origin.x) * w),
-              fy = floor(fma(p[plane + a], w, -(origin.y * w))),
-              fz = floor(p[2 * plane + a] * w - origin.z * w);
-  const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]);
+  const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
+  const float fx = floor((px - origin.x) * w),
+              fy = floor(fma(py, w, -(origin.y * w))),
+              fz = floor(pz * w - origin.z * w);
+  const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]) && x < nx;
   const bool in = fx >= 0.0f && fy >= 0.0f && fz >= 0.0f && fx < (float)gx &&
-                  fy < (float)gy && fz < (float)gz && free && x < nx;
+                  fy < (float)gy && fz < (float)gz && free;
+  const bool box = culled && px >= lo.x && py >= lo.y && pz >= lo.z &&
+                   px <= hi.x && py <= hi.y && pz <= hi.z && free;
   const int c = in ? ((int)fz * gy + (int)fy) * gx + (int)fx : 0;
   const bool any = cell_start[c + 1] > cell_start[c];
-  cellof[a] = in && any ? c : -1;
+  cellof[a] = in && any ? c : box && !in ? -2 : -1;
+}
+
+/* A grid over every triangle: no point outside it is near one. */
+__kernel void msocl_mesh_cells(__global const float *p,
+                               __global const float *aux,
+                               __global const int *cell_start,
+                               __global int *cellof, float4 origin, int gx,
+                               int gy, int gz, int nx, int pitch, int slab,
+                               int plane, float4 lo, float4 hi)
+{
+  msocl_mesh_cells_of(p, aux, cell_start, cellof, origin, gx, gy, gz, nx,
+                      pitch, slab, plane, lo, hi, false);
+}
+
+/* A grid culled to the cloth: -2 outside it inside [lo, hi]. */
+__kernel void msocl_mesh_cells_culled(__global const float *p,
+                                      __global const float *aux,
+                                      __global const int *cell_start,
+                                      __global int *cellof, float4 origin,
+                                      int gx, int gy, int gz, int nx,
+                                      int pitch, int slab, int plane,
+                                      float4 lo, float4 hi)
+{
+  msocl_mesh_cells_of(p, aux, cell_start, cellof, origin, gx, gy, gz, nx,
+                      pitch, slab, plane, lo, hi, true);
 }
 
 /* CPU devices, then: a work-item a run of MSOCL_MESH_RUN points of a row,
@@ -267,11 +344,53 @@ __kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
   const int y = get_global_id(1), z = get_global_id(2);
   const int x0 = get_global_id(0) * MSOCL_MESH_RUN;
   const int x1 = min(nx, x0 + MSOCL_MESH_RUN);
-  (void)y; (void)z; (void)slab;
+  (void)y; (void)z; (void)slab; (void)lo; (void)hi;
   for (int x = x0; x < x1; x++) {
     const int a = MSOCL_PLANES_AT(x, y, z);
     msocl_mesh_point(MSOCL_MESH_ARGS(cellof[a], a));
   }
+}
+
+/* Before a call that moves the mesh: the free points' bounds and their
+ * largest squared move since the last such call (prev: their positions
+ * then, updated), a run of MSOCL_MESH_RUN points of a row a work-item,
+ * into out (8 floats a work-item: low xyz, the move, high xyz,
+ * and the first's last: whether a point searched every triangle since,
+ * esc, then cleared); the host takes the whole from these. */
+__kernel void msocl_mesh_bounds(__global const float *p,
+                                __global float *prev,
+                                __global const float *aux,
+                                __global float4 *out, int nx, int pitch,
+                                int slab, int plane, __global int *esc)
+{
+  const int y = get_global_id(1), z = get_global_id(2);
+  const int x0 = get_global_id(0) * MSOCL_MESH_RUN;
+  const int x1 = min(nx, x0 + MSOCL_MESH_RUN);
+  (void)y; (void)z; (void)slab;
+  float4 lo = (float4)(INFINITY, INFINITY, INFINITY, 0.0f);
+  float4 hi = (float4)(-INFINITY, -INFINITY, -INFINITY, 0.0f);
+  for (int x = x0; x < x1; x++) {
+    const int a = MSOCL_PLANES_AT(x, y, z);
+    if (MSOCL_PLANES_PINNED(aux[plane + a]))
+      continue;
+    const float4 P = (float4)(p[a], p[plane + a], p[2 * plane + a], 0.0f);
+    const float3 M = P.xyz - (float3)(prev[a], prev[plane + a],
+                                      prev[2 * plane + a]);
+    prev[a] = P.x;
+    prev[plane + a] = P.y;
+    prev[2 * plane + a] = P.z;
+    lo = fmin(lo, P);
+    hi = fmax(hi, P);
+    lo.w = fmax(lo.w, dot(M, M));
+  }
+  const int o = (z * (int)get_global_size(1) + y) * (int)get_global_size(0) +
+                (int)get_global_id(0);
+  if (o == 0) {
+    hi.w = (float)*esc;
+    *esc = 0;
+  }
+  out[2 * o] = lo;
+  out[2 * o + 1] = hi;
 }
 
 /* The grid, built on the device each call that moves the mesh
@@ -281,9 +400,10 @@ __kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
  * the host reference build's whatever order the atomics ran in. */
 
 /* The cells lo[c] .. hi[c] that triangle t's bounds over the call (its
- * corners at va and vb, grown by reach) cover, clamped to the grid: the
- * same float operations as the host's build. */
-static inline void msocl_mesh_span(__global const float *va,
+ * corners at va and vb, grown by reach) cover, clamped to the grid, and
+ * whether they miss the grid (a grid culled to the cloth's reach leaves
+ * such a triangle out): the same float operations as the host's build. */
+static inline bool msocl_mesh_span(__global const float *va,
                                    __global const float *vb,
                                    __global const int *tri, int t, int nv,
                                    int nt, float4 origin, int4 g, float reach,
@@ -299,13 +419,18 @@ static inline void msocl_mesh_span(__global const float *va,
     mx[c] = fmax(fmax(fmax(x0, x1), fmax(x2, y0)), fmax(y1, y2));
   }
   const float3 o = origin.xyz;
-  const float3 a = floor(((float3)(mn[0], mn[1], mn[2]) - reach - o) *
-                         origin.w),
-               b = floor(((float3)(mx[0], mx[1], mx[2]) + reach - o) *
-                         origin.w);
+  const float3 top3 = convert_float3(g.xyz);
+  /* clamped to [-1, g] in float first, so that the ints are in range */
+  const float3 a = clamp(floor(((float3)(mn[0], mn[1], mn[2]) - reach - o) *
+                               origin.w), -1.0f, top3),
+               b = clamp(floor(((float3)(mx[0], mx[1], mx[2]) + reach - o) *
+                               origin.w), -1.0f, top3);
+  const int4 ia = (int4)(convert_int3(a), 0), ib = (int4)(convert_int3(b), 0);
   const int4 top = (int4)(g.xyz - 1, 0); /* w: unused, kept in range */
-  *lo = clamp((int4)(convert_int3(a), 0), (int4)(0), top);
-  *hi = clamp((int4)(convert_int3(b), 0), (int4)(0), top);
+  *lo = clamp(ia, (int4)(0), top);
+  *hi = clamp(ib, (int4)(0), top);
+  return ia.x > top.x || ia.y > top.y || ia.z > top.z || ib.x < 0 ||
+         ib.y < 0 || ib.z < 0;
 }
 
 /* Per triangle: count[c] + 1 for each cell c it covers. This kernel, the
@@ -321,7 +446,8 @@ __kernel void msocl_mesh_count(__global const float *va,
   const int t0 = get_global_id(0) * run, t1 = min(nt, t0 + run);
   for (int t = t0; t < t1; t++) {
     int4 lo, hi;
-    msocl_mesh_span(va, vb, tri, t, nv, nt, origin, g, reach, &lo, &hi);
+    if (msocl_mesh_span(va, vb, tri, t, nv, nt, origin, g, reach, &lo, &hi))
+      continue;
     for (int z = lo.z; z <= hi.z; z++)
       for (int y = lo.y; y <= hi.y; y++)
         for (int x = lo.x; x <= hi.x; x++)
@@ -345,7 +471,8 @@ __kernel void msocl_mesh_fill(__global const float *va,
   for (int u = u0; u < u1; u++) {
     const int t = nt - 1 - u;
     int4 lo, hi;
-    msocl_mesh_span(va, vb, tri, t, nv, nt, origin, g, reach, &lo, &hi);
+    if (msocl_mesh_span(va, vb, tri, t, nv, nt, origin, g, reach, &lo, &hi))
+      continue;
     for (int z = lo.z; z <= hi.z; z++)
       for (int y = lo.y; y <= hi.y; y++)
         for (int x = lo.x; x <= hi.x; x++) {

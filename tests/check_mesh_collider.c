@@ -4,7 +4,7 @@
  * static icosphere holds a dropped cloth where the analytic sphere of the
  * same radius does; an open sheet keeps points on their side; bad input
  * refused. Distances are computed here in double from the exact mesh. */
-#include "engine/engine.h" /* msocl__mesh_host_grid: the reference grid */
+#include "engine/engine.h" /* msocl__mesh_host_grid, msocl__mesh_cull */
 #include "scenes.h"
 
 #include <check.h>
@@ -499,6 +499,73 @@ START_TEST(device_grid_is_host_grid)
 }
 END_TEST
 
+/* The sheet thrown down at 3 m/s onto a floor mesh 2 m across at y = 0
+ * (most of it outside the sheet's bounds, all of it below them) that
+ * moves 1 mm a call along x, for `calls` calls of SUB steps; each call's
+ * lowest free point into low, the positions at the end into p. */
+static void thrown(int cull, int calls, float *low, float *p)
+{
+  const float v[4 * 3] = {-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, 1};
+  const int t[2 * 3] = {0, 2, 1, 0, 3, 2}; /* normal +y */
+  msocl_model *m = sheet();
+  ck_assert_int_eq(msocl_model_add_mesh_collider(m, v, 4, t, 2, (float)THICK,
+                                                 0.5f), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_set_gravity(m, 0, -9.81f, 0), MSOCL_OK);
+  msocl__mesh_cull(cull);
+  float dt;
+  msocl_sim *s = sim_of(m, &dt);
+  msocl__mesh_cull(-1);
+  float vel[3 * 256];
+  for (int i = 0; i < 256; i++)
+    vel[3 * i] = 0, vel[3 * i + 1] = -3.0f, vel[3 * i + 2] = 0;
+  ck_assert_int_eq(msocl_sim_write_velocities(s, vel), MSOCL_OK);
+  float now[12];
+  for (int c = 1; c <= calls; c++) {
+    shifted(v, 4, 0.0, now);
+    for (int k = 0; k < 4; k++)
+      now[3 * k] += 1e-3f * (float)c;
+    ck_assert_int_eq(msocl_sim_set_mesh_collider_vertices(s, 0, now),
+                     MSOCL_OK);
+    ck_assert_msg(msocl_sim_step(s, SUB) == MSOCL_OK, "%s",
+                  msocl_last_error());
+    ck_assert_int_eq(msocl_sim_read_positions(s, p), MSOCL_OK);
+    low[c - 1] = INFINITY;
+    for (int i = 0; i < 256; i++)
+      low[c - 1] = fminf(low[c - 1], p[3 * i + 1]);
+  }
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+
+/* A moving mesh's grid culled to the cloth's box at each call's start
+ * (the hardest the library may cull) misses nothing: the thrown sheet
+ * reaches the floor within a call, its points leaving that box, and
+ * stops on it a thickness up, as with the grid never culled. */
+START_TEST(culled_grid_misses_nothing)
+{
+  enum { CALLS = 80 };
+  float low[2][CALLS], p[2][3 * 256];
+  thrown(1, CALLS, low[0], p[0]);
+  thrown(0, CALLS, low[1], p[1]);
+  for (int c = 0; c < CALLS; c++)
+    ck_assert_msg(low[0][c] >= THICK * (1 - TOL),
+                  "culled: call %d, a point at y %g, through the floor", c + 1,
+                  (double)low[0][c]);
+  double worst = 0;
+  int resting = 0;
+  for (int i = 0; i < 256; i++) {
+    worst = fmax(worst, fabs((double)p[0][3 * i + 1] - p[1][3 * i + 1]));
+    resting += fabs(p[0][3 * i + 1] - THICK) < 2e-3;
+  }
+  ck_assert_msg(resting > 200, "only %d points resting on the floor", resting);
+  ck_assert_msg(worst < 1e-4, "culled and unculled grids %g m apart", worst);
+  ck_assert_msg(low[0][0] > 0.1, "the sheet started on the floor: %g",
+                (double)low[0][0]);
+  printf("culled grid: %d of 256 points resting, %.3g m from the unculled "
+         "run's\n", resting, worst);
+}
+END_TEST
+
 START_TEST(bad_input)
 {
   const float v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
@@ -580,6 +647,7 @@ int main(void)
   tcase_add_test(tc, static_and_disabled);
   tcase_add_test(tc, static_in_buffer);
   tcase_add_test(tc, device_grid_is_host_grid);
+  tcase_add_test(tc, culled_grid_misses_nothing);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }

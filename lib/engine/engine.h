@@ -237,6 +237,11 @@ void msocl__mesh_free(struct msocl__mesh_dev *d);
  * differ (2), or (-1, the default) on the host for CPU devices and on the
  * device for others. */
 void msocl__mesh_host_grid(int mode);
+/* Tests only: a moving mesh's grid, for colliders created from now on,
+ * never culled to the cloth (0), culled every call to the cloth's box as
+ * it stands (1: the search outside the grid does the rest), or (-1) as
+ * the library chooses. */
+void msocl__mesh_cull(int mode);
 /* Energy of the engine's points (waits for the device). */
 int msocl__energy(msocl__engine *s, msocl_energy *e);
 /* Sets argument i of kernel k to a buffer, a float, an int (launch.c). */

@@ -1,8 +1,9 @@
 /* A mesh collider's device copy (kernels/mesh_collider.cl): its vertices
  * at the call's start and end as planes, its triangles with their rims,
  * and the uniform grid over the call's swept bounds, built once per call
- * that moves it: the host picks origin, cell size and dims from the
- * call's bounds (a pass over the triangles' corners), the device counts
+ * that moves it, and then only where the cloth will likely be (build):
+ * the host picks origin, cell size and dims from the call's bounds and
+ * the cloth's (a pass over the triangles' corners), the device counts
  * each triangle's cells, scans the counts, fills and sorts each cell's
  * list (one small read of the total between); each step only runs the
  * per-point pass, which interpolates the vertices itself. On CPU devices
@@ -10,6 +11,7 @@
  * tests choose either, or check one against the other
  * (msocl__mesh_host_grid). */
 #include "config.h"
+#include "mesh_area.h"
 #include "planes.h"
 
 #include <math.h>
@@ -20,10 +22,16 @@
 #define TRY MSOCL__TRY
 
 static int host_grid = -1; /* tests: msocl__mesh_host_grid */
+static int cull_mode = -1;  /* tests: msocl__mesh_cull */
 
 void msocl__mesh_host_grid(int mode)
 {
   host_grid = mode;
+}
+
+void msocl__mesh_cull(int mode)
+{
+  cull_mode = mode;
 }
 
 struct msocl__mesh_dev {
@@ -37,13 +45,28 @@ struct msocl__mesh_dev {
   cl_mem vert[2];        /* 3 planes of nv floats each */
   cl_mem dtri, drim, start, list;
   size_t start_cap, list_cap; /* ints the grid's buffers hold */
+  cl_mem live;           /* the host build's triangles in the grid */
+  size_t live_cap;
+  int nlive;             /* ... how many, or -1: every triangle placed */
+  cl_kernel bounds;      /* the cloth's bounds and move a run of points */
+  cl_mem dbounds, esc;   /* its output; whether a point left the grid */
+  cl_mem prev;           /* the points at the last call's start */
+  float *hbounds;
+  int full;              /* calls left to build the whole grid */
+  int cull;              /* tests: msocl__mesh_cull's mode */
+  int pending, n;        /* a grid to build at the first pass; steps */
+  cl_event read;         /* ... once the cloth's bounds are read */
+  size_t runs[3];        /* msocl_mesh_bounds' work-items */
+  int culled;            /* the grid is culled to a call's cloth */
+  cl_float4 lo, hi;      /* every triangle's swept bounds, with the reach */
   /* host staging for the writes, kept until the next call's (a call
    * ends with the queue finished), so the writes need not block */
-  float *hvert;
-  int *hstart, *hlist;
-  size_t hstart_cap, hlist_cap;
+  float *hvert, *hbox, *hvbox; /* the build's: triangles', vertices' bounds */
+  int *hstart, *hlist, *hlive;
+  size_t hstart_cap, hlist_cap, hlive_cap;
   cl_kernel k, place;    /* the pass; the triangles at a step's end */
-  cl_kernel cells;       /* CPUs: each point's cell first, into cellof */
+  cl_kernel cells[2];    /* CPUs: each point's cell first, into cellof
+                            (the whole grid; one culled to the cloth) */
   cl_kernel count, scan_sums, scan_top, scan_out, fill, sort; /* the grid */
   cl_mem dcount, sums;   /* per cell; per chunk of cells */
   size_t count_cap, sums_cap;
@@ -161,19 +184,6 @@ static int upload(msocl__engine *s, struct msocl__mesh_dev *d, int which)
   return MSOCL_OK;
 }
 
-static int has_area(const float *v, const int *t)
-{
-  double e1[3], e2[3];
-  for (int k = 0; k < 3; k++) {
-    e1[k] = (double)v[3 * t[1] + k] - v[3 * t[0] + k];
-    e2[k] = (double)v[3 * t[2] + k] - v[3 * t[0] + k];
-  }
-  const double nx = e1[1] * e2[2] - e1[2] * e2[1],
-               ny = e1[2] * e2[0] - e1[0] * e2[2],
-               nz = e1[0] * e2[1] - e1[1] * e2[0];
-  return nx * nx + ny * ny + nz * nz > 0;
-}
-
 int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
                        struct msocl__mesh_dev **out)
 {
@@ -184,16 +194,20 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   d->nv = c->nv;
   d->thick = c->thickness;
   d->host = host_grid;
+  d->cull = cull_mode;
   d->friction = c->friction;
   const size_t nv3 = 3 * (size_t)c->nv;
   d->at[0] = malloc(nv3 * sizeof(float));
   d->at[1] = malloc(nv3 * sizeof(float));
   d->hvert = malloc(nv3 * sizeof(float));
+  d->hvbox = malloc(2 * nv3 * sizeof(float));
+  d->hbox = malloc(6 * (size_t)c->nt * sizeof(float));
   d->tri = malloc(3 * (size_t)c->nt * sizeof *d->tri);
   int *rim = malloc((size_t)c->nt * sizeof *rim);
   int *planes = malloc(3 * (size_t)c->nt * sizeof *planes);
   int rc = MSOCL_OK;
-  if (!d->at[0] || !d->at[1] || !d->hvert || !d->tri || !rim || !planes)
+  if (!d->at[0] || !d->at[1] || !d->hvert || !d->hvbox || !d->hbox ||
+      !d->tri || !rim || !planes)
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider");
   if (rc == MSOCL_OK) {
     memcpy(d->at[0], c->verts, nv3 * sizeof(float));
@@ -201,7 +215,7 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
     for (int t = 0; t < c->nt; t++) {
       const int *k = c->tris + 3 * t;
       if (k[0] != k[1] && k[1] != k[2] && k[0] != k[2] &&
-          has_area(c->verts, k)) {
+          msocl__tri_has_area(c->verts, k)) {
         memcpy(d->tri + 3 * d->nt, k, 3 * sizeof *k);
         d->nt++;
       }
@@ -245,19 +259,53 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   TRY(msocl__arg_mem(d->place, 3, d->cur));
   TRY(msocl__arg_int(d->place, 5, d->nv));
   TRY(msocl__arg_int(d->place, 6, d->nt));
+  TRY(msocl__arg_mem(d->place, 7, d->dtri)); /* a list to come */
+  TRY(msocl__arg_int(d->place, 8, -1));
+  d->nlive = -1;
   TRY(msocl__arg_mem(d->k, 23, d->cur));
   d->cellof = buffer(s, (size_t)s->pl_plane * sizeof(int), NULL, &rc2);
   TRY(rc2);
   TRY(msocl__arg_mem(d->k, 25, d->cellof));
+  const cl_int zero = 0;
+  d->esc = buffer(s, sizeof zero, (void *)&zero, &rc2);
+  TRY(rc2);
+  TRY(msocl__arg_mem(d->k, 28, d->esc));
   if (d->rows) {
-    d->cells = clCreateKernel(s->prog, "msocl_mesh_cells", &e);
-    if (e != CL_SUCCESS)
-      return msocl__fail(e, "clCreateKernel(msocl_mesh_cells): %s",
-                         msocl_err_name(e));
-    TRY(msocl__arg_mem(d->cells, 1, s->pl_aux));
-    TRY(msocl__arg_mem(d->cells, 3, d->cellof));
-    TRY(msocl__pl_shape(s, d->cells, 8, 1));
+    static const char *const cname[2] = {"msocl_mesh_cells",
+                                         "msocl_mesh_cells_culled"};
+    for (int q = 0; q < 2; q++) {
+      d->cells[q] = clCreateKernel(s->prog, cname[q], &e);
+      if (e != CL_SUCCESS)
+        return msocl__fail(e, "clCreateKernel(%s): %s", cname[q],
+                           msocl_err_name(e));
+      TRY(msocl__arg_mem(d->cells[q], 1, s->pl_aux));
+      TRY(msocl__arg_mem(d->cells[q], 3, d->cellof));
+      TRY(msocl__pl_shape(s, d->cells[q], 8, 1));
+    }
   }
+  d->bounds = clCreateKernel(s->prog, "msocl_mesh_bounds", &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateKernel(msocl_mesh_bounds): %s",
+                       msocl_err_name(e));
+  TRY(msocl__arg_mem(d->bounds, 2, s->pl_aux));
+  TRY(msocl__pl_shape(s, d->bounds, 4, 1));
+  d->runs[0] = (s->pl_global[0] + 255) / 256;
+  d->runs[1] = s->pl_global[1];
+  d->runs[2] = s->pl_global[2];
+  const size_t runs = d->runs[0] * d->runs[1] * d->runs[2];
+  d->hbounds = malloc(8 * runs * sizeof *d->hbounds);
+  if (!d->hbounds)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider");
+  d->dbounds = buffer(s, 8 * runs * sizeof *d->hbounds, NULL, &rc2);
+  TRY(rc2);
+  TRY(msocl__arg_mem(d->bounds, 8, d->esc));
+  d->prev = buffer(s, 3 * (size_t)s->pl_plane * sizeof(float), NULL, &rc2);
+  TRY(rc2);
+  const cl_float nil = 0;
+  MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, d->prev, &nil, sizeof nil, 0,
+                                3 * (size_t)s->pl_plane * sizeof nil, 0, NULL,
+                                NULL));
+  TRY(msocl__arg_mem(d->bounds, 1, d->prev));
   cl_kernel *grid[6] = {&d->count, &d->scan_sums, &d->scan_top,
                         &d->scan_out, &d->fill, &d->sort};
   static const char *const gname[6] = {
@@ -318,20 +366,47 @@ static int grow(int **a, size_t *cap, size_t need)
   return MSOCL_OK;
 }
 
-/* The cells a bound [lo, hi] covers along axis c, clamped to the grid
- * (msocl_mesh_span's float operations). */
-static inline void span(const struct msocl__mesh_dev *d, int c, float lo,
-                        float hi, int *a, int *b)
+/* The cells a bound [lo, hi] covers along axis c, clamped to the grid,
+ * and whether it misses the grid (msocl_mesh_span's float operations). */
+static inline int span(const struct msocl__mesh_dev *d, int c, float lo,
+                       float hi, int *a, int *b)
 {
-  const float o = d->origin.s[c], w = d->origin.s[3];
-  *a = (int)floorf((lo - o) * w);
-  *b = (int)floorf((hi - o) * w);
-  *a = *a < 0 ? 0 : *a >= d->g[c] ? d->g[c] - 1 : *a;
-  *b = *b < 0 ? 0 : *b >= d->g[c] ? d->g[c] - 1 : *b;
+  const float o = d->origin.s[c], w = d->origin.s[3], g = (float)d->g[c];
+  float fa = floorf((lo - o) * w), fb = floorf((hi - o) * w);
+  fa = fa < -1.0f ? -1.0f : fa > g ? g : fa;
+  fb = fb < -1.0f ? -1.0f : fb > g ? g : fb;
+  const int ia = (int)fa, ib = (int)fb;
+  *a = ia < 0 ? 0 : ia >= d->g[c] ? d->g[c] - 1 : ia;
+  *b = ib < 0 ? 0 : ib >= d->g[c] ? d->g[c] - 1 : ib;
+  return ia >= d->g[c] || ib < 0;
+}
+
+/* Whether triangle t misses the grid: span's answer without its floors
+ * (a floor is negative just where its argument is, and at least g just
+ * where its argument is). */
+static int misses(const struct msocl__mesh_dev *d, const float *box, int t)
+{
+  const float *b = box + 6 * t, w = d->origin.s[3];
+  int out = 0;
+  for (int c = 0; c < 3; c++)
+    out |= ((b[3 + c] - d->origin.s[c]) * w < 0.0f) |
+           ((b[c] - d->origin.s[c]) * w >= (float)d->g[c]);
+  return out;
+}
+
+/* Triangle t's cells a[] .. b[], or 0 where it misses the grid. */
+static int spans(const struct msocl__mesh_dev *d, const float *box, int t,
+                 int *a, int *b)
+{
+  int out = 0;
+  for (int c = 0; c < 3; c++)
+    out |= span(d, c, box[6 * t + c], box[6 * t + 3 + c], &a[c], &b[c]);
+  return !out;
 }
 
 /* The reference build on the host, a counting sort over the triangles'
- * bounds box (6 floats each), into hstart and hlist (*total entries). */
+ * bounds box (6 floats each), into hstart and hlist (*total entries);
+ * the triangles in the grid into hlive (d->nlive). */
 static int host_lists(struct msocl__mesh_dev *d, const float *box,
                       size_t *total)
 {
@@ -340,11 +415,16 @@ static int host_lists(struct msocl__mesh_dev *d, const float *box,
   int *start = d->hstart;
   if (rc == MSOCL_OK)
     memset(start, 0, (ncell + 1) * sizeof *start);
+  if (rc == MSOCL_OK)
+    rc = grow(&d->hlive, &d->hlive_cap, (size_t)d->nt);
   int a[3], b[3];
   size_t sum = 0;
+  d->nlive = 0;
   for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
-    for (int c = 0; c < 3; c++)
-      span(d, c, box[6 * t + c], box[6 * t + 3 + c], &a[c], &b[c]);
+    if (misses(d, box, t))
+      continue;
+    spans(d, box, t, a, b);
+    d->hlive[d->nlive++] = t;
     for (int z = a[2]; z <= b[2]; z++)
       for (int y = a[1]; y <= b[1]; y++)
         for (int x = a[0]; x <= b[0]; x++)
@@ -362,9 +442,9 @@ static int host_lists(struct msocl__mesh_dev *d, const float *box,
   int *list = d->hlist;
   if (rc == MSOCL_OK)
     memcpy(fill, start, ncell * sizeof *fill);
-  for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
-    for (int c = 0; c < 3; c++)
-      span(d, c, box[6 * t + c], box[6 * t + 3 + c], &a[c], &b[c]);
+  for (int i = 0; rc == MSOCL_OK && i < d->nlive; i++) {
+    const int t = d->hlive[i];
+    spans(d, box, t, a, b);
     for (int z = a[2]; z <= b[2]; z++)
       for (int y = a[1]; y <= b[1]; y++)
         for (int x = a[0]; x <= b[0]; x++)
@@ -394,6 +474,12 @@ static int build_host(msocl__engine *s, struct msocl__mesh_dev *d,
   if (rc == MSOCL_OK && e == CL_SUCCESS)
     e = clEnqueueWriteBuffer(s->dev->queue, d->list, CL_FALSE, 0,
                              (total + 1) * sizeof *list, list, 0, NULL, NULL);
+  if (rc == MSOCL_OK && e == CL_SUCCESS)
+    rc = room(s, &d->live, &d->live_cap, (size_t)d->nlive + 1);
+  if (rc == MSOCL_OK && e == CL_SUCCESS && d->nlive > 0)
+    e = clEnqueueWriteBuffer(s->dev->queue, d->live, CL_FALSE, 0,
+                             (size_t)d->nlive * sizeof *d->hlive, d->hlive, 0,
+                             NULL, NULL);
   if (rc == MSOCL_OK && e != CL_SUCCESS)
     rc = msocl__fail(e, "mesh collider's grid: %s", msocl_err_name(e));
   return rc;
@@ -522,30 +608,39 @@ static int verify(msocl__engine *s, struct msocl__mesh_dev *d,
  * at the thickness that crosses a triangle within one step ends up at
  * most its motion less the thickness behind it, so it is seen while the
  * cloth moves less than twice the thickness a step (beside the mesh's own
- * motion). */
-static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
+ * motion). The grid spans those bounds, or where `near` (6 floats) is
+ * given, only their part inside it, and holds just the triangles whose
+ * bounds reach into it: every triangle a point in the grid can touch,
+ * since a point in cell c lies in a triangle's bounds only if the
+ * triangle's cells (the same monotone float operations) include c; a
+ * point outside the grid but inside every triangle's bounds box (lo, hi)
+ * searches all triangles, and one outside that box is out of every
+ * triangle's reach. So `near` decides the speed, never what is seen. */
+static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step,
+                 const float *near)
 {
   const float *p0 = d->at[d->a], *p1 = d->at[1 - d->a];
   const float reach = (d->thick + step) * 1.001f;
   /* on a CPU device the host is the same cores, and its counting sort
    * beat the device build's passes (docs/PERFORMANCE.md) */
   const int mode = d->host >= 0 ? d->host : d->rows ? 1 : 0;
-  float *box = mode ? malloc(6 * (size_t)d->nt * sizeof *box) : NULL;
-  if (mode && !box)
-    return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
+  float *box = mode ? d->hbox : NULL, *vb = d->hvbox;
+  for (int i = 0; i < 3 * d->nv; i++) { /* each vertex's, start to end */
+    vb[2 * i] = p0[i] < p1[i] ? p0[i] : p1[i];
+    vb[2 * i + 1] = p0[i] > p1[i] ? p0[i] : p1[i];
+  }
   float lo[3] = {INFINITY, INFINITY, INFINITY},
         hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   double size = 0;
   for (int t = 0; t < d->nt; t++) {
     float b[6];
+    const int *k = d->tri + 3 * t;
     for (int c = 0; c < 3; c++) {
-      b[c] = INFINITY;
-      b[3 + c] = -INFINITY;
-      for (int q = 0; q < 6; q++) {
-        const float x = (q < 3 ? p0 : p1)[3 * d->tri[3 * t + q % 3] + c];
-        b[c] = x < b[c] ? x : b[c];
-        b[3 + c] = x > b[3 + c] ? x : b[3 + c];
-      }
+      const float *x = vb + 2 * (3 * k[0] + c), *y = vb + 2 * (3 * k[1] + c),
+                  *z = vb + 2 * (3 * k[2] + c);
+      const float l = x[0] < y[0] ? x[0] : y[0], h = x[1] > y[1] ? x[1] : y[1];
+      b[c] = l < z[0] ? l : z[0];
+      b[3 + c] = h > z[1] ? h : z[1];
       size += (double)(b[3 + c] - b[c]) / 3.0;
       b[c] -= reach;
       b[3 + c] += reach;
@@ -555,6 +650,15 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
     if (box)
       memcpy(box + 6 * t, b, sizeof b);
   }
+  for (int c = 0; c < 3; c++) {
+    d->lo.s[c] = lo[c];
+    d->hi.s[c] = hi[c];
+    if (near) {
+      lo[c] = fmaxf(lo[c], near[c]);
+      hi[c] = fmaxf(fminf(hi[c], near[3 + c]), lo[c]);
+    }
+  }
+  d->lo.s[3] = d->hi.s[3] = 0.0f;
   /* cells about as wide as a triangle's swept bounds, or the reach if
    * that is more: a point near the surface then looks at the triangles
    * within about reach plus two cells of it; at most 16 cells a triangle
@@ -578,16 +682,26 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
   int rc = mode == 1 ? build_host(s, d, box) : build_dev(s, d, reach);
   if (rc == MSOCL_OK && mode == 2)
     rc = verify(s, d, box);
-  free(box);
   TRY(rc);
   d->built = 1;
+  d->culled = near != NULL;
+  /* the host build places only its grid's triangles */
+  if (mode != 1)
+    d->nlive = -1;
+  TRY(msocl__arg_mem(d->place, 7, mode == 1 ? d->live : d->dtri));
+  TRY(msocl__arg_int(d->place, 8, d->nlive));
   TRY(msocl__arg_float(d->k, 24, reach * reach));
-  if (d->cells) {
-    TRY(msocl__arg_mem(d->cells, 2, d->start));
-    MSOCL__CL(clSetKernelArg(d->cells, 4, sizeof d->origin, &d->origin));
-    TRY(msocl__arg_int(d->cells, 5, d->g[0]));
-    TRY(msocl__arg_int(d->cells, 6, d->g[1]));
-    TRY(msocl__arg_int(d->cells, 7, d->g[2]));
+  MSOCL__CL(clSetKernelArg(d->k, 26, sizeof d->lo, &d->lo));
+  MSOCL__CL(clSetKernelArg(d->k, 27, sizeof d->hi, &d->hi));
+  for (int q = 0; q < 2 && d->cells[q]; q++) {
+    const cl_kernel k = d->cells[q];
+    TRY(msocl__arg_mem(k, 2, d->start));
+    MSOCL__CL(clSetKernelArg(k, 4, sizeof d->origin, &d->origin));
+    TRY(msocl__arg_int(k, 5, d->g[0]));
+    TRY(msocl__arg_int(k, 6, d->g[1]));
+    TRY(msocl__arg_int(k, 7, d->g[2]));
+    MSOCL__CL(clSetKernelArg(k, 12, sizeof d->lo, &d->lo));
+    MSOCL__CL(clSetKernelArg(k, 13, sizeof d->hi, &d->hi));
   }
   TRY(msocl__arg_mem(d->k, 8, d->start));
   TRY(msocl__arg_mem(d->k, 9, d->list));
@@ -595,6 +709,76 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step)
   TRY(msocl__arg_int(d->k, 11, d->g[0]));
   TRY(msocl__arg_int(d->k, 12, d->g[1]));
   return msocl__arg_int(d->k, 13, d->g[2]);
+}
+
+/* The cloth's free points' bounds now and move since, queued for the host
+ * (read at the first pass: the host waits while the device goes on). */
+static int cloth_bounds(msocl__engine *s, struct msocl__mesh_dev *d)
+{
+  if (d->read) { /* a failed call's */
+    clWaitForEvents(1, &d->read);
+    clReleaseEvent(d->read);
+    d->read = NULL;
+  }
+  const int set = s->pl_set;
+  TRY(msocl__arg_mem(d->bounds, 0, s->pl_p[set]));
+  TRY(msocl__arg_mem(d->bounds, 3, d->dbounds));
+  const size_t one[3] = {1, 1, 1};
+  cl_command_queue q = s->dev->queue;
+  MSOCL__CL(clEnqueueNDRangeKernel(q, d->bounds, 3, NULL, d->runs, one, 0,
+                                   NULL, NULL));
+  const size_t items = d->runs[0] * d->runs[1] * d->runs[2];
+  MSOCL__CL(clEnqueueReadBuffer(q, d->dbounds, CL_FALSE, 0,
+                                8 * items * sizeof *d->hbounds, d->hbounds, 0,
+                                NULL, &d->read));
+  return MSOCL_OK;
+}
+
+/* The box the cloth's free points will likely stay in over the call's n
+ * steps (6 floats): their bounds at its start, grown by twice the most a
+ * point moved over the last call (a vibrating point's speed would
+ * overstate it), gravity's fall, the mesh's own travel and two reaches
+ * (a push off the mesh moves a point by up to its reach and the
+ * thickness); and whether a point left the last grid. Only the speed of
+ * the pass depends on it (build). */
+static int cloth_reach(msocl__engine *s, struct msocl__mesh_dev *d, int n,
+                       float step, float *near, int *escaped)
+{
+  const cl_int e = clWaitForEvents(1, &d->read);
+  clReleaseEvent(d->read);
+  d->read = NULL;
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "mesh collider's cloth bounds: %s",
+                       msocl_err_name(e));
+  const size_t items = d->runs[0] * d->runs[1] * d->runs[2];
+  float m2 = 0;
+  *escaped = d->hbounds[7] != 0.0f;
+  for (int c = 0; c < 3; c++) {
+    near[c] = INFINITY;
+    near[3 + c] = -INFINITY;
+  }
+  for (size_t i = 0; i < items; i++) {
+    const float *b = d->hbounds + 8 * i;
+    for (int c = 0; c < 3; c++) {
+      near[c] = fminf(near[c], b[c]);
+      near[3 + c] = fmaxf(near[3 + c], b[4 + c]);
+    }
+    m2 = fmaxf(m2, b[3]);
+  }
+  const double t = (double)n * s->o.dt;
+  const double g = sqrt((double)s->gravity.s[0] * s->gravity.s[0] +
+                        (double)s->gravity.s[1] * s->gravity.s[1] +
+                        (double)s->gravity.s[2] * s->gravity.s[2]);
+  const double reach = (double)d->thick + step;
+  const float grow = d->cull == 1 ? 0.0f
+                                   : (float)(2.0 * sqrt((double)m2) +
+                                             g * t * t + (double)n * step +
+                                             2.0 * reach);
+  for (int c = 0; c < 3; c++) {
+    near[c] -= grow;
+    near[3 + c] += grow;
+  }
+  return MSOCL_OK;
 }
 
 /* The call's largest vertex motion a step. */
@@ -615,17 +799,23 @@ static float motion(const struct msocl__mesh_dev *d, int n)
 
 /* A moving mesh's grid is built again each call, tight around the call's
  * swept bounds (slack for later calls would grow every point's search
- * more than it saves); a static mesh's once. */
+ * more than it saves), at the first step's pass, so that the host builds
+ * while the device runs the step; a static mesh's once, here. */
 int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n)
 {
   /* the staging areas are free once the queue is (a failed call may
    * have left it running) */
-  if (d->moving || !d->built)
+  if (d->moving || !d->built || d->culled)
     MSOCL__CL(clFinish(s->dev->queue));
   if (d->moving)
     TRY(upload(s, d, 1 - d->a));
-  if (d->moving || !d->built)
-    TRY(build(s, d, d->moving ? motion(d, n) : 0.0f));
+  if (d->moving) {
+    TRY(cloth_bounds(s, d));
+    d->n = n;
+    d->pending = 1;
+  } else if (!d->built || d->culled) { /* once while it stays: whole */
+    TRY(build(s, d, 0.0f, NULL));
+  }
   const cl_mem a = d->vert[d->a], b = d->vert[d->moving ? 1 - d->a : d->a];
   TRY(msocl__arg_mem(d->place, 0, a));
   TRY(msocl__arg_mem(d->place, 1, b));
@@ -636,11 +826,28 @@ int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n)
 int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
                      float f1)
 {
+  if (d->pending) { /* the step's queued: the device starts it */
+    MSOCL__CL(clFlush(s->dev->queue));
+    d->pending = 0;
+    const float step = motion(d, d->n);
+    float near[6];
+    int escaped = 0;
+    TRY(cloth_reach(s, d, d->n, step, near, &escaped));
+    /* the first call, and a few after a point left the grid (a slow
+     * search), build the whole grid */
+    if ((escaped || !d->built) && d->cull < 0)
+      d->full = 8;
+    const int whole = d->full > 0 || d->cull == 0;
+    d->full -= d->full > 0;
+    TRY(build(s, d, step, whole ? NULL : near));
+  }
   if (d->moving || !d->placed) { /* a static mesh's, once */
     TRY(msocl__arg_float(d->place, 4, f1));
-    const size_t tris = ((size_t)d->nt + 63) / 64 * 64;
-    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->place, 1, NULL, &tris,
-                                     NULL, 0, NULL, NULL));
+    const int m = d->nlive >= 0 ? d->nlive : d->nt;
+    const size_t tris = ((size_t)m + 63) / 64 * 64;
+    if (m > 0)
+      MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->place, 1, NULL,
+                                       &tris, NULL, 0, NULL, NULL));
     d->placed = !d->moving;
   }
   const int set = s->pl_set;
@@ -650,9 +857,10 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
   const cl_float4 prm = {{f0, f1, d->thick, d->friction}};
   MSOCL__CL(clSetKernelArg(d->k, 14, sizeof prm, &prm));
   if (d->rows) {
-    TRY(msocl__arg_mem(d->cells, 0, s->pl_p[set]));
+    const cl_kernel cells = d->cells[d->culled];
+    TRY(msocl__arg_mem(cells, 0, s->pl_p[set]));
     const size_t local[3] = {s->pl_group, 1, 1};
-    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->cells, 3, NULL,
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, cells, 3, NULL,
                                      s->pl_global, local, 0, NULL, NULL));
     const size_t rows[3] = {(s->pl_global[0] + 255) / 256, s->pl_global[1],
                             s->pl_global[2]}; /* the kernel's runs */
@@ -668,6 +876,12 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
 
 void msocl__mesh_end(struct msocl__mesh_dev *d)
 {
+  if (d->pending) { /* disabled through a call that moved it: no grid */
+    clWaitForEvents(1, &d->read);
+    clReleaseEvent(d->read);
+    d->read = NULL;
+    d->pending = d->built = 0;
+  }
   if (!d->moving)
     return;
   d->a = 1 - d->a;
@@ -681,25 +895,34 @@ void msocl__mesh_free(struct msocl__mesh_dev *d)
 {
   if (!d)
     return;
+  if (d->read) {
+    clWaitForEvents(1, &d->read);
+    clReleaseEvent(d->read);
+  }
   if (d->k)
     clReleaseKernel(d->k);
   if (d->place)
     clReleaseKernel(d->place);
-  cl_kernel k[7] = {d->cells, d->count, d->scan_sums, d->scan_top,
-                    d->scan_out, d->fill, d->sort};
-  for (int q = 0; q < 7; q++)
+  cl_kernel k[9] = {d->cells[0], d->cells[1], d->count, d->scan_sums,
+                    d->scan_top, d->scan_out, d->fill, d->sort, d->bounds};
+  for (int q = 0; q < 9; q++)
     if (k[q])
       clReleaseKernel(k[q]);
-  cl_mem b[10] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start,
-                  d->list, d->cur, d->cellof, d->dcount, d->sums};
-  for (int q = 0; q < 10; q++)
+  cl_mem b[14] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start,
+                  d->list, d->cur, d->cellof, d->dcount, d->sums, d->live,
+                  d->dbounds, d->esc, d->prev};
+  for (int q = 0; q < 14; q++)
     if (b[q])
       clReleaseMemObject(b[q]);
   free(d->at[0]);
   free(d->at[1]);
   free(d->hvert);
+  free(d->hvbox);
+  free(d->hbox);
   free(d->hstart);
   free(d->hlist);
+  free(d->hlive);
+  free(d->hbounds);
   free(d->tri);
   free(d);
 }

@@ -3,6 +3,7 @@
  * io/mesh_collider_obj.c). The simulation (sim/sim_mesh.c,
  * engine/mesh_collider.c) keeps its own moving copy. */
 #include "internal.h"
+#include "mesh_area.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -17,23 +18,6 @@ void msocl__mesh_colliders_free(msocl_model *m)
   free(m->mesh);
   m->mesh = NULL;
   m->nmesh = 0;
-}
-
-/* Whether triangle t has an area float coordinates can see. */
-static int has_area(const float *v, const int *t)
-{
-  double e1[3], e2[3];
-  for (int k = 0; k < 3; k++) {
-    e1[k] = (double)v[3 * t[1] + k] - v[3 * t[0] + k];
-    e2[k] = (double)v[3 * t[2] + k] - v[3 * t[0] + k];
-  }
-  const double nx = e1[1] * e2[2] - e1[2] * e2[1],
-               ny = e1[2] * e2[0] - e1[0] * e2[2],
-               nz = e1[0] * e2[1] - e1[1] * e2[0];
-  const double n2 = nx * nx + ny * ny + nz * nz;
-  const double l2 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2] +
-                    e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
-  return n2 > 1e-12 * l2 * l2 && n2 > 0;
 }
 
 static int check(const msocl_model *m, const float *verts, int nverts,
@@ -75,7 +59,8 @@ static int check(const msocl_model *m, const float *verts, int nverts,
         return msocl__fail(MSOCL_ERR_BAD_INDEX,
                            "mesh collider: triangle %d's corner %d is "
                            "vertex %d, outside [0, %d)", t, c, k[c], nverts);
-    real += k[0] != k[1] && k[1] != k[2] && k[0] != k[2] && has_area(verts, k);
+    real += k[0] != k[1] && k[1] != k[2] && k[0] != k[2] &&
+            msocl__tri_has_area(verts, k);
   }
   if (real == 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
