@@ -207,9 +207,9 @@ MSOCL_EXTERN int msocl_model_add_mesh_collider_obj(msocl_model *m,
 
 /* The model's analytic colliders (planes, spheres, tables, capsules,
  * boxes): collider id k is the k-th added, whatever its kind; the ids
- * msocl_sim_set_collider_pose and msocl_sim_enable_collider take. (Mesh
- * colliders are numbered apart, by their own calls.) A count, or
- * MSOCL_ERR_NULL_HANDLE. */
+ * msocl_sim_set_collider_pose and msocl_sim_enable_collider take (and
+ * msocl_sim_add_* gives those added later). (Mesh colliders are numbered
+ * apart, by their own calls.) A count, or MSOCL_ERR_NULL_HANDLE. */
 MSOCL_EXTERN int msocl_model_collider_count(const msocl_model *m);
 
 MSOCL_EXTERN int msocl_model_point_count(const msocl_model *m, int *n);
@@ -552,10 +552,41 @@ MSOCL_EXTERN int msocl_sim_get_collider_pose(msocl_sim *s, int id,
                                              float position[3],
                                              float rotation[4]);
 /* A disabled collider (on 0) has no effect from the next step until
- * enabled again; disabling is how a collider is removed (colliders cannot
- * be added to a running simulation: its kernels are built for the
- * model's). Same engine limits as the poses. */
+ * enabled again. Same engine limits as the poses. */
 MSOCL_EXTERN int msocl_sim_enable_collider(msocl_sim *s, int id, int on);
+/* Analytic colliders added to and removed from a running simulation.
+ * add: as msocl_model_add_plane, _sphere, _table, _capsule and _box (the
+ * same arguments and checks: NaN/Inf MSOCL_ERR_NOT_FINITE; a zero normal
+ * or quaternion, a radius or half extent <= 0, friction outside [0, 1]
+ * MSOCL_ERR_BAD_VALUE), the new collider's id into *id (id may be NULL);
+ * it starts at rest at the pose it was given, enabled, from the next
+ * step, and takes poses, enable and remove as the model's do. Ids: the
+ * lowest removed id is taken again, else the next after the highest in
+ * use (the model's are 0 .. msocl_model_collider_count - 1), so a
+ * removed id may name a later collider. At most MSOCL_MAX_COLLIDERS in
+ * use at once (MSOCL_ERR_TOO_MANY). remove: the collider has no effect
+ * from the next step and its id is unknown (MSOCL_ERR_BAD_INDEX) until
+ * an add takes it. An add whose kind the simulation's kernels were not
+ * built for, or that needs a slot they lack, builds the program again
+ * (once per set of kinds and count, cached: docs/API.md gives the time)
+ * and keeps the whole state; one into a removed slot of a kind built in
+ * only writes the table. Same engine limits as the poses
+ * (MSOCL_ERR_BAD_VALUE on the float4 engine or a split simulation). */
+#define MSOCL_MAX_COLLIDERS 16
+MSOCL_EXTERN int msocl_sim_add_plane(msocl_sim *s, const float normal[3],
+                                     float offset, float friction, int *id);
+MSOCL_EXTERN int msocl_sim_add_sphere(msocl_sim *s, const float centre[3],
+                                      float radius, float friction, int *id);
+MSOCL_EXTERN int msocl_sim_add_table(msocl_sim *s, const float top[3],
+                                     float radius, float friction, int *id);
+MSOCL_EXTERN int msocl_sim_add_capsule(msocl_sim *s, const float a[3],
+                                       const float b[3], float radius,
+                                       float friction, int *id);
+MSOCL_EXTERN int msocl_sim_add_box(msocl_sim *s, const float centre[3],
+                                   const float rotation[4],
+                                   const float half[3], float friction,
+                                   int *id);
+MSOCL_EXTERN int msocl_sim_remove_collider(msocl_sim *s, int id);
 /* Mesh collider `id` (its number among the model's mesh colliders):
  * the positions verts (3 floats a vertex, as many as it was added with)
  * its vertices reach at the end of the next msocl_sim_step(s, n), moving
@@ -726,6 +757,29 @@ MSOCL_EXTERN int msocl_reference_set_collider_pose(msocl_reference *r, int id,
                                                    const float rotation[4]);
 MSOCL_EXTERN int msocl_reference_enable_collider(msocl_reference *r, int id,
                                                  int on);
+/* msocl_sim_add_* and msocl_sim_remove_collider on the reference: the
+ * same checks and ids. */
+MSOCL_EXTERN int msocl_reference_add_plane(msocl_reference *r,
+                                           const float normal[3],
+                                           float offset, float friction,
+                                           int *id);
+MSOCL_EXTERN int msocl_reference_add_sphere(msocl_reference *r,
+                                            const float centre[3],
+                                            float radius, float friction,
+                                            int *id);
+MSOCL_EXTERN int msocl_reference_add_table(msocl_reference *r,
+                                           const float top[3], float radius,
+                                           float friction, int *id);
+MSOCL_EXTERN int msocl_reference_add_capsule(msocl_reference *r,
+                                             const float a[3],
+                                             const float b[3], float radius,
+                                             float friction, int *id);
+MSOCL_EXTERN int msocl_reference_add_box(msocl_reference *r,
+                                         const float centre[3],
+                                         const float rotation[4],
+                                         const float half[3], float friction,
+                                         int *id);
+MSOCL_EXTERN int msocl_reference_remove_collider(msocl_reference *r, int id);
 
 /* ---------------------------------------------------------------- export */
 

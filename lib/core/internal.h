@@ -71,6 +71,23 @@ struct msocl__collider {
  * the model, its friction in [0, 1], room for one more. */
 int msocl__collider_check(const msocl_model *m, const char *kind,
                           float friction);
+/* The rest of each kind's checks (colliders.c, collider_shapes.c), for a
+ * model's collider or one added to a running simulation: friction in
+ * [0, 1]; then a kind's values, stored into *out as the kernels read
+ * them (kind MSOCL__SPHERE or MSOCL__TABLE for round), messages naming
+ * collider id. */
+int msocl__collider_friction(const char *kind, int id, float friction);
+int msocl__collider_plane(int id, const float normal[3], float offset,
+                          float friction, struct msocl__collider *out);
+int msocl__collider_round(int id, int kind, const float centre[3],
+                          float radius, float friction,
+                          struct msocl__collider *out);
+int msocl__collider_capsule(int id, const float a[3], const float b[3],
+                            float radius, float friction,
+                            struct msocl__collider *out);
+int msocl__collider_box(int id, const float centre[3], const float rotation[4],
+                        const float half[3], float friction,
+                        struct msocl__collider *out);
 
 /* Collider poses (model/collider_pose.c; msocl.h "moving colliders"):
  * the pose a collider a is added at; its shape moved rigidly to pose

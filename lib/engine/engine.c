@@ -8,32 +8,45 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* -D options for just the features this model uses. */
-static int build_options(const msocl__engine *s, const msocl_model *m,
-                         char *buf, size_t cap)
+/* The model's features the -D options name, beside its colliders. */
+enum { OPT_PINS = 1, OPT_DAMPING = 2, OPT_VISCOUS = 4, OPT_AIR = 8 };
+
+static void model_options(msocl__engine *s, const msocl_model *m)
 {
-  int any_pin = 0, damped = 0, kinds[6] = {0};
+  int any_pin = 0, damped = 0;
   for (int i = 0; i < m->n; i++)
     any_pin |= m->pinned[i];
   for (int i = 0; m->damp && i < m->ns; i++)
     damped |= m->damp[i] != 0.0f;
+  s->opt_model = (any_pin ? OPT_PINS : 0u) | (damped ? OPT_DAMPING : 0u) |
+                 (m->viscous != 0.0f ? OPT_VISCOUS : 0u) |
+                 (m->air != 1.0f ? OPT_AIR : 0u);
+  /* the kinds of spring the model leaves out compiled out (a lattice's
+   * body shear, by default: 8 of its 32 neighbours) */
+  s->opt_grid_kinds = 0;
+  for (int q = 0; q < 4; q++)
+    s->opt_grid_kinds |= (m->grid.k[q] != 0.0f) << q;
+  s->pl_kinds = 0;
   for (int c = 0; c < m->ncol; c++)
-    kinds[m->col[c].kind] = 1;
+    s->pl_kinds |= 1u << m->col[c].kind;
+}
+
+/* -D options for just the features the model uses, with ncol colliders
+ * of the kinds in `kinds` (1 << kind each). */
+static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
+                         char *buf, size_t cap)
+{
+  const unsigned f = s->opt_model;
   cl_device_fp_config fp = 0;
   clGetDeviceInfo(s->dev->id, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp,
                   NULL);
-  /* GRID in planes: its kernels, with the colliders' loop unrolled and
-   * the kinds of spring the model leaves out compiled out (a lattice's
-   * body shear, by default: 8 of its 32 neighbours) */
+  /* GRID in planes: its kernels, with the colliders' loop unrolled */
   char planes[80] = "";
-  if (s->planes) {
-    int kinds = 0;
-    for (int q = 0; q < 4; q++)
-      kinds |= (m->grid.k[q] != 0.0f) << q;
+  if (s->planes)
     snprintf(planes, sizeof planes,
-             " -DMSOCL_PLANES -DMSOCL_NCOL=%d -DMSOCL_GRID_KINDS=%d", m->ncol,
-             kinds);
-  }
+             " -DMSOCL_PLANES -DMSOCL_NCOL=%d -DMSOCL_GRID_KINDS=%d", ncol,
+             s->opt_grid_kinds);
+#define KIND(k) (kinds & (1u << (k)))
   /* EDGES holds BUFFER's table (layout.c) */
   int len = snprintf(
       buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s%s%s%s",
@@ -45,15 +58,15 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
       s->lay.slots > 0 ? s->lay.slots : 1,
       s->lay.degree, s->lay.spill ? " -DMSOCL_SPILL" : "",
       s->lay.classes ? " -DMSOCL_CLASSES" : "",
-      damped ? " -DMSOCL_DAMPING" : "",
-      m->viscous != 0.0f ? " -DMSOCL_VISCOUS" : "",
-      m->air != 1.0f ? " -DMSOCL_AIR" : "",
-      any_pin ? " -DMSOCL_PINS" : "",
-      kinds[MSOCL__PLANE] ? " -DMSOCL_PLANE" : "",
-      kinds[MSOCL__SPHERE] ? " -DMSOCL_SPHERE" : "",
-      kinds[MSOCL__TABLE] ? " -DMSOCL_TABLE" : "",
-      kinds[MSOCL__CAPSULE] ? " -DMSOCL_CAPSULE" : "",
-      kinds[MSOCL__BOX] ? " -DMSOCL_BOX" : "",
+      f & OPT_DAMPING ? " -DMSOCL_DAMPING" : "",
+      f & OPT_VISCOUS ? " -DMSOCL_VISCOUS" : "",
+      f & OPT_AIR ? " -DMSOCL_AIR" : "",
+      f & OPT_PINS ? " -DMSOCL_PINS" : "",
+      KIND(MSOCL__PLANE) ? " -DMSOCL_PLANE" : "",
+      KIND(MSOCL__SPHERE) ? " -DMSOCL_SPHERE" : "",
+      KIND(MSOCL__TABLE) ? " -DMSOCL_TABLE" : "",
+      KIND(MSOCL__CAPSULE) ? " -DMSOCL_CAPSULE" : "",
+      KIND(MSOCL__BOX) ? " -DMSOCL_BOX" : "",
       planes,
       s->o.math == MSOCL_MATH_RELAXED
           ? " -DMSOCL_RELAXED -cl-fast-relaxed-math"
@@ -61,6 +74,7 @@ static int build_options(const msocl__engine *s, const msocl_model *m,
           : (fp & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT)
                 ? " -cl-fp32-correctly-rounded-divide-sqrt"
                 : "");
+#undef KIND
   if (len < 0 || (size_t)len >= cap)
     return msocl__fail(MSOCL_ERR_INVALID_ARG, "build options too long");
   return MSOCL_OK;
@@ -311,8 +325,10 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
                      "(tuning.planes, one device, not EDGES)");
   char opt[512];
   cl_program prog = NULL;
-  if (rc == MSOCL_OK)
-    rc = build_options(s, m, opt, sizeof opt);
+  if (rc == MSOCL_OK) {
+    model_options(s, m);
+    rc = build_options(s, m->ncol, s->pl_kinds, opt, sizeof opt);
+  }
   if (rc == MSOCL_OK)
     rc = msocl__program_get(s->dev, opt, &prog);
   s->prog = prog;
@@ -377,4 +393,16 @@ int msocl__planes_forces(msocl__engine *s)
   if (rc == MSOCL_OK && s->o.integrator == MSOCL_IMPLICIT_EULER)
     rc = msocl__pl_implicit_args(s);
   return rc;
+}
+
+int msocl__engine_colliders(msocl__engine *s, int ncol, unsigned kinds)
+{
+  char opt[512];
+  cl_program prog;
+  MSOCL__TRY(build_options(s, ncol, kinds, opt, sizeof opt));
+  MSOCL__TRY(msocl__program_get(s->dev, opt, &prog));
+  s->ncol = ncol;
+  s->pl_kinds = kinds;
+  s->pl_shapes = (kinds & (1u << MSOCL__CAPSULE | 1u << MSOCL__BOX)) != 0;
+  return msocl__planes_rebuild(s, prog);
 }

@@ -67,6 +67,10 @@ struct msocl__engine {
   cl_mem pl_col;          /* the colliders, a float4 a value (planes.c) */
   float pl_colx[8 * MSOCL__MAX_COLLIDERS]; /* their msocl__collider.x */
   int pl_shapes;          /* a capsule or box: planes only, not rows */
+  unsigned pl_kinds;      /* the collider kinds compiled in, 1 << kind */
+  unsigned opt_model;     /* the model's -D options beside its colliders
+                             (engine.c), kept for a rebuild */
+  int opt_grid_kinds;
   struct msocl__layout pl_lay; /* the planes kernels' connectivity: lay,
                              BUFFER's table copied with a plane's stride */
   cl_mem pl_table[4];     /* that copy's nbr, rk, dashpots, spill (owned) */
@@ -86,6 +90,7 @@ struct msocl__engine {
   /* wind on the triangles, planes only (wind.c, kernels/wind.cl) */
   int wind_on, wind_ntri, wind_nspill;
   int wind_quads;         /* the cloth builder's triangles on GRID */
+  float wind_air[3], wind_kd, wind_kl; /* as last set (a rebuild's) */
   int *wind_host;         /* the model's triangles, 3 a triangle */
   cl_kernel wind_k[5];    /* a triangle's force; a point's sum; the sum of
                              a point on more triangles than the slots; the
@@ -101,7 +106,8 @@ struct msocl__engine {
   cl_kernel soft_k;
   cl_mem soft_at, soft_from, soft_to;
   cl_program prog;        /* the library's program (the device's cache
-                             owns it): mesh colliders' kernels */
+                             owns it, and any rebuilt for colliders added
+                             later): mesh colliders' kernels */
 };
 
 /* What a phase of a step leaves that other engines' next phase reads. */
@@ -166,6 +172,14 @@ int msocl__planes_forces(msocl__engine *s);
 /* Verlet: the acceleration at the current state into acc, over the whole
  * range, unless acc already holds it. */
 int msocl__verlet_accel(msocl__engine *s);
+/* Colliders added to a running planes engine (engine.c): the program
+ * built for ncol colliders of the kinds in `kinds` (1 << kind each), and
+ * the kernels that read the collider table re-created from it, their
+ * arguments set again (msocl__planes_rebuild, planes.c; planes_rows.c's
+ * sweep, dropped once a capsule or box is compiled in); the state and
+ * every other kernel stay. */
+int msocl__engine_colliders(msocl__engine *s, int ncol, unsigned kinds);
+int msocl__planes_rebuild(msocl__engine *s, cl_program prog);
 /* Ends a step: swaps the ping-pong buffers (or plane sets). */
 void msocl__step_done(msocl__engine *s);
 /* The buffer an exchange bit names, at this point of the step. */

@@ -522,6 +522,62 @@ static int padded_table(msocl__engine *s)
   return MSOCL_OK;
 }
 
+/* Planes kernel q from prog, and its _spill twin where it has one (the
+ * twin's last argument, the list of the points that spill, set). */
+static int make_kernel(msocl__engine *s, cl_program prog, int q)
+{
+  cl_int e;
+  s->pl_k[q] = clCreateKernel(prog, names[q], &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
+                       msocl_err_name(e));
+  if (s->pl_nspill == 0 || !gathers(q))
+    return MSOCL_OK;
+  char name[64];
+  snprintf(name, sizeof name, "%s_spill", names[q]);
+  s->pl_ks[q] = clCreateKernel(prog, name, &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateKernel(%s): %s", name, msocl_err_name(e));
+  cl_uint last = 0;
+  MSOCL__CL(clGetKernelInfo(s->pl_ks[q], CL_KERNEL_NUM_ARGS, sizeof last,
+                            &last, NULL));
+  MSOCL__CL(clSetKernelArg(s->pl_ks[q], last - 1, sizeof s->pl_list,
+                           &s->pl_list));
+  return MSOCL_OK;
+}
+
+/* Whether planes kernel q reads the collider table (its `col`). */
+static int reads_colliders(int q)
+{
+  return q == PL_VELOCITY || q == PL_FUSED || q == PL_EULER || q == PL_KICK ||
+         q == PL_RK4 || q == PL_RK4_MID || q == PL_RK4_LAST ||
+         q == PL_STRAIN_V || q == PL_DRIFT || q == PL_IE_FINISH;
+}
+
+int msocl__planes_rebuild(msocl__engine *s, cl_program prog)
+{
+  /* nothing queued may still need a kernel released here */
+  MSOCL__CL(clFinish(s->dev->queue));
+  for (int q = 0; q < PL_COUNT; q++) {
+    if (!reads_colliders(q))
+      continue;
+    clReleaseKernel(s->pl_k[q]);
+    if (s->pl_ks[q])
+      clReleaseKernel(s->pl_ks[q]);
+    s->pl_k[q] = s->pl_ks[q] = NULL;
+    TRY(make_kernel(s, prog, q));
+  }
+  /* every fixed argument again: those of the kernels kept are unchanged;
+   * the ping-pong ones are set at each launch */
+  TRY(fixed_args(s));
+  if (s->o.integrator == MSOCL_IMPLICIT_EULER)
+    TRY(msocl__pl_implicit_args(s));
+  TRY(msocl__pl_rows_rebuild(s, prog));
+  /* wind blows in the sweep or in its own passes, whichever now runs */
+  return s->wind_on ? msocl__wind_set(s, s->wind_air, s->wind_kd, s->wind_kl)
+                    : MSOCL_OK;
+}
+
 int msocl__planes_create(msocl__engine *s, cl_program prog)
 {
   if (!s->planes)
@@ -535,30 +591,9 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
   s->pl_global[0] = g.wide;
   s->pl_global[1] = s->lay.grid_ny > 0 ? (size_t)s->lay.grid_ny : 1;
   s->pl_global[2] = s->lay.grid_nz > 0 ? (size_t)s->lay.grid_nz : 1;
-  for (int q = 0; q < PL_COUNT; q++) {
-    cl_int e;
-    s->pl_k[q] = clCreateKernel(prog, names[q], &e);
-    if (e != CL_SUCCESS)
-      return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
-                         msocl_err_name(e));
-  }
   TRY(padded_table(s));
-  for (int q = 0; s->pl_nspill > 0 && q < PL_COUNT; q++) {
-    if (!gathers(q))
-      continue;
-    char name[64];
-    snprintf(name, sizeof name, "%s_spill", names[q]);
-    cl_int e;
-    s->pl_ks[q] = clCreateKernel(prog, name, &e);
-    if (e != CL_SUCCESS)
-      return msocl__fail(e, "clCreateKernel(%s): %s", name,
-                         msocl_err_name(e));
-    cl_uint last = 0;
-    MSOCL__CL(clGetKernelInfo(s->pl_ks[q], CL_KERNEL_NUM_ARGS, sizeof last,
-                              &last, NULL));
-    MSOCL__CL(clSetKernelArg(s->pl_ks[q], last - 1, sizeof s->pl_list,
-                             &s->pl_list));
-  }
+  for (int q = 0; q < PL_COUNT; q++)
+    TRY(make_kernel(s, prog, q));
   /* and Verlet's acceleration, RK4's stage states and sums, Provot's
    * sweeps */
   cl_mem *bufs[14] = {&s->pl_p[0],  &s->pl_p[1],   &s->pl_v[0],

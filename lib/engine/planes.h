@@ -36,6 +36,10 @@ int msocl__pl_forces(msocl__engine *s);
  * computed once, where it applies (s->pl_rows then set), and its step
  * from plane set r to w. */
 int msocl__pl_rows_create(msocl__engine *s, cl_program prog);
+/* The sweep's kernel again from prog (a rebuild for new colliders), its
+ * arguments set and its wind off; released instead (with its rings)
+ * where it no longer applies. */
+int msocl__pl_rows_rebuild(msocl__engine *s, cl_program prog);
 int msocl__pl_rows_step(msocl__engine *s, int r, int w);
 /* Its gravity, viscous damping and air arguments again (msocl__pl_forces). */
 int msocl__pl_rows_forces(msocl__engine *s);

@@ -33,38 +33,21 @@ static int applies(const msocl__engine *s)
          s->o.strain == MSOCL_STRAIN_NONE;
 }
 
-int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
+/* a ring row's width: a padded row's columns -2..nx, whole vectors */
+static int ring_width(const msocl__engine *s)
 {
-  if (!applies(s))
-    return MSOCL_OK;
+  return (s->lay.grid_nx + 3 + ROWS_W - 1) / ROWS_W * ROWS_W;
+}
+
+/* The sweep's kernel from prog, its arguments set, its wind off. */
+static int sweep_kernel(msocl__engine *s, cl_program prog)
+{
   cl_int e;
   s->pl_rows = clCreateKernel(prog, "msocl_planes_rows", &e);
   if (e != CL_SUCCESS)
     return msocl__fail(e, "clCreateKernel(msocl_planes_rows): %s",
                        msocl_err_name(e));
-  size_t blocks = BLOCKS_PER_UNIT * (size_t)(s->dev->info.compute_units
-                                                 ? s->dev->info.compute_units
-                                                 : 1);
-  if (blocks > (size_t)s->lay.grid_ny)
-    blocks = (size_t)s->lay.grid_ny;
-  s->pl_blocks = blocks;
-  /* a ring row: 24 terms (springs' 18, wind's 6), with dashpots 18 more
-   * (the kernel's MSOCL_ROWS_TERMS), of a padded row's columns -2..nx,
-   * whole vectors */
-  const int ring_w = (s->lay.grid_nx + 3 + ROWS_W - 1) / ROWS_W * ROWS_W;
-  const size_t terms = s->damped ? 42 : 24;
-  const size_t bytes = blocks * 3 * terms * (size_t)ring_w * sizeof(float);
-  s->pl_ring = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes, NULL, &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateBuffer(%zu bytes of rings): %s", bytes,
-                       msocl_err_name(e));
-  /* NaN in the positions' padding: the kernel's missing neighbours (the
-   * other planes kernels test the grid's edges and ignore it) */
-  const float nan = NAN;
-  for (int q = 0; q < 2; q++)
-    MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->pl_p[q], &nan, sizeof nan,
-                                  0, 3 * (size_t)s->pl_plane * sizeof(float),
-                                  0, NULL, NULL));
+  const int ring_w = ring_width(s);
   /* connectivity, p, v, p_out, then these, then v_out and wind's */
   cl_kernel k = s->pl_rows;
   cl_uint a;
@@ -81,6 +64,51 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   MSOCL__TRY(arg(k, a + 8, sizeof s->pl_ring, &s->pl_ring));
   MSOCL__TRY(arg(k, a + 9, sizeof(int), &ring_w));
   return msocl__pl_rows_wind(s, NULL, 0.0f, 0.0f);
+}
+
+int msocl__pl_rows_rebuild(msocl__engine *s, cl_program prog)
+{
+  if (!s->pl_rows)
+    return MSOCL_OK;
+  clReleaseKernel(s->pl_rows);
+  s->pl_rows = NULL;
+  if (applies(s))
+    return sweep_kernel(s, prog);
+  /* a capsule or box: the other planes kernels from now on */
+  clReleaseMemObject(s->pl_ring);
+  s->pl_ring = NULL;
+  s->pl_rows_wind = 0;
+  return MSOCL_OK;
+}
+
+int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
+{
+  if (!applies(s))
+    return MSOCL_OK;
+  cl_int e;
+  size_t blocks = BLOCKS_PER_UNIT * (size_t)(s->dev->info.compute_units
+                                                 ? s->dev->info.compute_units
+                                                 : 1);
+  if (blocks > (size_t)s->lay.grid_ny)
+    blocks = (size_t)s->lay.grid_ny;
+  s->pl_blocks = blocks;
+  /* a ring row: 24 terms (springs' 18, wind's 6), with dashpots 18 more
+   * (the kernel's MSOCL_ROWS_TERMS), of ring_width columns */
+  const int ring_w = ring_width(s);
+  const size_t terms = s->damped ? 42 : 24;
+  const size_t bytes = blocks * 3 * terms * (size_t)ring_w * sizeof(float);
+  s->pl_ring = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes, NULL, &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateBuffer(%zu bytes of rings): %s", bytes,
+                       msocl_err_name(e));
+  /* NaN in the positions' padding: the kernel's missing neighbours (the
+   * other planes kernels test the grid's edges and ignore it) */
+  const float nan = NAN;
+  for (int q = 0; q < 2; q++)
+    MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->pl_p[q], &nan, sizeof nan,
+                                  0, 3 * (size_t)s->pl_plane * sizeof(float),
+                                  0, NULL, NULL));
+  return sweep_kernel(s, prog);
 }
 
 int msocl__pl_rows_wind(msocl__engine *s, const float air[3], float kd,

@@ -196,6 +196,11 @@ int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "wind pushes on triangles, and the model has none "
                        "(msocl_model_add_triangles)");
+  /* kept for a rebuild for added colliders (planes.c), which sets it again */
+  for (int d = 0; d < 3; d++)
+    s->wind_air[d] = air[d];
+  s->wind_kd = kd;
+  s->wind_kl = kl;
   if (s->wind_quads && s->pl_rows && !s->damped) {
     /* the one-sweep kernel blows it on the quads as it goes; dashpots
      * read the neighbours' velocities after the wind's kick, which the

@@ -1,7 +1,9 @@
 /* Moving colliders on the host reference (msocl_sim_set_collider_pose's
  * twin): the same path over a call's steps (model/collider_pose.c, the
  * fractions (float)k / (float)n), and the response in double on the
- * velocity relative to the surface (reference_force.c). */
+ * velocity relative to the surface (reference_force.c); colliders added
+ * and removed as msocl_sim_add_* and msocl_sim_remove_collider do (the
+ * same slots; a removed one's kind 0 as added). */
 #include "config.h"
 #include "reference_state.h"
 
@@ -75,6 +77,109 @@ static int check_id(const msocl_reference *r, int id, const char *call)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
                        "%s: collider id %d out of range [0, %d)", call, id,
                        r->ncol);
+  if (!r->col_add[id].kind)
+    return msocl__fail(MSOCL_ERR_BAD_INDEX, "%s: collider %d was removed",
+                       call, id);
+  return MSOCL_OK;
+}
+
+/* The slot the next collider takes: the first removed one's, else the
+ * next id; then its friction checked. */
+static int begin(msocl_reference *r, const char *kind, float friction,
+                 int *slot)
+{
+  msocl__clear_error();
+  if (!r)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "reference is NULL");
+  *slot = r->ncol;
+  for (int c = r->ncol - 1; c >= 0; c--)
+    if (!r->col_add[c].kind)
+      *slot = c;
+  if (*slot >= MSOCL__MAX_COLLIDERS)
+    return msocl__fail(MSOCL_ERR_TOO_MANY,
+                       "the reference holds %d analytic colliders, the most "
+                       "it can", MSOCL__MAX_COLLIDERS);
+  return msocl__collider_friction(kind, *slot, friction);
+}
+
+/* Collider c into the slot, at rest at its pose, enabled. */
+static int insert(msocl_reference *r, int slot,
+                  const struct msocl__collider *c, int *id)
+{
+  r->col_add[slot] = *c;
+  msocl__pose_home(c, r->cpos[slot], r->crot[slot]);
+  r->cto[slot] = r->coff[slot] = r->cmoving[slot] = 0;
+  place(r, slot, r->cpos[slot], r->crot[slot]);
+  if (slot >= r->ncol)
+    r->ncol = slot + 1;
+  if (id)
+    *id = slot;
+  return MSOCL_OK;
+}
+
+int msocl_reference_add_plane(msocl_reference *r, const float normal[3],
+                              float offset, float friction, int *id)
+{
+  int slot;
+  struct msocl__collider c;
+  MSOCL__TRY(begin(r, "plane", friction, &slot));
+  MSOCL__TRY(msocl__collider_plane(slot, normal, offset, friction, &c));
+  return insert(r, slot, &c, id);
+}
+
+int msocl_reference_add_sphere(msocl_reference *r, const float centre[3],
+                               float radius, float friction, int *id)
+{
+  int slot;
+  struct msocl__collider c;
+  MSOCL__TRY(begin(r, "sphere", friction, &slot));
+  MSOCL__TRY(msocl__collider_round(slot, MSOCL__SPHERE, centre, radius,
+                                   friction, &c));
+  return insert(r, slot, &c, id);
+}
+
+int msocl_reference_add_table(msocl_reference *r, const float top[3],
+                              float radius, float friction, int *id)
+{
+  int slot;
+  struct msocl__collider c;
+  MSOCL__TRY(begin(r, "table", friction, &slot));
+  MSOCL__TRY(msocl__collider_round(slot, MSOCL__TABLE, top, radius, friction,
+                                   &c));
+  return insert(r, slot, &c, id);
+}
+
+int msocl_reference_add_capsule(msocl_reference *r, const float a[3],
+                                const float b[3], float radius,
+                                float friction, int *id)
+{
+  int slot;
+  struct msocl__collider c;
+  MSOCL__TRY(begin(r, "capsule", friction, &slot));
+  MSOCL__TRY(msocl__collider_capsule(slot, a, b, radius, friction, &c));
+  return insert(r, slot, &c, id);
+}
+
+int msocl_reference_add_box(msocl_reference *r, const float centre[3],
+                            const float rotation[4], const float half[3],
+                            float friction, int *id)
+{
+  int slot;
+  struct msocl__collider c;
+  MSOCL__TRY(begin(r, "box", friction, &slot));
+  MSOCL__TRY(msocl__collider_box(slot, centre, rotation, half, friction, &c));
+  return insert(r, slot, &c, id);
+}
+
+int msocl_reference_remove_collider(msocl_reference *r, int id)
+{
+  msocl__clear_error();
+  if (!r)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "reference is NULL");
+  MSOCL__TRY(check_id(r, id, "msocl_reference_remove_collider"));
+  memset(&r->col_add[id], 0, sizeof r->col_add[id]);
+  memset(&r->col[id], 0, sizeof r->col[id]);
+  r->cto[id] = r->coff[id] = r->cmoving[id] = 0;
   return MSOCL_OK;
 }
 

@@ -143,6 +143,13 @@ void msocl__colliders_free(msocl_sim *s);
 int msocl__colliders_pending(const msocl_sim *s);
 int msocl__colliders_place(msocl_sim *s, float f0, float f1);
 int msocl__colliders_done(msocl_sim *s);
+/* Colliders added to the running simulation (sim_colliders_add.c): the
+ * slot the next one takes (a removed one's, or the next id), after the
+ * engine checks of `call`; collider c into that slot, at rest at the pose
+ * it was given, enabled, from the next step. */
+int msocl__colliders_slot(msocl_sim *s, const char *call, int *slot);
+int msocl__colliders_insert(msocl_sim *s, int slot,
+                            const struct msocl__collider *c);
 /* Mesh colliders (sim_mesh.c): their device copies from the caller's
  * model (refused unless the simulation runs in planes on one device);
  * freed; whether a call must run step by step for them; before a call of

@@ -6,7 +6,10 @@
  * collider table gets the shape at the step's start and the surface's
  * velocity over the step (kernels/planes.cl MSOCL_PLANES_SURFACE), so the
  * response acts on the velocity relative to the collider. The pose math
- * is model/collider_pose.c's. */
+ * is model/collider_pose.c's. Colliders added on the running simulation
+ * (sim_colliders_add.c) take a removed collider's slot or the next one,
+ * the engine's program rebuilt where it has no room for them
+ * (msocl__engine_colliders). */
 #include "config.h"
 #include "sim.h"
 
@@ -39,9 +42,10 @@ static int refuse_engine(const msocl_sim *s, const char *call)
 {
   if (s->nparts > 1)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "%s: the simulation is split over %d devices; moving "
-                       "or enabling colliders needs one device (each "
-                       "device's table would have to follow the pose)",
+                       "%s: the simulation is split over %d devices; "
+                       "moving, enabling, adding or removing colliders "
+                       "needs one device (each device's table would have "
+                       "to follow the pose)",
                        call, s->nparts);
   if (!s->part[0]->planes)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
@@ -93,7 +97,7 @@ static void row(const struct msocl__moving *m, int c, const float P0[3],
                 float dt, float *out)
 {
   float v[MSOCL__COL_VALUES] = {0};
-  if (!m->off[c]) {
+  if (!m->off[c] && m->add[c].kind) { /* kind 0: a removed collider */
     struct msocl__collider k;
     msocl__pose_shape(&m->add[c], P0, Q0, &k);
     v[0] = (float)k.kind;
@@ -175,9 +179,67 @@ static int check_id(const struct msocl__moving *m, int id, const char *call)
   if (id < 0 || id >= m->n)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
                        "%s: collider id %d out of range [0, %d) (ids count "
-                       "the model's analytic colliders in the order added)",
+                       "the model's analytic colliders in the order added, "
+                       "then those added to the simulation)",
                        call, id, m->n);
+  if (!m->add[id].kind)
+    return msocl__fail(MSOCL_ERR_BAD_INDEX,
+                       "%s: collider %d was removed "
+                       "(msocl_sim_remove_collider)", call, id);
   return MSOCL_OK;
+}
+
+int msocl__colliders_slot(msocl_sim *s, const char *call, int *slot)
+{
+  struct msocl__moving *m;
+  MSOCL__TRY(moving(s, call, &m));
+  for (int c = 0; c < m->n; c++)
+    if (!m->add[c].kind) {
+      *slot = c;
+      return MSOCL_OK;
+    }
+  if (m->n >= MSOCL__MAX_COLLIDERS)
+    return msocl__fail(MSOCL_ERR_TOO_MANY,
+                       "%s: the simulation holds %d analytic colliders, the "
+                       "most it can (remove one first)",
+                       call, MSOCL__MAX_COLLIDERS);
+  *slot = m->n;
+  return MSOCL_OK;
+}
+
+int msocl__colliders_insert(msocl_sim *s, int slot,
+                            const struct msocl__collider *c)
+{
+  struct msocl__moving *m = s->mov;
+  msocl__engine *e = s->part[0];
+  const unsigned kind = 1u << c->kind;
+  /* the program's table has room, and its kernels this kind, or a new
+   * program for one more slot or kind */
+  if (slot >= e->ncol || !(e->pl_kinds & kind))
+    MSOCL__TRY(msocl__engine_colliders(e, slot >= e->ncol ? slot + 1 : e->ncol,
+                                       e->pl_kinds | kind));
+  m->add[slot] = *c;
+  msocl__pose_home(c, m->pos[slot], m->rot[slot]);
+  m->target[slot] = 0;
+  m->off[slot] = 0;
+  if (slot >= m->n)
+    m->n = slot + 1;
+  return write_table(s, 0.0f, -1.0f);
+}
+
+int msocl_sim_remove_collider(msocl_sim *s, int id)
+{
+  static const char call[] = "msocl_sim_remove_collider";
+  msocl__clear_error();
+  if (!s)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
+  struct msocl__moving *m;
+  MSOCL__TRY(moving(s, call, &m));
+  MSOCL__TRY(check_id(m, id, call));
+  memset(&m->add[id], 0, sizeof m->add[id]);
+  m->target[id] = 0;
+  m->off[id] = 0;
+  return write_table(s, 0.0f, -1.0f);
 }
 
 int msocl_sim_set_collider_pose(msocl_sim *s, int id, const float position[3],
