@@ -489,9 +489,11 @@ MSOCL_EXTERN int msocl_sim_set_forces(msocl_sim *s, const float *xyz);
  * controls"). The model's own setters (msocl_model_set_gravity, _pin, ...)
  * return MSOCL_ERR_INVALID_ARG while a simulation made from the model
  * lives: it copied the model and would not see them. Gravity in any
- * direction; viscous damping c >= 0 and air resistance in (0, 1] only
- * where the model had that term on when the simulation was created (its
- * kernels leave a zero term out): MSOCL_ERR_BAD_VALUE otherwise. */
+ * direction; viscous damping c >= 0 and air resistance in (0, 1]: a term
+ * the model had off when the simulation was created is built into the
+ * planes engine's kernels at the first call that turns it on (a program
+ * build, ~0.1 s with PoCL's cache warm); the float4 engine
+ * (tuning.planes OFF) cannot, and returns MSOCL_ERR_BAD_VALUE. */
 MSOCL_EXTERN int msocl_sim_set_gravity(msocl_sim *s, float gx, float gy,
                                        float gz);
 MSOCL_EXTERN int msocl_sim_set_viscous_damping(msocl_sim *s, float c);

@@ -412,6 +412,60 @@ START_TEST(partial_round_trip)
 }
 END_TEST
 
+/* Viscous damping and air resistance turned on while a planes simulation
+ * runs, though its model had neither (its kernels rebuilt with the
+ * terms), equal bitwise a simulation whose model had both, set to none
+ * until that step. _i: symplectic Euler on GRID (the sweep) and BUFFER,
+ * Verlet, implicit Euler. */
+START_TEST(terms_turned_on)
+{
+  enum { P = N * N };
+  const msocl_integrator ins[4] = {MSOCL_SYMPLECTIC_EULER,
+                                   MSOCL_SYMPLECTIC_EULER, MSOCL_VERLET,
+                                   MSOCL_IMPLICIT_EULER};
+  const msocl_layout lay = _i == 1 ? MSOCL_LAYOUT_BUFFER : MSOCL_LAYOUT_GRID;
+  msocl_model *bare = scene_hanging(N), *with = scene_hanging(N);
+  OK(msocl_model_set_viscous_damping(with, 0.5f));
+  OK(msocl_model_set_air_resistance(with, 0.5f));
+  /* one dt for all (the model's damping would change the safe one) */
+  const float dt = dt_for(bare, ins[_i]);
+  msocl_sim *a = scene_sim(bare, ins[_i], dt, lay, MSOCL_ON, 0),
+            *b = scene_sim(with, ins[_i], dt, lay, MSOCL_ON, 0);
+  OK(msocl_sim_set_viscous_damping(b, 0.0f));
+  OK(msocl_sim_set_air_resistance(b, 1.0f));
+  OK(msocl_sim_step(a, 30));
+  OK(msocl_sim_step(b, 30));
+  for (int q = 0; q < 2; q++) {
+    msocl_sim *s = q ? b : a;
+    OK(msocl_sim_set_viscous_damping(s, 0.05f));
+    OK(msocl_sim_set_air_resistance(s, 0.999f));
+  }
+  OK(msocl_sim_step(a, 50));
+  OK(msocl_sim_step(b, 50));
+  float pa[3 * P], pb[3 * P], va[3 * P], vb[3 * P];
+  OK(msocl_sim_read_positions(a, pa));
+  OK(msocl_sim_read_positions(b, pb));
+  OK(msocl_sim_read_velocities(a, va));
+  OK(msocl_sim_read_velocities(b, vb));
+  ck_assert_msg(memcmp(pa, pb, sizeof pa) == 0 &&
+                    memcmp(va, vb, sizeof va) == 0,
+                "case %d: positions differ by %g, velocities by %g", _i,
+                scene_max_diff(pa, pb, 3 * P), scene_max_diff(va, vb, 3 * P));
+  /* and the terms act: against no damping at all */
+  msocl_sim *c = scene_sim(bare, ins[_i], dt, lay, MSOCL_ON, 0);
+  OK(msocl_sim_step(c, 80));
+  float pc[3 * P];
+  OK(msocl_sim_read_positions(c, pc));
+  ck_assert_msg(scene_max_diff(pa, pc, 3 * P) > 1e-6,
+                "case %d: damping changed nothing", _i);
+  msocl_sim_destroy(a);
+  msocl_sim_destroy(b);
+  msocl_sim_destroy(c);
+  msocl_model_destroy(bare);
+  msocl_model_destroy(with);
+}
+END_TEST
+
 START_TEST(bad_input)
 {
   msocl_model *m = scene_hanging(N);
@@ -427,10 +481,14 @@ START_TEST(bad_input)
   EXPECT(msocl_model_pin(m, 3, 1), MSOCL_ERR_INVALID_ARG);
   EXPECT(msocl_model_set_viscous_damping(m, 0.1f), MSOCL_ERR_INVALID_ARG);
   EXPECT(msocl_model_set_air_resistance(m, 0.9f), MSOCL_ERR_INVALID_ARG);
-  /* damping terms the kernels were built without */
-  EXPECT(msocl_sim_set_viscous_damping(s, 0.1f), MSOCL_ERR_BAD_VALUE);
-  EXPECT(msocl_sim_set_air_resistance(s, 0.9f), MSOCL_ERR_BAD_VALUE);
-  OK(msocl_sim_set_air_resistance(s, 1.0f));
+  /* damping terms the float4 kernels were built without */
+  msocl_sim *f4 = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID,
+                       MSOCL_OFF);
+  EXPECT(msocl_sim_set_viscous_damping(f4, 0.1f), MSOCL_ERR_BAD_VALUE);
+  SAYS("float4");
+  EXPECT(msocl_sim_set_air_resistance(f4, 0.9f), MSOCL_ERR_BAD_VALUE);
+  OK(msocl_sim_set_air_resistance(f4, 1.0f));
+  msocl_sim_destroy(f4);
   EXPECT(msocl_sim_set_viscous_damping(s, -1.0f), MSOCL_ERR_BAD_VALUE);
   EXPECT(msocl_sim_set_viscous_damping(s, nan), MSOCL_ERR_NOT_FINITE);
   /* targets */
@@ -497,6 +555,7 @@ int main(void)
   tcase_add_loop_test(tc, partial_round_trip, 0, 2);
   tcase_add_test(tc, batch_reaches_targets);
   tcase_add_test(tc, renumbered_model_numbers);
+  tcase_add_loop_test(tc, terms_turned_on, 0, 4);
   tcase_add_test(tc, bad_input);
   suite_add_tcase(su, tc);
   return scene_run(su);

@@ -404,5 +404,35 @@ int msocl__engine_colliders(msocl__engine *s, int ncol, unsigned kinds)
   s->ncol = ncol;
   s->pl_kinds = kinds;
   s->pl_shapes = (kinds & (1u << MSOCL__CAPSULE | 1u << MSOCL__BOX)) != 0;
-  return msocl__planes_rebuild(s, prog);
+  return msocl__planes_rebuild(s, prog, 0);
+}
+
+int msocl__engine_terms(msocl__engine *s, int viscous, int air)
+{
+  const unsigned want = s->opt_model | (viscous ? OPT_VISCOUS : 0u) |
+                        (air ? OPT_AIR : 0u);
+  if (want == s->opt_model)
+    return MSOCL_OK;
+  char opt[512];
+  cl_program prog;
+  const unsigned was = s->opt_model;
+  s->opt_model = want;
+  int rc = build_options(s, s->ncol, s->pl_kinds, opt, sizeof opt);
+  if (rc == MSOCL_OK)
+    rc = msocl__program_get(s->dev, opt, &prog);
+  if (rc != MSOCL_OK) {
+    s->opt_model = was;
+    return rc;
+  }
+  /* the float4 kernels too: Verlet's acceleration is recomputed by
+   * msocl_accel when the forces change (sim_controls.c) */
+  MSOCL__CL(clFinish(s->dev->queue));
+  for (int q = 0; q < MSOCL__K_COUNT; q++)
+    if (s->k[q]) {
+      clReleaseKernel(s->k[q]);
+      s->k[q] = NULL;
+    }
+  MSOCL__TRY(make_kernels(s, prog));
+  MSOCL__TRY(msocl__integrate_setup(s));
+  return msocl__planes_rebuild(s, prog, 1);
 }

@@ -179,7 +179,13 @@ int msocl__verlet_accel(msocl__engine *s);
  * sweep, dropped once a capsule or box is compiled in); the state and
  * every other kernel stay. */
 int msocl__engine_colliders(msocl__engine *s, int ncol, unsigned kinds);
-int msocl__planes_rebuild(msocl__engine *s, cl_program prog);
+/* Viscous damping or air resistance turned on in a running planes engine
+ * whose kernels were built without the term: the program with it, every
+ * planes kernel re-created (the gathers, the sweep and implicit Euler's
+ * read it); the state stays. */
+int msocl__engine_terms(msocl__engine *s, int viscous, int air);
+/* all: every planes kernel, else those that read the collider table */
+int msocl__planes_rebuild(msocl__engine *s, cl_program prog, int all);
 /* Ends a step: swaps the ping-pong buffers (or plane sets). */
 void msocl__step_done(msocl__engine *s);
 /* The buffer an exchange bit names, at this point of the step. */

@@ -554,12 +554,12 @@ static int reads_colliders(int q)
          q == PL_STRAIN_V || q == PL_DRIFT || q == PL_IE_FINISH;
 }
 
-int msocl__planes_rebuild(msocl__engine *s, cl_program prog)
+int msocl__planes_rebuild(msocl__engine *s, cl_program prog, int all)
 {
   /* nothing queued may still need a kernel released here */
   MSOCL__CL(clFinish(s->dev->queue));
   for (int q = 0; q < PL_COUNT; q++) {
-    if (!reads_colliders(q))
+    if (!all && !reads_colliders(q))
       continue;
     clReleaseKernel(s->pl_k[q]);
     if (s->pl_ks[q])

@@ -133,14 +133,23 @@ static int set_damping(msocl_sim *s, int air, float value)
   struct msocl__controls *c;
   MSOCL__TRY(controls(s, &c));
   const int off = air ? value == 1.0f : value == 0.0f;
-  if (!(air ? c->air_built : c->viscous_built) && !off)
-    return msocl__fail(
-        MSOCL_ERR_BAD_VALUE,
-        "%s %g: the simulation was created without %s, so its kernels "
-        "leave the term out; give the model a %s before msocl_sim_create "
-        "to change it while it runs",
-        what, (double)value, what,
-        air ? "factor below 1" : "positive value");
+  int *built = air ? &c->air_built : &c->viscous_built;
+  if (!*built && !off) {
+    /* the planes engine builds the term in; float4 cannot */
+    for (int d = 0; d < s->nparts; d++)
+      if (!s->part[d]->planes)
+        return msocl__fail(
+            MSOCL_ERR_BAD_VALUE,
+            "%s %g: the simulation was created without %s and runs the "
+            "float4 engine (tuning.planes), whose kernels leave the term "
+            "out; give the model a %s before msocl_sim_create, or run in "
+            "planes",
+            what, (double)value, what,
+            air ? "factor below 1" : "positive value");
+    for (int d = 0; d < s->nparts; d++)
+      MSOCL__TRY(msocl__engine_terms(s->part[d], !air, air));
+    *built = 1;
+  }
   for (int d = 0; d < s->nparts; d++)
     *(air ? &s->part[d]->air : &s->part[d]->viscous) = value;
   return apply(s);
