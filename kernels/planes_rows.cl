@@ -34,9 +34,6 @@
 #if MSOCL_ROWS_W == 16
 typedef float16 msocl_rows_f;
 typedef int16 msocl_rows_m;
-/* a vector at a float's alignment, for wind's loads and stores: PoCL
- * writes vstore16 as three stores, and split wind's vload16s in pairs */
-typedef float16 __attribute__((aligned(4))) msocl_rows_fu;
 #define MSOCL_ROWS_LANES                                                      \
   ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
 #define MSOCL_ROWS_LOAD(q) vload16(0, (q))
@@ -44,18 +41,10 @@ typedef float16 __attribute__((aligned(4))) msocl_rows_fu;
 #else
 typedef float8 msocl_rows_f;
 typedef int8 msocl_rows_m;
-typedef float8 __attribute__((aligned(4))) msocl_rows_fu;
 #define MSOCL_ROWS_LANES ((int8)(0, 1, 2, 3, 4, 5, 6, 7))
 #define MSOCL_ROWS_LOAD(q) vload8(0, (q))
 #define MSOCL_ROWS_STORE(v, q) vstore8((v), 0, (q))
 #endif
-#if MSOCL_ROWS_W == 16
-MSOCL_WIND_RSQRT_DEF(float16, int16)
-#else
-MSOCL_WIND_RSQRT_DEF(float8, int8)
-#endif
-#define MSOCL_ROWS_LOAD_W(q) (*(__global const msocl_rows_fu *)(q))
-#define MSOCL_ROWS_STORE_W(v, q) (*(__global msocl_rows_fu *)(q) = (v))
 
 /* c ? a : b per lane */
 #define MSOCL_ROWS_SEL(c, a, b)                                               \
@@ -89,72 +78,16 @@ MSOCL_WIND_RSQRT_DEF(float8, int8)
                                                                : grid_k.z)
 #define MSOCL_ROWS_HAS(f) ((MSOCL_GRID_KINDS >> MSOCL_ROWS_KIND(f)) & 1)
 
-/* Wind on the quads of row y at padded columns c..c + W - 1 into ring
- * row t (terms 6 and 7: triangles A and B), from the velocities before
- * the step, as msocl_wind_quads computes them: zero where the quad is
- * not the model's (its padding corners hold NaN). Called in
- * msocl_rows_springs's column loop between the springs, so that its
- * arithmetic overlaps their divisions, with the corner p0 and the edges
- * e[f] of forward spring f the springs have loaded (the same
- * differences wind.cl takes), those of a kind the model lacks loaded
- * here. */
-static inline __attribute__((always_inline)) void
-msocl_rows_wind(MSOCL_CONN, __global const float *p, __global const float *v,
-                int pitch, int plane, int y, int c, msocl_rows_f p0x,
-                msocl_rows_f p0y, msocl_rows_f p0z, const msocl_rows_f *ex,
-                const msocl_rows_f *ey, const msocl_rows_f *ez, float4 air,
-                float4 coef, __global float *t, int ring_w)
-{
-  const int q = plane, a = (y + 2) * pitch + c;
-  const msocl_rows_m x = MSOCL_ROWS_LANES + (c - 2);
-  /* select reads a lane's sign bit: the row's test as -1 or 0 */
-  const int row_real = -(int)(y >= 0 && y + 1 < grid_ny);
-  const msocl_rows_m real = (x >= 0) & (x + 1 < grid_nx) & row_real;
-  /* the quad's corners a, a+1, a+pitch+1 (A) and a, a+pitch+1, a+pitch
-   * (B): edges r (spring 0's), u (3's) and l (1's) */
-  const int r = a + 1, u = a + pitch + 1, l = a + pitch;
-#define L(o) MSOCL_ROWS_LOAD_W(p + (o))
-#define V(o) MSOCL_ROWS_LOAD_W(v + (o))
-#define E(f, o, comp, k)                                                      \
-  (MSOCL_ROWS_HAS(f) ? e##comp[f] : L((k) * q + (o)) - p0##comp)
-  const msocl_rows_f rx_ = E(0, r, x, 0), ry_ = E(0, r, y, 1),
-                     rz_ = E(0, r, z, 2);
-  const msocl_rows_f ux_ = E(3, u, x, 0), uy_ = E(3, u, y, 1),
-                     uz_ = E(3, u, z, 2);
-  const msocl_rows_f lx_ = E(1, l, x, 0), ly_ = E(1, l, y, 1),
-                     lz_ = E(1, l, z, 2);
-#undef E
-  const msocl_rows_f v0x = V(a), v0y = V(q + a), v0z = V(2 * q + a);
-  const msocl_rows_f vux = V(u), vuy = V(q + u), vuz = V(2 * q + u);
-  MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wa_, rx_, ry_, rz_, ux_,
-                   uy_, uz_, v0x + V(r) + vux, v0y + V(q + r) + vuy,
-                   v0z + V(2 * q + r) + vuz, air, coef, ax, ay, az);
-  MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wb_, ux_, uy_, uz_, lx_,
-                   ly_, lz_, v0x + vux + V(l), v0y + vuy + V(q + l),
-                   v0z + vuz + V(2 * q + l), air, coef, bx, by, bz);
-#undef L
-#undef V
-  __global float *o = t + 3 * 6 * ring_w + c;
-  MSOCL_ROWS_STORE_W(MSOCL_ROWS_SEL(real, ax, 0.0f), o);
-  MSOCL_ROWS_STORE_W(MSOCL_ROWS_SEL(real, ay, 0.0f), o + ring_w);
-  MSOCL_ROWS_STORE_W(MSOCL_ROWS_SEL(real, az, 0.0f), o + 2 * ring_w);
-  o += 3 * ring_w;
-  MSOCL_ROWS_STORE_W(MSOCL_ROWS_SEL(real, bx, 0.0f), o);
-  MSOCL_ROWS_STORE_W(MSOCL_ROWS_SEL(real, by, 0.0f), o + ring_w);
-  MSOCL_ROWS_STORE_W(MSOCL_ROWS_SEL(real, bz, 0.0f), o + 2 * ring_w);
-}
-
 /* Row y's forward spring terms at padded columns 0..nx + 2 (x from -2 to
  * nx) into ring row t: msocl_planes_pull's `on ? t * d : 0`, and with
  * dashpots its `onh ? u * d : 0` from the velocities before the step (a
  * backward one negates exactly: w and d both flip, w . d and len2 stay).
  * The last vector is moved back to end at column nx + 2, and overlaps the
  * one before it (the same terms again), so no load passes the planes. */
-static inline __attribute__((always_inline)) void
-msocl_rows_springs_(MSOCL_CONN, __global const float *p,
-                    __global const float *v, int pitch, int plane, int y,
-                    __global float *t, int ring_w, const int blow,
-                    float4 air, float4 coef)
+static void msocl_rows_springs(MSOCL_CONN, __global const float *p,
+                               __global const float *v, int pitch,
+                               int plane, int y, __global float *t,
+                               int ring_w)
 {
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
 #ifdef MSOCL_DAMPING
@@ -173,14 +106,8 @@ msocl_rows_springs_(MSOCL_CONN, __global const float *p,
                        vy = MSOCL_ROWS_LOAD(vy_ + a),
                        vz = MSOCL_ROWS_LOAD(vz_ + a);
 #endif
-    /* the edges right, above and above-right, for wind's quads */
-    msocl_rows_f ex[6], ey[6], ez[6];
 #pragma unroll
     for (int f = 0; f < 6; f++) {
-      /* wind's quads amid the springs, after the edges they take */
-      if (blow && f == 4)
-        msocl_rows_wind(MSOCL_CONN_ARGS, p, v, pitch, plane, y, c, px, py,
-                        pz, ex, ey, ez, air, coef, t, ring_w);
       if (!MSOCL_ROWS_HAS(f))
         continue;
       const int b = a + MSOCL_ROWS_OFF(f, pitch);
@@ -188,9 +115,6 @@ msocl_rows_springs_(MSOCL_CONN, __global const float *p,
       const msocl_rows_f dx = MSOCL_ROWS_LOAD(p + b) - px,
                          dy = MSOCL_ROWS_LOAD(py_ + b) - py,
                          dz = MSOCL_ROWS_LOAD(pz_ + b) - pz;
-      ex[f] = dx;
-      ey[f] = dy;
-      ez[f] = dz;
       const msocl_rows_f len2 = dx * dx + dy * dy + dz * dz;
       const msocl_rows_f len = MSOCL_SQRT(len2);
       const msocl_rows_f k = kk * MSOCL_DIV(len - rest, len);
@@ -215,20 +139,51 @@ msocl_rows_springs_(MSOCL_CONN, __global const float *p,
   }
 }
 
-/* msocl_rows_springs_ with and without wind: two loops, the one
- * without wind the springs' alone. */
-static void msocl_rows_springs(MSOCL_CONN, __global const float *p,
-                               __global const float *v, int pitch,
-                               int plane, int y, __global float *t,
-                               int ring_w, int blow, float4 air,
-                               float4 coef)
+/* Wind on row y's quads at padded columns 0..nx + 2 into ring row t
+ * (terms 6 and 7: A and B), from the velocities before the step, as
+ * msocl_wind_quads computes them: zero where the quad is not the model's
+ * (its padding corners hold NaN). */
+static void msocl_rows_wind(MSOCL_CONN, __global const float *p,
+                            __global const float *v,
+                            int pitch, int plane, int y, float4 air,
+                            float4 coef, __global float *t, int ring_w)
 {
-  if (blow)
-    msocl_rows_springs_(MSOCL_CONN_ARGS, p, v, pitch, plane, y, t, ring_w, 1,
-                        air, coef);
-  else
-    msocl_rows_springs_(MSOCL_CONN_ARGS, p, v, pitch, plane, y, t, ring_w, 0,
-                        air, coef);
+  const int row = (y + 2) * pitch, cols = grid_nx + 3, q = plane;
+  for (int c0 = 0; c0 < cols; c0 += MSOCL_ROWS_W) {
+    const int c = min(c0, cols - MSOCL_ROWS_W), a = row + c;
+    const msocl_rows_m x = MSOCL_ROWS_LANES + (c - 2);
+    /* select reads a lane's sign bit: the row's test as -1 or 0 */
+    const int row_real = -(int)(y >= 0 && y + 1 < grid_ny);
+    const msocl_rows_m real = (x >= 0) & (x + 1 < grid_nx) & row_real;
+    /* the quad's corners a, a+1, a+pitch+1 (A) and a, a+pitch+1,
+     * a+pitch (B), each loaded once, both triangles before any store */
+    const int r = a + 1, u = a + pitch + 1, l = a + pitch;
+#define L(o) MSOCL_ROWS_LOAD(p + (o))
+#define V(o) MSOCL_ROWS_LOAD(v + (o))
+    const msocl_rows_f p0x = L(a), p0y = L(q + a), p0z = L(2 * q + a);
+    const msocl_rows_f ux_ = L(u) - p0x, uy_ = L(q + u) - p0y,
+                       uz_ = L(2 * q + u) - p0z;
+    const msocl_rows_f v0x = V(a), v0y = V(q + a), v0z = V(2 * q + a);
+    const msocl_rows_f vux = V(u), vuy = V(q + u), vuz = V(2 * q + u);
+    MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wa_, L(r) - p0x,
+                     L(q + r) - p0y, L(2 * q + r) - p0z, ux_, uy_, uz_,
+                     v0x + V(r) + vux, v0y + V(q + r) + vuy,
+                     v0z + V(2 * q + r) + vuz, air, coef, ax, ay, az);
+    MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wb_, ux_, uy_, uz_,
+                     L(l) - p0x, L(q + l) - p0y, L(2 * q + l) - p0z,
+                     v0x + vux + V(l), v0y + vuy + V(q + l),
+                     v0z + vuz + V(2 * q + l), air, coef, bx, by, bz);
+#undef L
+#undef V
+    __global float *o = t + 3 * 6 * ring_w + c;
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, ax, 0.0f), o);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, ay, 0.0f), o + ring_w);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, az, 0.0f), o + 2 * ring_w);
+    o += 3 * ring_w;
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, bx, 0.0f), o);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, by, 0.0f), o + ring_w);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, bz, 0.0f), o + 2 * ring_w);
+  }
 }
 
 /* msocl_planes_gap and msocl_respond for collider c, lane by lane. */
@@ -462,8 +417,11 @@ __kernel void msocl_planes_rows(MSOCL_CONN, __global const float *p,
   __constant const float *cf = (__constant const float *)col;
   for (int y = y0 - 2; y < y1; y++) {
     msocl_rows_springs(MSOCL_CONN_ARGS, p, v, pitch, plane, y,
-                       mine + (size_t)((y + 3) % 3) * one, ring_w,
-                       wind && y >= y0 - 1, wind_air, wind_coef);
+                       mine + (size_t)((y + 3) % 3) * one, ring_w);
+    if (wind && y >= y0 - 1)
+      msocl_rows_wind(MSOCL_CONN_ARGS, p, v, pitch, plane, y, wind_air,
+                      wind_coef,
+                      mine + (size_t)((y + 3) % 3) * one, ring_w);
     if (y >= y0)
       msocl_rows_kick(MSOCL_CONN_ARGS, p, v, v_out, p_out, aux, pitch, plane,
                       gravity, viscous, air, dt, cf,

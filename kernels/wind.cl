@@ -11,36 +11,17 @@
  * takes MSOCL_WIND_FORCE into its sweep. */
 #if defined(MSOCL_PLANES)
 
-/* 1 / sqrt(x) for x > 0 (a normal float) to about an ulp, in
- * multiplications only: the bit pattern's first guess and three Newton
- * steps, each squaring the relative error. The dividers are what bound
- * GRID's one sweep (each spring takes a square root and a division), and
- * wind's arithmetic overlaps theirs there; the same steps in every
- * kernel, so every layout gets the same bits. */
-#define MSOCL_WIND_RSQRT_DEF(T, TI)                                           \
-  static inline T __attribute__((overloadable)) msocl_wind_rsqrt(T x)         \
-  {                                                                           \
-    const T h = 0.5f * x;                                                     \
-    T y = as_##T((TI)0x5f3759df - (as_##TI(x) >> 1));                         \
-    y = y * fma(-h, y * y, 1.5f);                                             \
-    y = y * fma(-h, y * y, 1.5f);                                             \
-    return y * fma(-h, y * y, 1.5f);                                          \
-  }
-MSOCL_WIND_RSQRT_DEF(float, int)
-
 /* A third of the force on a triangle of edges e1 = p1 - p0 and
  * e2 = p2 - p0 whose corners' velocities sum to s = (v0 + v1) + v2, from
- * air at velocity air.xyz, with coef.x = rho Cd / 12 and coef.y =
- * rho Cl / 12 (the host's), into fx, fy, fz (declared here, of type T,
- * with temporaries named after `tag`; SEL(c, a, b) is c ? a : b for T):
- * the one arithmetic of every wind kernel, scalar or vector
- * (planes_rows.cl), so that each layout gets the same bits. With the
- * unnormalised normal N = e1 x e2 = 2 A n the area cancels, and drag and
- * lift gather into one combination of u and N:
- * f / 3 = (cd |N.u| - l N.u) u + l |u|^2 N, l = cl (N.u) / (|N| |u|),
- * one square root and one division (two square roots would be paired
- * into a vector and stop PoCL vectorising the kernel; the three
- * components are written in three shapes for the same reason). */
+ * air at velocity air.xyz, with coef.x = rho Cd / 2 and coef.y =
+ * rho Cl / 2, into fx, fy, fz (declared here, of type T, with temporaries
+ * named after `tag`; SEL(c, a, b) is c ? a : b for T): the one arithmetic
+ * of every wind kernel, scalar or vector (planes_rows.cl), so that each
+ * layout gets the same bits. With
+ * the unnormalised normal N = e1 x e2 = 2 A n the area cancels:
+ * f = kd |N.u| u / 2 + kl (N.u) (|u|^2 N - (N.u) u) / (2 |N| |u|), one
+ * square root (two would be paired into a vector and stop PoCL
+ * vectorising the kernel). */
 #define MSOCL_WIND_FORCE(T, SEL, tag, e1x, e1y, e1z, e2x, e2y, e2z, sx, sy,   \
                          sz, air, coef, fx, fy, fz)                           \
   const T tag##nx = (e1y) * (e2z) - (e1z) * (e2y),                            \
@@ -49,22 +30,23 @@ MSOCL_WIND_RSQRT_DEF(float, int)
   const float tag##third = 1.0f / 3.0f;                                       \
   const T tag##ux = (air).x - (sx) * tag##third,                              \
           tag##uy = fma((sy), -tag##third, (air).y),                          \
-          tag##uz = fma(-(sz), tag##third, (air).z);                           \
-  const T tag##nu =                                                           \
-      fma(tag##nz, tag##uz, fma(tag##ny, tag##uy, tag##nx * tag##ux));        \
-  const T tag##uu =                                                           \
-      fma(tag##ux, tag##ux, fma(tag##uy, tag##uy, tag##uz * tag##uz));        \
-  const T tag##nnuu =                                                         \
-      fma(tag##nx, tag##nx, fma(tag##nz, tag##nz, tag##ny * tag##ny)) *       \
-      tag##uu;                                                                \
-  const T tag##l = SEL(tag##nnuu > 0.0f,                                      \
-                       (coef).y * tag##nu * msocl_wind_rsqrt(tag##nnuu),      \
-                       0.0f);                                                 \
-  const T tag##a = fma(-tag##l, tag##nu, (coef).x * fabs(tag##nu));          \
-  const T tag##b = tag##l * tag##uu;                                          \
-  const T fx = fma(tag##a, tag##ux, tag##b * tag##nx);                       \
-  const T fy = fma(tag##b, tag##ny, tag##a * tag##uy);                        \
-  const T fz = tag##a * tag##uz + tag##nz * tag##b
+          tag##uz = (air).z - (sz) / 3.0f;                                    \
+  const T tag##nu = tag##nx * tag##ux + tag##ny * tag##uy + tag##nz * tag##uz;\
+  const T tag##uu = tag##ux * tag##ux + tag##uy * tag##uy + tag##uz * tag##uz;\
+  const T tag##root =                                                         \
+      sqrt((tag##nx * tag##nx + tag##ny * tag##ny + tag##nz * tag##nz) *      \
+           tag##uu);                                                          \
+  const T tag##d = 0.5f * tag##third * (coef).x * fabs(tag##nu);              \
+  const T tag##l =                                                            \
+      SEL(tag##root > 0.0f,                                                   \
+          0.5f * tag##third * (coef).y * tag##nu / tag##root, 0.0f);          \
+  const T fx = tag##d * tag##ux +                                             \
+               tag##l * (tag##uu * tag##nx - tag##nu * tag##ux);              \
+  const T fy =                                                                \
+      fma(tag##d, tag##uy,                                                    \
+          tag##l * fma(tag##uu, tag##ny, -(tag##nu * tag##uy)));              \
+  const T fz =                                                                \
+      fma(tag##l, fma(-tag##nu, tag##uz, tag##uu * tag##nz), tag##d * tag##uz)
 
 #define MSOCL_WIND_SEL1(c, a, b) ((c) ? (a) : (b))
 

@@ -196,10 +196,6 @@ int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "wind pushes on triangles, and the model has none "
                        "(msocl_model_add_triangles)");
-  /* the kernels' coefficients: a third of each triangle's force, the area
-   * half the cross product's length (kernels/wind.cl) */
-  kd /= 6.0f;
-  kl /= 6.0f;
   if (s->wind_quads && s->pl_rows && !s->damped) {
     /* the one-sweep kernel blows it on the quads as it goes; dashpots
      * read the neighbours' velocities after the wind's kick, which the
