@@ -47,15 +47,16 @@ void msocl__ref_wind(msocl_reference *r)
     const double nrm[3] = {e1[1] * e2[2] - e1[2] * e2[1],
                            e1[2] * e2[0] - e1[0] * e2[2],
                            e1[0] * e2[1] - e1[1] * e2[0]};
-    const double len = sqrt(msocl__dot3(nrm, nrm)),
-                 speed = sqrt(msocl__dot3(u, u));
-    if (!(len > 0) || !(speed > 0))
+    /* with N = e1 x e2 = 2 A n: F = (kd |N.u| / 2 - l N.u) u + l |u|^2 N,
+     * l = kl (N.u) / (2 |N| |u|), as the kernels */
+    const double nn = msocl__dot3(nrm, nrm), uu = msocl__dot3(u, u);
+    if (!(nn > 0) || !(uu > 0))
       continue;
-    const double h[3] = {nrm[0] / len, nrm[1] / len, nrm[2] / len};
-    const double un = msocl__dot3(h, u), area = 0.5 * len;
-    const double d = area * r->wind_kd * fabs(un), l = area * r->wind_kl * un;
+    const double nu = msocl__dot3(nrm, u);
+    const double l = 0.5 * r->wind_kl * nu / sqrt(nn * uu);
+    const double a = 0.5 * r->wind_kd * fabs(nu) - l * nu, b = l * uu;
     for (int k = 0; k < 3; k++) {
-      const double fk = (d * u[k] + l * (speed * h[k] - un / speed * u[k])) / 3.0;
+      const double fk = (a * u[k] + b * nrm[k]) / 3.0;
       for (int q = 0; q < 3; q++)
         f[3 * c[q] + k] += fk;
     }
