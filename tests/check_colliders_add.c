@@ -23,37 +23,17 @@
     EXPECT(call, code);                                                       \
     SAYS(text);                                                               \
   } while (0)
-#define SIDE 0.5f
 /* the steps before the add, and after it */
 #define BEFORE 30
 #define AFTER 60
 
 static const float ident[4] = {0.0f, 0.0f, 0.0f, 1.0f};
 
-/* An n x n cloth, SIDE a side, hanging in the x-y plane (z 0) from its
- * whole top row, with dashpots `damping`: check_colliders_moving's
- * curtain (n 16 runs GRID's symplectic Euler in kernels/planes_rows.cl on
- * a CPU, n 15 in the planes passes). */
+/* check_colliders_moving's curtain (n 16 runs GRID's symplectic Euler in
+ * kernels/planes_rows.cl on a CPU, n 15 in the planes passes). */
 static msocl_model *curtain(int n, float damping)
 {
-  msocl_cloth_desc d;
-  msocl_cloth_desc_init(&d);
-  d.nx = d.ny = n;
-  d.origin[0] = -0.5f * SIDE;
-  d.origin[1] = 0.0f;
-  d.origin[2] = 0.0f;
-  d.u[0] = SIDE; d.u[1] = 0.0f; d.u[2] = 0.0f;
-  d.v[0] = 0.0f; d.v[1] = -SIDE; d.v[2] = 0.0f;
-  d.point_mass = 0.2f / (float)(n * n);
-  d.k_stretch = 40.0f;
-  d.k_shear = 8.0f;
-  d.k_bend = 4.0f;
-  d.damping = damping;
-  msocl_model *m = NULL;
-  OK(msocl_model_cloth_grid(&m, &d));
-  for (int i = 0; i < n; i++)
-    OK(msocl_model_pin(m, i, 1));
-  return m;
+  return scene_curtain(n, damping);
 }
 
 /* The step: implicit Euler's stable dt is unbounded, so symplectic

@@ -22,33 +22,14 @@
     SAYS(text);                                                               \
   } while (0)
 #define N 16 /* the hanging cloth's side */
-#define SIDE 0.5f
 
 static const float ident[4] = {0.0f, 0.0f, 0.0f, 1.0f};
 
-/* An N x N cloth, SIDE a side, hanging in the x-y plane (z 0) from its
- * whole top row, with dashpots `damping` (0: GRID's symplectic Euler
- * then runs kernels/planes_rows.cl on a CPU). */
+/* scene_curtain's N x N cloth, with dashpots `damping` (0: GRID's
+ * symplectic Euler then runs kernels/planes_rows.cl on a CPU). */
 static msocl_model *curtain_damped(float damping)
 {
-  msocl_cloth_desc d;
-  msocl_cloth_desc_init(&d);
-  d.nx = d.ny = N;
-  d.origin[0] = -0.5f * SIDE;
-  d.origin[1] = 0.0f;
-  d.origin[2] = 0.0f;
-  d.u[0] = SIDE; d.u[1] = 0.0f; d.u[2] = 0.0f;
-  d.v[0] = 0.0f; d.v[1] = -SIDE; d.v[2] = 0.0f;
-  d.point_mass = 0.2f / (float)(N * N);
-  d.k_stretch = 40.0f;
-  d.k_shear = 8.0f;
-  d.k_bend = 4.0f;
-  d.damping = damping;
-  msocl_model *m = NULL;
-  OK(msocl_model_cloth_grid(&m, &d));
-  for (int i = 0; i < N; i++)
-    OK(msocl_model_pin(m, i, 1));
-  return m;
+  return scene_curtain(N, damping);
 }
 
 static msocl_model *curtain(void)

@@ -238,3 +238,25 @@ msocl_sim *scene_sim(const msocl_model *m, msocl_integrator in, float dt,
                 msocl_last_error());
   return s;
 }
+
+msocl_model *scene_curtain(int n, float damping)
+{
+  const float side = 0.5f;
+  msocl_cloth_desc d;
+  msocl_cloth_desc_init(&d);
+  d.nx = d.ny = n;
+  d.origin[0] = -0.5f * side, d.origin[1] = 0.0f, d.origin[2] = 0.0f;
+  d.u[0] = side, d.u[1] = 0.0f, d.u[2] = 0.0f;
+  d.v[0] = 0.0f, d.v[1] = -side, d.v[2] = 0.0f;
+  d.point_mass = 0.2f / (float)(n * n);
+  d.k_stretch = 40.0f;
+  d.k_shear = 8.0f;
+  d.k_bend = 4.0f;
+  d.damping = damping;
+  msocl_model *m = NULL;
+  ck_assert_msg(msocl_model_cloth_grid(&m, &d) == MSOCL_OK, "%s",
+                msocl_last_error());
+  for (int i = 0; i < n; i++)
+    ck_assert_int_eq(msocl_model_pin(m, i, 1), MSOCL_OK);
+  return m;
+}

@@ -13,6 +13,11 @@ float scene_tablecloth_dt(int n);
 /* An n x n cloth, 1 m a side, hanging in the x-y plane from its two top
  * corners, with dashpots; no contact. */
 msocl_model *scene_hanging(int n);
+/* An n x n cloth, 0.5 m a side, 0.2 kg, hanging in the x-y plane (z 0,
+ * centred on x 0) from its whole top row, with dashpots `damping` (0:
+ * GRID's symplectic Euler runs kernels/planes_rows.cl on a CPU, for n a
+ * multiple of 16): the moving colliders' curtain. */
+msocl_model *scene_curtain(int n, float damping);
 /* Signed distance-like value of the tablecloth's table (>= 0 outside). */
 double scene_table_gap(const float *p);
 
