@@ -395,6 +395,17 @@ int msocl__planes_forces(msocl__engine *s)
   return rc;
 }
 
+/* After msocl__planes_rebuild: the arguments its re-created kernels take
+ * from the implicit solver and wind (set here, above both files). */
+static int rebound(msocl__engine *s)
+{
+  if (s->o.integrator == MSOCL_IMPLICIT_EULER)
+    MSOCL__TRY(msocl__pl_implicit_args(s));
+  /* wind blows in the sweep or in its own passes, whichever now runs */
+  return s->wind_on ? msocl__wind_set(s, s->wind_air, s->wind_kd, s->wind_kl)
+                    : MSOCL_OK;
+}
+
 int msocl__engine_colliders(msocl__engine *s, int ncol, unsigned kinds)
 {
   char opt[512];
@@ -404,7 +415,8 @@ int msocl__engine_colliders(msocl__engine *s, int ncol, unsigned kinds)
   s->ncol = ncol;
   s->pl_kinds = kinds;
   s->pl_shapes = (kinds & (1u << MSOCL__CAPSULE | 1u << MSOCL__BOX)) != 0;
-  return msocl__planes_rebuild(s, prog, 0);
+  MSOCL__TRY(msocl__planes_rebuild(s, prog, 0));
+  return rebound(s);
 }
 
 int msocl__engine_terms(msocl__engine *s, int viscous, int air)
@@ -434,5 +446,6 @@ int msocl__engine_terms(msocl__engine *s, int viscous, int air)
     }
   MSOCL__TRY(make_kernels(s, prog));
   MSOCL__TRY(msocl__integrate_setup(s));
-  return msocl__planes_rebuild(s, prog, 1);
+  MSOCL__TRY(msocl__planes_rebuild(s, prog, 1));
+  return rebound(s);
 }

@@ -570,12 +570,7 @@ int msocl__planes_rebuild(msocl__engine *s, cl_program prog, int all)
   /* every fixed argument again: those of the kernels kept are unchanged;
    * the ping-pong ones are set at each launch */
   TRY(fixed_args(s));
-  if (s->o.integrator == MSOCL_IMPLICIT_EULER)
-    TRY(msocl__pl_implicit_args(s));
-  TRY(msocl__pl_rows_rebuild(s, prog));
-  /* wind blows in the sweep or in its own passes, whichever now runs */
-  return s->wind_on ? msocl__wind_set(s, s->wind_air, s->wind_kd, s->wind_kl)
-                    : MSOCL_OK;
+  return msocl__pl_rows_rebuild(s, prog);
 }
 
 int msocl__planes_create(msocl__engine *s, cl_program prog)
