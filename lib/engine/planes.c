@@ -177,15 +177,6 @@ int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
 /* The widest BUFFER table the planes kernels unroll. */
 #define MSOCL__PLANES_SLOTS 64
 
-/* Whether AUTO runs BUFFER or IMAGE2D in planes: BUFFER (and EDGES, its
- * table) on every device, as GRID; IMAGE2D's texel reads are
- * float4-typed, which stops PoCL vectorising, so it keeps float4. */
-static int row_auto(const msocl__engine *s)
-{
-  return s->lay.kind == MSOCL_LAYOUT_EDGES ||
-         s->lay.kind == MSOCL_LAYOUT_BUFFER;
-}
-
 /* Why BUFFER's, EDGES's or IMAGE2D's connectivity cannot run in planes;
  * NULL: it can. */
 static const char *unfit_row(const msocl__engine *s)
@@ -214,9 +205,7 @@ int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
                        why ? why : "tuning.planes OFF turns off");
   s->planes = kind == MSOCL_LAYOUT_GRID
                   ? chosen(s->dev, &s->o, m, why)
-                  : !why && (s->o.tuning.planes == MSOCL_ON ||
-                             (s->o.tuning.planes == MSOCL_AUTO &&
-                              row_auto(s)));
+                  : !why && s->o.tuning.planes != MSOCL_OFF;
   return MSOCL_OK;
 }
 
