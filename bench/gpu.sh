@@ -9,23 +9,22 @@
 # Stages (default: all, in this order):
 #   devices    msocl-devices: what the machine offers
 #   verify     the kernels on the GPU agree with themselves: the tablecloth
-#              at 128^2 with BUFFER, GRID, IMAGE2D, the fused step,
-#              BUFFER with spring classes (-C) and values (-V) forced, and
-#              GRID in planes forced (-P), two passes and fused,
-#              final meshes compared bit for bit (as make check does on
-#              PoCL; the GPU machine has no Check)            (seconds)
+#              at 128^2 with BUFFER, GRID, IMAGE2D, the fused step of
+#              BUFFER and of GRID, and BUFFER with spring classes (-C) and
+#              values (-V) forced, final meshes compared bit for bit
+#              with BUFFER's (as make check does on PoCL; the GPU
+#              machine has no Check)                          (seconds)
 #   table1     Table 1 on the GPU: 48..2048 per layout, with the one-kernel
 #              step (--fused), BUFFER's classes and values rows
-#              (--values) and GRID in planes and in float4 forced
-#              (--planes), serial C beside it           (about 7 min)
+#              (--values), serial C beside it           (about 7 min)
 #   precision  the work-precision data on the GPU, both math modes (1 min)
 #   split      the tablecloth at 1024^2: GPU alone, PoCL's CPU alone, and
 #              split over both with calibrated weights, boundary first
 #              and with -O (kernels then copies)  (about 3 min)
-#   lattice    the jello cube at 32^3..128^3: BUFFER, GRID in float4 and
-#              GRID in planes (forced) with symplectic Euler, Verlet, RK4
-#              and implicit Euler, each against BUFFER's speed and final
-#              positions (the error column: 0 where bitwise)  (minutes)
+#   lattice    the jello cube at 32^3..128^3: BUFFER and GRID (forced)
+#              with symplectic Euler, Verlet, RK4 and implicit Euler, GRID
+#              against BUFFER's speed and final positions (the error
+#              column: 0 where bitwise)                    (minutes)
 #   strain     strain limiting's cost against its result on the GPU: the
 #              soft tablecloth at 64^2 and 256^2 draped for 1 s,
 #              unlimited and each limit at 1..20 sweeps, symplectic
@@ -71,7 +70,7 @@ for stage in $stages; do
     : > "$out/verify.txt"
     for run in "buffer -l buffer" "grid -l grid" "image2d -l image2d" \
       "fused -l buffer -f" "classes -l buffer -C" "values -l buffer -V" \
-      "planes -l grid -P" "planesfused -l grid -P -f"; do
+      "gridfused -l grid -f"; do
       set -- $run
       tag=$1
       shift
@@ -81,7 +80,7 @@ for stage in $stages; do
         -o "$out/verify_$tag.obj" >> "$out/verify.txt" 2>&1 ||
         echo "# exit status $?" >> "$out/verify.txt"
     done
-    for tag in grid image2d fused classes values planes planesfused; do
+    for tag in grid image2d fused classes values gridfused; do
       a=$out/verify_buffer.obj b=$out/verify_$tag.obj
       [ -f "$a" ] && [ -f "$b" ] || continue
       if cmp -s "$a" "$b"; then
@@ -95,7 +94,7 @@ for stage in $stages; do
     ;;
   table1)
     record table1 env MSOCL_DEVICE=gpu $bench table1 --big-steps 200 \
-      --repeat 3 --fused --values --planes --csv "$out/table1.csv"
+      --repeat 3 --fused --values --csv "$out/table1.csv"
     ;;
   precision)
     record precision env MSOCL_DEVICE=gpu $bench precision \

@@ -41,8 +41,6 @@ struct bench_opts {
                                      one-kernel step (table1) */
   int values;                     /* --values: also BUFFER with classes
                                      and with values forced (table1) */
-  int planes;                     /* --planes: also GRID in planes and in
-                                     float4 forced (table1) */
   int expert;                     /* --expert: also expert C (table1) */
   int sweeps[BENCH_MAX_LIST], nsweeps; /* --sweeps (strain) */
   const char *csv;                /* --csv */
@@ -102,12 +100,10 @@ double bench_max_diff(const float *a, const float *b, size_t n);
 /* Times model m under options so on rt: a warm-up step, then the best of
  * o->repeat runs of o->steps into r->seconds; the final positions into pos
  * (3 r->points floats), their largest difference from ref (when not NULL)
- * into r->error, and whether the steps ran in planes into *planes (when
- * not NULL). Returns the library's status. */
+ * into r->error. Returns the library's status. */
 int bench_time_sim(const struct bench_opts *o, msocl_runtime *rt,
                    const msocl_model *m, const msocl_sim_options *so,
-                   struct bench_row *r, float *pos, const float *ref,
-                   int *planes);
+                   struct bench_row *r, float *pos, const float *ref);
 
 int bench_table1(const struct bench_opts *o, FILE *csv);
 int bench_precision(const struct bench_opts *o, FILE *csv);
@@ -139,8 +135,8 @@ void bench_serial_destroy(bench_serial *s);
 void bench_tc_rests(int n, float rest[3]);
 
 /* The tablecloth as expert C: struct of arrays, padded rows, both passes
- * in one sweep, OpenMP over rows (bench_expert.c); bitwise GRID in planes
- * in PRECISE math. xyz: the model's initial positions, 3 floats a point. */
+ * in one sweep, OpenMP over rows (bench_expert.c); bitwise GRID in PRECISE
+ * math. xyz: the model's initial positions, 3 floats a point. */
 typedef struct bench_expert bench_expert;
 int bench_expert_create(bench_expert **e, int n, float dt, const float *xyz);
 void bench_expert_step(bench_expert *e, int steps);

@@ -1,10 +1,10 @@
 /* msocl-bench colliders: what a collider costs. The tablecloth (a cloth
  * grid 5 cm above y = 0) with no collider, a floor plane, a sphere or the
  * round table - the sphere and table tops at y = 0, so the cloth lands on
- * them - per engine: GRID in planes, GRID in float4 (both forced) and
- * BUFFER; and in planes the capsule and the box moving (cap-mov,
- * box-mov: a pose set before each call, carried along x at 0.5 m/s, the
- * box turning about y at 1 rad/s) beside the same shapes at rest. The
+ * them - per engine: GRID and BUFFER (both forced); and a capsule and a
+ * box, at rest and moving (cap-mov, box-mov: a pose set before each call,
+ * carried along x at 0.5 m/s, the box turning about y at 1 rad/s) beside
+ * the same shapes at rest. The
  * scenes of an engine are timed in turn, --repeat rounds,
  * the fastest of each counting, so the ratios to "none" come from the same
  * moments of a noisy machine. */
@@ -14,9 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { ENGINES = 3, SCENES = 8, FLOAT4_SCENES = 4 };
-static const char *const engine_names[ENGINES] = {"grid-planes",
-                                                  "grid-float4", "buffer"};
+enum { ENGINES = 2, SCENES = 8 };
+static const char *const engine_names[ENGINES] = {"grid", "buffer"};
 static const char *const scene_names[SCENES] = {
     "none", "plane", "sphere", "table", "capsule", "box", "cap-mov", "box-mov"};
 
@@ -39,8 +38,8 @@ static msocl_model *build(int n, int scene)
     rc = msocl_model_add_sphere(m, centre, TC_RADIUS, TC_FRICTION);
   if (rc == MSOCL_OK && scene == 3)
     rc = msocl_model_add_table(m, top, TC_RADIUS, TC_FRICTION);
-  /* planes engine only: a capsule along x and a box turned 30 degrees
-   * about y, their tops at y = 0 */
+  /* a capsule along x and a box turned 30 degrees about y, their tops at
+   * y = 0 */
   const float a[3] = {-0.3f, -TC_RADIUS, 0.0f}, b[3] = {0.3f, -TC_RADIUS, 0.0f};
   const float bc[3] = {0.0f, -0.05f, 0.0f}, q[4] = {0.0f, 0.258819f, 0.0f,
                                                     0.9659258f},
@@ -67,7 +66,7 @@ static int move(msocl_sim *s, int scene, double t)
   return msocl_sim_set_collider_pose(s, 0, p, scene == 6 ? ident : q);
 }
 
-/* One engine on one grid: the four scenes timed in turn. */
+/* One engine on one grid: the scenes timed in turn. */
 static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
                        FILE *csv, int n, int engine)
 {
@@ -75,15 +74,13 @@ static int engine_rows(const struct bench_opts *o, msocl_runtime *rt,
   msocl_sim *s[SCENES] = {0};
   double best[SCENES];
   int rc = MSOCL_OK;
-  /* the float4 engine has no capsule or box */
-  const int scenes = engine == 0 ? SCENES : FLOAT4_SCENES;
+  const int scenes = SCENES;
   for (int c = 0; c < scenes && rc == MSOCL_OK; c++) {
     msocl_model *m = build(n, c);
     msocl_sim_options so;
     msocl_sim_options_init(&so);
     so.dt = 1e-4f;
-    so.tuning.layout = engine < 2 ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
-    so.tuning.planes = engine == 0 ? MSOCL_ON : MSOCL_OFF;
+    so.tuning.layout = engine == 0 ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
     so.check_every = 0;
     rc = m ? msocl_sim_create(&s[c], rt, m, &so) : MSOCL_ERR_NO_MEMORY;
     msocl_model_destroy(m);

@@ -6,8 +6,8 @@
  * rows, the inner loop over a row written for the vectorizer, and each
  * spring's length and force computed once for both of its ends.
  *
- * Same arithmetic, slot order and collision response per point as GRID in
- * planes (kernels/planes.cl) in PRECISE math, so with no contraction of
+ * Same arithmetic, slot order and collision response per point as GRID
+ * (kernels/planes.cl) in PRECISE math, so with no contraction of
  * a * b + c into FMAs its result is bitwise libmsocl's. */
 #include "bench.h"
 

@@ -2,7 +2,7 @@
  * pinned top edge) alone, against a static 10 000-triangle sphere mesh
  * pressed into it, and against that mesh moving (new vertices every call
  * of 10 steps, so its grid is rebuilt each call), side by side in each
- * repeat, on the default engine (AUTO: GRID in planes on a CPU); the
+ * repeat, on the default engine (AUTO: GRID); the
  * ratios are the mesh collider's cost a step. */
 #include "bench.h"
 

@@ -6,7 +6,7 @@
  * asked for that the limit runs with. The error column is the largest
  * strain (length / rest - 1) of any spring at the end, for a 10% limit;
  * runs that blow up are marked unstable. The library picks the layout
- * (GRID, in planes on a CPU). */
+ * (GRID). */
 #include "bench.h"
 
 #include <math.h>
@@ -109,13 +109,9 @@ static int run(const struct bench_opts *o, msocl_runtime *rt, FILE *csv,
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, &so);
   if (rc == MSOCL_OK) {
-    int planes = 0;
     msocl_layout lay = MSOCL_LAYOUT_AUTO;
     msocl_sim_layout(s, &lay);
-    msocl_sim_planes(s, &planes);
-    r.layout = lay == MSOCL_LAYOUT_GRID ? (planes ? "grid-planes"
-                                                  : "grid-float4")
-                                        : "buffer";
+    r.layout = lay == MSOCL_LAYOUT_GRID ? "grid" : "buffer";
     rc = msocl_sim_step(s, 1); /* warm-up: PoCL builds kernels at first use */
   }
   r.seconds = INFINITY;

@@ -24,36 +24,17 @@ static const struct {
 static const char *const paper_cols[4] = {"CPU 1", "CPU 2", "GPU 1",
                                           "GPU 2"};
 
-/* Bytes a vertex-step moves under this model. BUFFER and IMAGE2D: the
- * velocity pass reads pos, vel (16 B each), inv_mass (4 B) and the point's
- * connectivity (BUFFER: its table's slots of 5 B with spring classes - a
- * neighbour index and a class byte - or 12 B with the values; IMAGE2D: 16
- * texels of 16 B), neighbour positions counted as cached (0), and writes
- * vel (16 B).
- * GRID: as BUFFER with no connectivity at all. The others: the
- * position pass reads pos and vel (32 B) and writes pos (16 B). In
- * planes (GRID, BUFFER, and EDGES, which always runs there): 12 B a state,
- * 4 B inverse mass, 4 B pinned flag: the velocity pass moves 12 + 12 + 8 + 12, the position pass 12 + 12 + 4 + 12. */
-static double bytes_model(int layout, int slots, int classes,
-                          double springs_per_point, int fused, int planes)
-{
-  (void)springs_per_point;
-  if (planes)
-    return 44 + 40;
-  double conn = layout == MSOCL_LAYOUT_IMAGE2D ? 16.0 * 16.0
-                : layout == MSOCL_LAYOUT_GRID  ? 0.0
-                                               : (classes ? 5.0 : 12.0) * slots;
-  /* fused: one pass reads the state once and writes both halves */
-  if (fused)
-    return 16 + 16 + 4 + conn + 16 + 16;
-  return (16 + 16 + 4 + conn + 16) + (32 + 16);
-}
+/* Bytes a vertex-step moves under this model, on every layout (each runs
+ * its state in x, y, z planes): 12 B a state, 4 B inverse mass, 4 B pinned
+ * flag, neighbour positions counted as cached (0) and the connectivity not
+ * counted: the velocity pass moves 12 + 12 + 8 + 12, the position pass
+ * 12 + 12 + 4 + 12 - the model the planes rows of earlier results used. */
+#define BYTES_MODEL (44.0 + 40.0)
 
 /* A row's variant of its layout: the two-pass step (BUFFER: classes or
- * values, GRID: planes or float4, as the library chooses), the one-kernel
- * step (--fused), BUFFER with spring classes, and with values, forced
- * (--values), or GRID in planes, and in float4, forced (--planes). */
-enum { PLAIN, FUSED, CLASSES, VALUES, PLANES, FLOAT4, VARIANTS };
+ * values, as the library chooses), the one-kernel step (--fused), or
+ * BUFFER with spring classes, and with values, forced (--values). */
+enum { PLAIN, FUSED, CLASSES, VALUES, VARIANTS };
 
 static const char *layout_name(int layout, int variant)
 {
@@ -61,10 +42,6 @@ static const char *layout_name(int layout, int variant)
     return "buffer-classes";
   if (variant == VALUES)
     return "buffer-values";
-  if (variant == PLANES)
-    return "grid-planes";
-  if (variant == FLOAT4)
-    return "grid-float4";
   if (variant == FUSED)
     return layout == MSOCL_LAYOUT_IMAGE2D ? "image2d+fused"
            : layout == MSOCL_LAYOUT_GRID  ? "grid+fused"
@@ -278,7 +255,7 @@ static void run_expert(struct ctx *c, const msocl_model *m, int n, float dt,
   *keep_e = e;
 }
 
-/* Expert C against the library's GRID in planes: their speeds and whether
+/* Expert C against the library's run: their speeds and whether
  * the final positions agree bit for bit. */
 static void print_expert(const struct ctx *c, const float *xyz, int n,
                          double ips, double gbps)
@@ -325,9 +302,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   int slots = 0, ns = 0;
   msocl_model_max_degree(m, &slots);
   msocl_model_spring_count(m, &ns);
-  /* until the sim says what its table holds: a slot per spring, values */
-  r.bytes_per_vertex_step =
-      bytes_model(layout, slots, 0, (double)ns / (n * n), fused, 0);
+  r.bytes_per_vertex_step = BYTES_MODEL;
   char engine[64];
   snprintf(engine, sizeof engine, "%d:%d %s %s", info->platform_index,
            info->device_index, r.layout, r.math);
@@ -356,18 +331,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
     so.tuning.classes = variant == CLASSES  ? MSOCL_ON
                         : variant == VALUES ? MSOCL_OFF
                                             : MSOCL_AUTO;
-    so.tuning.planes = variant == PLANES   ? MSOCL_ON
-                       : variant == FLOAT4 ? MSOCL_OFF
-                                           : MSOCL_AUTO;
     rc = msocl_sim_create(&s, c->rt, m, &so);
-    int table = slots, classes = 0, planes = 0;
-    if (rc == MSOCL_OK)
-      rc = msocl_sim_connectivity(s, &table, &classes);
-    if (rc == MSOCL_OK)
-      rc = msocl_sim_planes(s, &planes);
-    if (rc == MSOCL_OK)
-      r.bytes_per_vertex_step = bytes_model(
-          layout, table, classes, (double)ns / (n * n), fused, planes);
     if (rc == MSOCL_OK)
       rc = msocl_sim_step(s, 1); /* warm-up */
     r.seconds = INFINITY;
@@ -377,8 +341,8 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
       double t = bench_now() - t0;
       r.seconds = t < r.seconds ? t : r.seconds;
     }
-    vs_expert = c->expert_pos && planes &&
-                          math == MSOCL_MATH_PRECISE && variant != FUSED;
+    vs_expert = c->expert_pos && math == MSOCL_MATH_PRECISE &&
+                variant != FUSED;
     if (rc == MSOCL_OK && (serial_pos || vs_expert) && c->xyz &&
         (rc = msocl_sim_read_positions(s, c->xyz)) == MSOCL_OK && serial_pos)
       r.error = rms_diff(c->xyz, serial_pos, n * n);
@@ -400,16 +364,13 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
 }
 
 /* 1 where a layout runs in this variant: every layout plain, the gather
- * layouts fused with --fused, BUFFER's two forced variants with --values,
- * GRID's with --planes. */
+ * layouts fused with --fused, BUFFER's two forced variants with --values. */
 static int wanted(const struct bench_opts *o, int layout, int variant)
 {
   if (variant == FUSED)
     return o->fused && layout != MSOCL_LAYOUT_EDGES;
   if (variant == CLASSES || variant == VALUES)
     return o->values && layout == MSOCL_LAYOUT_BUFFER;
-  if (variant == PLANES || variant == FLOAT4)
-    return o->planes && layout == MSOCL_LAYOUT_GRID;
   return 1;
 }
 
@@ -498,12 +459,10 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
     else
       printf("not measured (%s)\n", msocl_err_name(e));
   }
-  printf("bytes per vertex-step: velocity pass reads pos 16 + vel 16 + "
-         "inv_mass 4 + connectivity\n(BUFFER: table slots x 5 B with spring "
-         "classes, x 12 B with values; IMAGE2D:\n16 x 16 B), neighbours "
-         "cached (0), writes vel 16; position pass reads pos + vel 32,\n"
-         "writes pos 16; in planes (EDGES always; GRID and BUFFER as the "
-         "library chooses on a CPU, or grid-planes): 84 (12 B a state, 8 B mass and pin).\n"
+  printf("bytes per vertex-step, every layout (the state in x, y, z planes): "
+         "velocity pass\nreads pos 12 + vel 12 + inv_mass and pin 8, "
+         "neighbours cached (0), writes vel 12;\nposition pass reads pos + "
+         "vel 24 + pin 4, writes pos 12: 84 (connectivity not counted).\n"
          "GB/s = bytes x vertex-steps/s; %%copy = GB/s over the copy "
          "bandwidth.\n\n");
   printf("%-9s %-28s %6s %8s %8s %9s %9s %6s %6s %6s %9s\n", "grid",

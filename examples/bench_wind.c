@@ -1,7 +1,7 @@
 /* msocl-bench wind: a flag (an n x n cloth, 1 m a side, hanging from its
  * two top corners) with no wind, in a 5 m/s wind with lift, and under a
  * user's field of forces, side by side in each repeat, on the default
- * engine (AUTO: GRID in planes on a CPU); the ratios are wind's and the
+ * engine (AUTO: GRID); the ratios are wind's and the
  * field's cost a step. */
 #include "bench.h"
 

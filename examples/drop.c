@@ -18,15 +18,14 @@
 #define REST_SPEED 0.01
 #define REST_SECONDS 0.1
 
-#define OPTIONS ":n:t:d:a:T:i:l:o:PFKh"
+#define OPTIONS ":n:t:d:a:T:i:l:o:Kh"
 
 static int usage(const drop_options *d)
 {
   return cli_help(
       "usage: %s [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] [-T DT]\n"
       "  [-i symplectic|explicit|verlet|rk4|implicit]\n"
-      "  [-l auto|image2d|buffer|edges|grid] [-P|-F] [-K] "
-      "[-o OUT.obj|OUT.ply]\n"
+      "  [-l auto|image2d|buffer|edges|grid] [-K] [-o OUT.obj|OUT.ply]\n"
       "  -n  %s (%d to %d, default %d)\n"
       "  -t  simulated seconds, > 0 and <= 1e5 (default %g)\n"
       "  -d  OpenCL device spec, as MSOCL_DEVICE (default: that "
@@ -37,8 +36,6 @@ static int usage(const drop_options *d)
       "step)\n"
       "  -i  integrator (default symplectic)\n"
       "  -l  spring layout (default auto: the library's choice)\n"
-      "  -P, -F: GRID with the state in x, y, z planes, or in float4\n"
-      "      (default: planes on a CPU device; same result)\n"
       "  -K  keep the model's point numbering (default: the library "
       "renumbers\n      the points so spring neighbours sit close)\n"
       "  -o  final mesh, OBJ or PLY by extension (default %s)\n"
@@ -79,8 +76,6 @@ int drop_parse(drop_options *d, int argc, char **argv, int *done)
     case 'd': d->spec = optarg; break;
     case 'o': d->out = optarg; break;
     case 'K': d->keep_numbering = 1; break;
-    case 'P': d->planes = MSOCL_ON; break;
-    case 'F': d->planes = MSOCL_OFF; break;
     case 'i':
       if (!(rc = cli_pick(d->prog, opt, optarg, "integrator",
                           cli_integrators, 5, &k)))
@@ -228,7 +223,6 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
   o.integrator = d->integrator;
   o.tuning.layout = d->layout;
   o.tuning.renumber = d->keep_numbering ? MSOCL_OFF : MSOCL_AUTO;
-  o.tuning.planes = d->planes;
   o.dt = d->dt;
   const char *why = "-T";
   int rc = d->dt > 0 ? MSOCL_OK : choose_dt(d, m, &o.dt, &why);
@@ -249,17 +243,15 @@ static int simulate(const drop_options *d, msocl_runtime *rt,
     return cli_fail(d->prog, "setting up the simulation", rc);
   msocl_device_info info;
   msocl_layout layout;
-  int planes = 0;
   if ((rc = msocl_sim_device_info(s, &info)) != MSOCL_OK ||
-      (rc = msocl_sim_layout(s, &layout)) != MSOCL_OK ||
-      (rc = msocl_sim_planes(s, &planes)) != MSOCL_OK) {
+      (rc = msocl_sim_layout(s, &layout)) != MSOCL_OK) {
     msocl_sim_destroy(s);
     return cli_fail(d->prog, "asking the simulation", rc);
   }
-  printf("device: %s [%s]\nlayout: %s%s, integrator: %s\n", info.name,
+  printf("device: %s [%s]\nlayout: %s, integrator: %s\n", info.name,
          info.platform_name,
          (int)layout >= 0 && (int)layout < 5 ? cli_layouts[layout] : "other",
-         planes ? " (in planes)" : "", cli_integrators[d->integrator]);
+         cli_integrators[d->integrator]);
   printf("dt %.3g s (%s), air resistance %g a step (%.3g/s)\n"
          "%.3g s simulated: %lld steps (setup %.3f s)\n",
          (double)o.dt, why, (double)d->air,

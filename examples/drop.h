@@ -22,7 +22,6 @@ typedef struct {
   msocl_integrator integrator; /* -i */
   msocl_layout layout;         /* -l */
   int keep_numbering;          /* -K: no renumbering (to compare) */
-  msocl_choice planes;         /* -P ON, -F OFF, as tuning.planes (AUTO) */
 } drop_options;
 
 /* Reads argv over the defaults already in *d and checks that d->out can

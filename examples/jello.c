@@ -5,7 +5,7 @@
  *
  *   msocl-jello [-n SIZE] [-t SECONDS] [-d DEVICE_SPEC] [-a AIR] [-T DT]
  *               [-i symplectic|verlet|rk4|implicit|explicit]
- *               [-l auto|buffer|image2d|edges|grid] [-P|-F] [-K]
+ *               [-l auto|buffer|image2d|edges|grid] [-K]
  *               [-o OUT.obj|OUT.ply]
  */
 #include "drop.h"
@@ -35,8 +35,8 @@ int main(int argc, char **argv)
   /* The library's cube (2 cm spacing, 2 g points, 10 cm above the ground;
    * see msocl_lattice_desc_init), SIZE points a side. Structural + face
    * shear + bend springs give an inner point 24 springs: more than the
-   * connectivity texture's 16 slots. AUTO runs the lattice as a GRID in
-   * planes on a CPU, and as BUFFER elsewhere (the README says why). */
+   * connectivity texture's 16 slots. AUTO runs the lattice as a GRID
+   * where its padded planes fit, else as BUFFER. */
   msocl_lattice_desc ld;
   msocl_lattice_desc_init(&ld);
   ld.nx = ld.ny = ld.nz = d.size;

@@ -34,20 +34,20 @@ static int usage(FILE *f, int code)
 "  precision  work-precision data: a cloth hanging from two corners, every\n"
 "             integrator and math mode over a sweep of dt, error against a\n"
 "             double-precision RK4 reference\n"
-"  lattice    the jello cube, n^3 points: BUFFER, GRID in float4 and GRID\n"
-"             in planes side by side, each against BUFFER's speed and\n"
-"             final positions (-g default 16,32,64; -i default symplectic)\n"
+"  lattice    the jello cube, n^3 points: BUFFER and GRID side by side,\n"
+"             GRID against BUFFER's speed and final positions (-g\n"
+"             default 16,32,64; -i default symplectic)\n"
 "  strain     strain limiting's cost against its result: a soft tablecloth\n"
 "             draped for -T s (default 2) unlimited and with each limit at\n"
 "             each sweep count; error = largest strain at the end (-g\n"
 "             default 32,64; -i default symplectic)\n"
 "  colliders  the tablecloth with no collider, a plane, a sphere, the\n"
-"             table, or (GRID in planes only) a capsule or a box, per\n"
-"             engine (GRID in planes, in float4, BUFFER), each\n"
-"             against no collider (-g default 96,256; -s default 200)\n"
+"             table, a capsule or a box (at rest and moving), per\n"
+"             engine (GRID, BUFFER), each against no collider (-g\n"
+"             default 96,256; -s default 200)\n"
 "  meshes     the soft ball (-g's first size: icosphere subdivisions,\n"
 "             default 6) and an n x n cloth read as OBJ (the second,\n"
-"             default 256): BUFFER in float4 and in planes, and AUTO\n"
+"             default 256): BUFFER, and AUTO against it\n"
 "             (-s default 200; -i default symplectic)\n"
 "  wind       a flag hanging from two corners with no wind and in a 5 m/s\n"
 "             wind, side by side (-g default 128,256,512; -s default 200)\n"
@@ -81,11 +81,9 @@ static int usage(FILE *f, int code)
 "  --values       table1: also BUFFER with a spring-class byte in every\n"
 "                 slot (buffer-classes) and with (rest, k) in every slot\n"
 "                 (buffer-values), whatever the library would choose\n"
-"  --planes       table1: also GRID with the state in x, y, z planes\n"
-"                 (grid-planes) and in float4 (grid-float4), forced\n"
 "  --expert       table1: also the tablecloth as expert C (planes, padded\n"
 "                 rows, one fused sweep, OpenMP; the yardstick of issue 15),\n"
-"                 its speed against GRID in planes and whether their final\n"
+"                 its speed against each layout's and whether their final\n"
 "                 positions agree bit for bit\n"
 "  --quick        tiny sizes and few steps: a smoke test\n"
 "  --csv FILE     also write one CSV row per run to FILE\n"
@@ -174,8 +172,6 @@ int main(int argc, char **argv)
       o.fused = 1, takes = 0;
     } else if (!strcmp(w, "--values")) {
       o.values = 1, takes = 0;
-    } else if (!strcmp(w, "--planes")) {
-      o.planes = 1, takes = 0;
     } else if (!strcmp(w, "--expert")) {
       o.expert = 1, takes = 0;
     } else if (!strcmp(w, "--quick")) {
@@ -345,8 +341,7 @@ double bench_max_diff(const float *a, const float *b, size_t n)
 
 int bench_time_sim(const struct bench_opts *o, msocl_runtime *rt,
                    const msocl_model *m, const msocl_sim_options *so,
-                   struct bench_row *r, float *pos, const float *ref,
-                   int *planes)
+                   struct bench_row *r, float *pos, const float *ref)
 {
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, so);
@@ -361,8 +356,6 @@ int bench_time_sim(const struct bench_opts *o, msocl_runtime *rt,
   }
   if (rc == MSOCL_OK)
     rc = msocl_sim_read_positions(s, pos);
-  if (rc == MSOCL_OK && planes)
-    rc = msocl_sim_planes(s, planes);
   if (rc == MSOCL_OK && ref)
     r->error = bench_max_diff(pos, ref, 3 * (size_t)r->points);
   msocl_sim_destroy(s);

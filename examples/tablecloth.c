@@ -3,8 +3,8 @@
  *
  *   msocl-tablecloth [-n GRID] [-s STEPS] [-d DEVICE_SPEC] [-l LAYOUT]
  *                    [-m MATH] [-i INTEGRATOR] [-S STRAIN [-I SWEEPS]]
- *                    [-p PARTS [-c STEPS] [-O]] [-f] [-C|-V] [-P|-F]
- *                    [-k STEPS] [-o OUT.obj|OUT.ply]   (-h: all of them)
+ *                    [-p PARTS [-c STEPS] [-O]] [-f] [-C|-V] [-k STEPS]
+ *                    [-o OUT.obj|OUT.ply]   (-h: all of them)
  */
 #include "cli.h"
 
@@ -17,7 +17,7 @@
 #include <unistd.h>
 
 #define PROG "msocl-tablecloth"
-#define OPTIONS ":n:s:d:l:m:o:i:S:I:p:c:k:fOCVPFh"
+#define OPTIONS ":n:s:d:l:m:o:i:S:I:p:c:k:fOCVh"
 
 static const char *const maths[] = {"precise", "relaxed"};
 static const char *const strains[] = {"none", "provot", "velocity"};
@@ -29,7 +29,7 @@ static int usage(void)
       "  [-l auto|image2d|buffer|edges|grid] [-m precise|relaxed]\n"
       "  [-i symplectic|explicit|verlet|rk4|implicit]\n"
       "  [-S none|provot|velocity [-I SWEEPS]] [-p PARTS [-c STEPS] [-O]]\n"
-      "  [-f] [-C|-V] [-P|-F] [-k STEPS] [-o OUT.obj|OUT.ply]\n"
+      "  [-f] [-C|-V] [-k STEPS] [-o OUT.obj|OUT.ply]\n"
       "The paper's tablecloth falling onto a round table; prints steps/s.\n"
       "  -n  points along each side of the cloth, 2 to 46340 (default 64)\n"
       "  -s  steps to time, >= 0 (default 2000)\n"
@@ -49,8 +49,6 @@ static int usage(void)
       "  -C, -V: BUFFER with a spring-class byte in every slot, or with\n"
       "      rest length and stiffness in every slot (default: the\n"
       "      library's choice; same result)\n"
-      "  -P, -F: GRID with the state in x, y, z planes, or in float4\n"
-      "      (default: planes on a CPU device; same result)\n"
       "  -k  steps a msocl_sim_step call, as a frame loop (default 0: all\n"
       "      in one call; on a terminal, calls of about a quarter second\n"
       "      for the progress line)\n"
@@ -158,8 +156,6 @@ static int parse(int argc, char **argv, args *a, int *done)
     case 'O': o->tuning.overlap = MSOCL_OFF; break;
     case 'C': o->tuning.classes = MSOCL_ON; break;
     case 'V': o->tuning.classes = MSOCL_OFF; break;
-    case 'P': o->tuning.planes = MSOCL_ON; break;
-    case 'F': o->tuning.planes = MSOCL_OFF; break;
     case 'h': *done = 1; return usage();
     default: return cli_bad_option(PROG, opt);
     }
@@ -209,9 +205,8 @@ int main(int argc, char **argv)
   msocl_layout layout;
   msocl_sim_device_info(s, &info);
   msocl_sim_layout(s, &layout);
-  int classes = 0, planes = 0;
+  int classes = 0;
   msocl_sim_connectivity(s, NULL, &classes);
-  msocl_sim_planes(s, &planes);
   char sweeps[32] = "";
   if (strain)
     snprintf(sweeps, sizeof sweeps, " (%d sweep%s a step)",
@@ -223,7 +218,7 @@ int main(int argc, char **argv)
          : layout == MSOCL_LAYOUT_EDGES ? "edges"
          : layout == MSOCL_LAYOUT_GRID  ? "grid"
                                         : "buffer",
-         classes > 0 ? " (spring classes)" : planes ? " (in planes)" : "",
+         classes > 0 ? " (spring classes)" : "",
          o.math == MSOCL_MATH_RELAXED ? "relaxed" : "precise",
          cli_integrators[in], strains[strain], sweeps);
   printf("grid %dx%d, %d steps of %.3g s (setup %.3f s)\n", n, n, steps,

@@ -177,8 +177,7 @@ MSOCL_EXTERN int msocl_model_add_table(msocl_model *m, const float top[3],
                                        float radius, float friction);
 /* A capsule: the points within `radius` > 0 of segment a-b. An oriented
  * box: half extents (all > 0) along the axes of the frame at `centre`
- * turned by the quaternion rotation = (x, y, z, w), normalised here.
- * Both need the planes engine (else msocl_sim_create: MSOCL_ERR_BAD_VALUE). */
+ * turned by the quaternion rotation = (x, y, z, w), normalised here. */
 MSOCL_EXTERN int msocl_model_add_capsule(msocl_model *m, const float a[3],
                                          const float b[3], float radius,
                                          float friction);
@@ -191,8 +190,8 @@ MSOCL_EXTERN int msocl_model_add_box(msocl_model *m, const float centre[3],
  * it); friction in [0, 1] as the others. Its id is its number among the
  * model's mesh colliders (0, 1, ... in the order added; apart from the
  * analytic colliders). Checked: NULL, a non-finite vertex, an index out
- * of range, only degenerate triangles. Needs the planes engine on one
- * device (else msocl_sim_create: MSOCL_ERR_BAD_VALUE). _obj reads the
+ * of range, only degenerate triangles. Needs one device (a split:
+ * msocl_sim_create returns MSOCL_ERR_BAD_VALUE). _obj reads the
  * mesh from a Wavefront OBJ file (faces fanned into triangles). */
 #define MSOCL_MAX_MESH_COLLIDERS 16
 MSOCL_EXTERN int msocl_model_add_mesh_collider(msocl_model *m,
@@ -311,9 +310,8 @@ typedef enum {
   MSOCL_LAYOUT_IMAGE2D,  /* the paper's connectivity texture, 16 slots */
   MSOCL_LAYOUT_BUFFER,   /* slot-major buffers, max-degree slots */
   MSOCL_LAYOUT_EDGES,    /* seed 2's spring list, gathered per point in
-                            BUFFER's order in the planes engine, no
-                            atomics: bitwise BUFFER (symplectic Euler
-                            only, one device, planes not OFF) */
+                            BUFFER's order, no atomics: bitwise BUFFER
+                            (symplectic Euler only, one device) */
   MSOCL_LAYOUT_GRID      /* no stored springs: a cloth from
                             msocl_model_cloth_grid (or a lattice from
                             msocl_model_lattice) recomputes its 12 (32)
@@ -355,7 +353,8 @@ typedef enum {
  * gives bitwise the same result (EDGES and another device: the same to
  * float rounding), only faster or slower. All zero - as
  * msocl_sim_options_init leaves it - lets the library choose everything.
- * fused or planes forced ON where it cannot apply is MSOCL_ERR_BAD_VALUE.
+ * fused forced ON where it cannot apply is MSOCL_ERR_BAD_VALUE. The state
+ * is always x, y, z planes of floats (docs/API.md: their memory).
  * Each field in full, and the measurements behind AUTO: docs/API.md. */
 typedef struct {
   msocl_layout layout;
@@ -376,9 +375,10 @@ typedef struct {
    * model's numbering. AUTO and ON: where it narrows the springs' reach,
    * but not for a cloth grid or lattice, numbered best as built. */
   msocl_choice renumber;
-  /* BUFFER: slots a point in the slot table, the rest of a point's
-   * springs in a list after it. 0: every spring in the table unless a few
-   * points (a solid's centre) have far more than the rest. */
+  /* BUFFER: slots a point in the slot table (at most 64), the rest of a
+   * point's springs in a list after it. 0: every spring in the table (up
+   * to 64) unless a few points (a solid's centre) have far more than the
+   * rest. */
   int buffer_slots;
   /* Split: each phase runs first on the points other devices read, so
    * that their copies overlap the kernels on the rest. AUTO: on. */
@@ -388,19 +388,6 @@ typedef struct {
    * instead of 12 or 16. AUTO: when the table of values would not fit in
    * half the device's cache, where the step is bound by memory bandwidth. */
   msocl_choice classes;
-  /* The state as x, y, z planes of floats, which a CPU runs many points
-   * to an instruction; 3 P < 2^31; splits too, with or without boundary
-   * first (a split's spans are cut at whole rows). GRID: rows padded
-   * at the edges, P = (ceil(nx / w) w + 4) (ny + 4) (nz + 4) points (a
-   * cloth: nz + 4 -> 1), w = 64 halved down to 8 while nx <= w / 2;
-   * BUFFER and IMAGE2D: unpadded, P = n rounded up to 64 (BUFFER also
-   * copies its slot table with that stride, at most 64 slots). Device
-   * memory: 4 P F bytes, F = 14 floats, Verlet +3, RK4 and implicit Euler
-   * +18, a strain limit +3, Provot's +3. AUTO: GRID and BUFFER on every
-   * device, unless GRID's P is over 4 points a point and its planes over
-   * 64 MiB; not IMAGE2D, whose texel reads PoCL does not vectorise.
-   * EDGES always (as BUFFER; OFF is refused for it). */
-  msocl_choice planes;
 } msocl_tuning;
 
 /* What the simulation computes. msocl_sim_options_init gives each field
@@ -450,8 +437,6 @@ MSOCL_EXTERN int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout);
  * spring classes (0: the values in every slot). Either may be NULL. */
 MSOCL_EXTERN int msocl_sim_connectivity(const msocl_sim *s, int *slots,
                                         int *classes);
-/* Whether the simulation's steps run in planes (tuning.planes): 1 or 0. */
-MSOCL_EXTERN int msocl_sim_planes(const msocl_sim *s, int *planes);
 MSOCL_EXTERN int msocl_sim_device_info(const msocl_sim *s,
                                        msocl_device_info *info);
 /* 3 floats per point. */
@@ -475,13 +460,13 @@ typedef struct {
 } msocl_wind;
 MSOCL_EXTERN void msocl_wind_init(msocl_wind *w);
 /* From the next step, until set again; NULL: no wind. Needs triangles and
- * the planes engine on one device (else MSOCL_ERR_BAD_VALUE). */
+ * one device (else MSOCL_ERR_BAD_VALUE). */
 MSOCL_EXTERN int msocl_sim_set_wind(msocl_sim *s, const msocl_wind *w);
 /* A user's field: xyz holds 3 floats a point in the model's order, an
  * acceleration (m/s^2) or a force (N, divided by the point's mass), added
  * to each free point's velocity as dt a before each step from the next
- * one (first order, as wind), until set again; NULL: none. Planes engine
- * on one device (else MSOCL_ERR_BAD_VALUE); a non-finite value:
+ * one (first order, as wind), until set again; NULL: none. One device
+ * (else MSOCL_ERR_BAD_VALUE); a non-finite value:
  * MSOCL_ERR_NOT_FINITE. */
 MSOCL_EXTERN int msocl_sim_set_accelerations(msocl_sim *s, const float *xyz);
 MSOCL_EXTERN int msocl_sim_set_forces(msocl_sim *s, const float *xyz);
@@ -491,9 +476,8 @@ MSOCL_EXTERN int msocl_sim_set_forces(msocl_sim *s, const float *xyz);
  * lives: it copied the model and would not see them. Gravity in any
  * direction; viscous damping c >= 0 and air resistance in (0, 1]: a term
  * the model had off when the simulation was created is built into the
- * planes engine's kernels at the first call that turns it on (a program
- * build, ~0.1 s with PoCL's cache warm); the float4 engine
- * (tuning.planes OFF) cannot, and returns MSOCL_ERR_BAD_VALUE. */
+ * kernels at the first call that turns it on (a program build, ~0.1 s
+ * with PoCL's cache warm). */
 MSOCL_EXTERN int msocl_sim_set_gravity(msocl_sim *s, float gx, float gy,
                                        float gz);
 MSOCL_EXTERN int msocl_sim_set_viscous_damping(msocl_sim *s, float c);
@@ -508,8 +492,8 @@ MSOCL_EXTERN int msocl_sim_pin(msocl_sim *s, int count, const int *idx,
  * pin sits at (1 - f) start + f target, f = (float)j / (float)n, with
  * the velocity of its motion over the step, so springs and dashpots feel
  * it. k one-step calls given those points as targets give bitwise the
- * steps of one k-step call. Planes engine only (MSOCL_ERR_BAD_VALUE on
- * float4); a point not pinned or given twice: MSOCL_ERR_BAD_VALUE. */
+ * steps of one k-step call. One device only (MSOCL_ERR_BAD_VALUE on a
+ * split); a point not pinned or given twice: MSOCL_ERR_BAD_VALUE. */
 MSOCL_EXTERN int msocl_sim_set_pin_targets(msocl_sim *s, int count,
                                            const int *idx, const float *xyz);
 /* Soft pins: free points idx[0..count) pulled toward anchors xyz (3 count
@@ -542,8 +526,8 @@ MSOCL_EXTERN int msocl_sim_set_soft_pins(msocl_sim *s, int count,
  * (friction on the relative tangential part: a point resting on a moving
  * box at friction 1 moves with it). k one-step calls given the poses at
  * j / k equal one k-step call, bitwise. A table turns only about y
- * (MSOCL_ERR_BAD_VALUE otherwise). Planes engine on one device only:
- * MSOCL_ERR_BAD_VALUE on the float4 engine or a split simulation.
+ * (MSOCL_ERR_BAD_VALUE otherwise). One device only: MSOCL_ERR_BAD_VALUE
+ * on a split simulation.
  * Unknown id: MSOCL_ERR_BAD_INDEX; NaN/Inf: MSOCL_ERR_NOT_FINITE; a zero
  * quaternion: MSOCL_ERR_BAD_VALUE. get: the pose reached so far (the
  * rotation as set). */
@@ -573,7 +557,7 @@ MSOCL_EXTERN int msocl_sim_enable_collider(msocl_sim *s, int id, int on);
  * (once per set of kinds and count, cached: docs/API.md gives the time)
  * and keeps the whole state; one into a removed slot of a kind built in
  * only writes the table. Same engine limits as the poses
- * (MSOCL_ERR_BAD_VALUE on the float4 engine or a split simulation). */
+ * (MSOCL_ERR_BAD_VALUE on a split simulation). */
 #define MSOCL_MAX_COLLIDERS 16
 MSOCL_EXTERN int msocl_sim_add_plane(msocl_sim *s, const float normal[3],
                                      float offset, float friction, int *id);

@@ -26,13 +26,13 @@ for l in buffer+fused grid+fused; do
 done
 
 # --expert adds the expert C yardstick, whose final positions must be
-# GRID in planes' bit for bit
+# GRID's bit for bit
 ./examples/msocl-bench table1 --quick -g 8,13 -s 100 -l grid --expert \
   --csv "$tmp/e.csv" >"$tmp/e.txt" || fail "table1 --expert exited $?"
 grep -q ",expert-planes,symplectic,precise,13,.*,0,ok,,\$" "$tmp/e.csv" ||
   fail "no expert C row with error 0"
 [ "$(grep -c 'bitwise: yes, max |diff| 0;' "$tmp/e.txt")" -eq 2 ] ||
-  fail "expert C not bitwise GRID in planes: $(grep bitwise "$tmp/e.txt")"
+  fail "expert C not bitwise GRID: $(grep bitwise "$tmp/e.txt")"
 
 ./examples/msocl-bench precision --quick -g 5 -i symplectic,implicit \
   -m precise --levels 2 --csv "$tmp/p.csv" || fail "precision exited $?"
@@ -41,16 +41,13 @@ grep -q ",expert-planes,symplectic,precise,13,.*,0,ok,,\$" "$tmp/e.csv" ||
 rows=$(tail -n +2 "$tmp/p.csv" | wc -l)
 [ "$rows" -ge 5 ] || fail "precision CSV has $rows rows"
 grep -q ',reference,,$' "$tmp/p.csv" || fail "no reference row"
-# lattice: BUFFER, GRID in float4 and in planes, the GRIDs bitwise BUFFER
-# (error column 0)
+# lattice: BUFFER and GRID, GRID bitwise BUFFER (error column 0)
 ./examples/msocl-bench lattice --quick --csv "$tmp/l.csv" >/dev/null ||
   fail "lattice exited $?"
 [ "$(head -n 1 "$tmp/l.csv")" = "$header" ] || fail "lattice CSV header"
 grep -q ",buffer,symplectic,precise,6,.*,ok,,\$" "$tmp/l.csv" || fail "no buffer row"
-for l in grid-float4 grid-planes; do
-  grep -q ",$l,symplectic,precise,6,.*,0,ok,,\$" "$tmp/l.csv" ||
-    fail "no $l row with error 0"
-done
+grep -q ",grid,symplectic,precise,6,.*,0,ok,,\$" "$tmp/l.csv" ||
+  fail "no grid row with error 0"
 # strain: unlimited plus each limit at each sweep count; every run ok with
 # a strain in the error column and the limit in the last two
 ./examples/msocl-bench strain --quick --csv "$tmp/s.csv" >/dev/null ||
@@ -64,12 +61,13 @@ for k in provot velocity; do
       fail "no $k row with $w sweeps"
   done
 done
-# colliders: each engine with each collider, every run ok
+# colliders: each engine with each collider, at rest and moving, every
+# run ok
 ./examples/msocl-bench colliders --quick --csv "$tmp/c.csv" >/dev/null ||
   fail "colliders exited $?"
 [ "$(head -n 1 "$tmp/c.csv")" = "$header" ] || fail "colliders CSV header"
-for e in grid-planes grid-float4 buffer; do
-  for c in none plane sphere table; do
+for e in grid buffer; do
+  for c in none plane sphere table capsule box cap-mov box-mov; do
     grep -q ",$e+$c,symplectic,precise,8,.*,ok,,\$" "$tmp/c.csv" ||
       fail "no $e+$c row"
   done

@@ -47,7 +47,7 @@ static float step_dt(const msocl_model *m, msocl_integrator in)
 }
 
 static msocl_sim *make(const msocl_model *m, msocl_integrator in,
-                       msocl_layout layout, msocl_choice planes)
+                       msocl_layout layout)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
@@ -55,7 +55,6 @@ static msocl_sim *make(const msocl_model *m, msocl_integrator in,
   o.integrator = in;
   o.check_every = 0;
   o.tuning.layout = layout;
-  o.tuning.planes = planes;
   msocl_sim *s = NULL;
   OK(msocl_sim_create(&s, rt, m, &o));
   return s;
@@ -193,8 +192,8 @@ START_TEST(add_equals_enable)
   msocl_model *ma = curtain(pairs[_i].n, pairs[_i].damping),
               *mb = curtain(pairs[_i].n, pairs[_i].damping);
   add(mb, NULL, kind);
-  msocl_sim *a = make(ma, pairs[_i].in, pairs[_i].layout, MSOCL_ON),
-            *b = make(mb, pairs[_i].in, pairs[_i].layout, MSOCL_ON);
+  msocl_sim *a = make(ma, pairs[_i].in, pairs[_i].layout),
+            *b = make(mb, pairs[_i].in, pairs[_i].layout);
   OK(msocl_sim_enable_collider(b, 0, 0));
   if (pairs[_i].wind) {
     msocl_wind w;
@@ -258,7 +257,7 @@ START_TEST(added_nothing_inside)
   const int kind = _i == 0 ? CAPSULE : BOX, side = 16, n = side * side;
   const msocl_integrator in = _i == 0 ? MSOCL_SYMPLECTIC_EULER : MSOCL_RK4;
   msocl_model *m = curtain(side, _i == 0 ? 0.0f : 1e-3f);
-  msocl_sim *s = make(m, in, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  msocl_sim *s = make(m, in, MSOCL_LAYOUT_GRID);
   float dt;
   OK(msocl_stable_dt(m, in, &dt));
   OK(msocl_sim_step(s, BEFORE));
@@ -303,8 +302,8 @@ START_TEST(remove_then_reuse)
   msocl_model *m = curtain(side, 1e-3f);
   OK(msocl_model_add_sphere(m, at, R_SPHERE, 0.3f));
   add(m, NULL, PLANE);
-  msocl_sim *a = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, MSOCL_ON),
-            *b = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  msocl_sim *a = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID),
+            *b = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID);
   const float dt = step_dt(m, MSOCL_SYMPLECTIC_EULER);
   double t = 0;
   run_pair(a, b, -1, dt, BEFORE, 5, &t);
@@ -348,7 +347,7 @@ START_TEST(vs_reference)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   OK(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &o.dt));
-  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID);
   msocl_reference *r = NULL;
   OK(msocl_reference_create(&r, m, &o));
   OK(msocl_sim_step(s, BEFORE));
@@ -404,7 +403,7 @@ START_TEST(bad_input)
 {
   msocl_model *m = curtain(16, 1e-3f);
   add(m, NULL, SPHERE);
-  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID);
   const float c[3] = {0.0f, 0.0f, 0.0f}, nan3[3] = {NAN, 0.0f, 0.0f},
               inf3[3] = {0.0f, INFINITY, 0.0f}, zero3[3] = {0, 0, 0},
               zero4[4] = {0, 0, 0, 0}, flat[3] = {0.1f, 0.0f, 0.1f};
@@ -465,12 +464,6 @@ START_TEST(bad_input)
   ck_assert_int_eq(id, 5);
   EXPECT(msocl_sim_add_sphere(s, c, 0.1f, 0.3f, NULL), MSOCL_ERR_TOO_MANY);
   OK(msocl_sim_step(s, 10)); /* still runs */
-  msocl_sim_destroy(s);
-  /* the float4 engine refuses */
-  s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, MSOCL_OFF);
-  ERR(msocl_sim_add_sphere(s, c, 0.1f, 0.3f, &id), MSOCL_ERR_BAD_VALUE,
-      "float4 engine");
-  ERR(msocl_sim_remove_collider(s, 0), MSOCL_ERR_BAD_VALUE, "float4 engine");
   msocl_sim_destroy(s);
   /* the reference's checks and full table */
   msocl_sim_options o;

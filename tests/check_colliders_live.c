@@ -1,7 +1,7 @@
-/* Capsule and oriented-box colliders (planes engine): a tablecloth falling
- * onto each leaves no point inside it at any checked step; the device
- * against the double reference; GRID, BUFFER and IMAGE2D planes bitwise
- * with them; the float4 engine refuses them; bad input refused. */
+/* Capsule and oriented-box colliders: a tablecloth falling onto each
+ * leaves no point inside it at any checked step; the device against the
+ * double reference; GRID, BUFFER and IMAGE2D bitwise with them; bad input
+ * refused. */
 #include "scenes.h"
 
 #include <check.h>
@@ -81,7 +81,6 @@ static msocl_sim_options options(msocl_layout layout)
   /* symplectic Euler: GRID then runs planes_rows.c where it applies */
   o.integrator = MSOCL_SYMPLECTIC_EULER;
   o.tuning.layout = layout;
-  o.tuning.planes = MSOCL_ON;
   return o;
 }
 
@@ -118,7 +117,7 @@ START_TEST(nothing_inside)
 }
 END_TEST
 
-/* Device (GRID planes) against the double reference after 300 steps:
+/* Device (GRID) against the double reference after 300 steps:
  * within 2e-3 m (the box: its edges switch the normal), the contacts' float rounding amplified by the drape. */
 START_TEST(vs_reference)
 {
@@ -183,22 +182,6 @@ START_TEST(layouts_bitwise)
 }
 END_TEST
 
-/* The float4 engine has no capsule or box: refused, not ignored. */
-START_TEST(float4_refuses)
-{
-  for (int kind = 0; kind < 2; kind++) {
-    msocl_model *m = scene(kind);
-    msocl_sim_options o = options(MSOCL_LAYOUT_GRID);
-    o.tuning.planes = MSOCL_OFF;
-    msocl_sim *s = NULL;
-    ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
-    ck_assert_ptr_null(s);
-    ck_assert(strstr(msocl_last_error(), "planes engine") != NULL);
-    msocl_model_destroy(m);
-  }
-}
-END_TEST
-
 START_TEST(bad_input)
 {
   msocl_model *m = scene_tablecloth(4);
@@ -249,7 +232,6 @@ int main(void)
   tcase_add_test(tc, nothing_inside);
   tcase_add_test(tc, vs_reference);
   tcase_add_test(tc, layouts_bitwise);
-  tcase_add_test(tc, float4_refuses);
   tcase_add_test(tc, bad_input);
   suite_add_tcase(su, tc);
   return scene_run(su);

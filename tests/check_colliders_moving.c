@@ -39,18 +39,17 @@ static msocl_model *curtain(void)
 
 /* check: keep the blow-up check on (its default period), else off */
 static msocl_sim *make_checked(const msocl_model *m, msocl_integrator in,
-                               msocl_layout layout, msocl_choice planes,
-                               int check)
+                               msocl_layout layout, int check)
 {
   float dt;
   OK(msocl_stable_dt(m, in, &dt));
-  return scene_sim(m, in, dt, layout, planes, check ? -1 : 0);
+  return scene_sim(m, in, dt, layout, check ? -1 : 0);
 }
 
 static msocl_sim *make(const msocl_model *m, msocl_integrator in,
-                       msocl_layout layout, msocl_choice planes)
+                       msocl_layout layout)
 {
-  return make_checked(m, in, layout, planes, 0);
+  return make_checked(m, in, layout, 0);
 }
 
 static float sim_dt(const msocl_model *m, msocl_integrator in)
@@ -171,8 +170,7 @@ START_TEST(nothing_inside)
   add_shape(m, kind);
   /* pass 1 with the blow-up check on: a moving call's steps in its
    * batches */
-  msocl_sim *s = make_checked(m, passes[_i].in, passes[_i].layout, MSOCL_ON,
-                              _i == 1);
+  msocl_sim *s = make_checked(m, passes[_i].in, passes[_i].layout, _i == 1);
   const double dt = sim_dt(m, passes[_i].in);
   const int n = N * N;
   float *p = malloc(3 * (size_t)n * sizeof *p);
@@ -221,7 +219,7 @@ START_TEST(vs_reference)
   const msocl_integrator in = ins[_i / 2];
   msocl_model *m = curtain();
   add_shape(m, kind);
-  msocl_sim *s = make(m, in, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  msocl_sim *s = make(m, in, MSOCL_LAYOUT_GRID);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = sim_dt(m, in);
@@ -259,7 +257,7 @@ START_TEST(vs_reference)
 }
 END_TEST
 
-/* GRID (planes_rows for the sphere), BUFFER and IMAGE2D in planes give
+/* GRID (planes_rows for the sphere), BUFFER and IMAGE2D give
  * bitwise the same pass of a moving sphere and of the turning box. */
 START_TEST(layouts_bitwise)
 {
@@ -271,7 +269,7 @@ START_TEST(layouts_bitwise)
   const double dt = sim_dt(m, MSOCL_SYMPLECTIC_EULER);
   float *x = malloc(9 * (size_t)n * sizeof *x);
   for (int l = 0; l < 3; l++) {
-    msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, layouts[l], MSOCL_ON);
+    msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, layouts[l]);
     for (double t = 0.0; t < 0.6 / SPEED;) {
       t += SUB * dt;
       float P[3], Q[4];
@@ -312,7 +310,7 @@ START_TEST(carried_by_box)
   OK(msocl_model_cloth_grid(&m, &d));
   const float c0[3] = {0.0f, -0.05f, 0.0f}, half[3] = {0.3f, 0.05f, 0.3f};
   OK(msocl_model_add_box(m, c0, ident, half, 1.0f));
-  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID);
   const double dt = sim_dt(m, MSOCL_SYMPLECTIC_EULER);
   const int frame = 10, settle = (int)(0.1 / dt / frame) + 1;
   OK(msocl_sim_step(s, settle * frame)); /* lands on it */
@@ -373,10 +371,8 @@ START_TEST(calls_bitwise)
   enum { K = 7, CALLS = 6 };
   msocl_model *m = curtain();
   add_shape(m, BOX_TURNING);
-  msocl_sim *a = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_BUFFER,
-                      MSOCL_ON),
-             *b = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_BUFFER,
-                       MSOCL_ON);
+  msocl_sim *a = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_BUFFER),
+             *b = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_BUFFER);
   const double dt = sim_dt(m, MSOCL_SYMPLECTIC_EULER);
   /* the box first reaches the cloth: 0.2 m at 5 m/s */
   float P0[3], Q0[4];
@@ -439,7 +435,6 @@ START_TEST(enable_disable)
     msocl_sim_options_init(&o);
     o.dt = scene_tablecloth_dt(12);
     o.check_every = 0;
-    o.tuning.planes = MSOCL_ON;
     msocl_sim *s = NULL;
     OK(msocl_sim_create(&s, rt, m, &o));
     ck_assert_int_eq(msocl_model_collider_count(m), 2);
@@ -471,7 +466,7 @@ START_TEST(bad_input)
   OK(msocl_model_add_table(m, top, 0.2f, 0.5f));
   ck_assert_int_eq(msocl_model_collider_count(m), 2);
   ck_assert_int_eq(msocl_model_collider_count(NULL), MSOCL_ERR_NULL_HANDLE);
-  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID);
   const float P[3] = {0.0f, -0.3f, -0.2f}, nan3[3] = {0.0f, NAN, 0.0f},
               inf4[4] = {0.0f, INFINITY, 0.0f, 1.0f},
               zero4[4] = {0.0f, 0.0f, 0.0f, 0.0f},
@@ -507,13 +502,6 @@ START_TEST(bad_input)
   float pos[3];
   OK(msocl_sim_get_collider_pose(s, 0, pos, out));
   ck_assert(pos[2] == Z0 && out[3] == 1.0f);
-  msocl_sim_destroy(s);
-  /* the float4 engine's colliders are static */
-  s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_BUFFER, MSOCL_OFF);
-  ERR(msocl_sim_set_collider_pose(s, 0, P, ident), MSOCL_ERR_BAD_VALUE,
-      "runs the float4 engine");
-  ERR(msocl_sim_enable_collider(s, 0, 0), MSOCL_ERR_BAD_VALUE,
-      "runs the float4 engine");
   msocl_sim_destroy(s);
   msocl_model_destroy(m);
 }

@@ -1,8 +1,8 @@
 /* Live controls on a running simulation (msocl.h): gravity changed
  * between calls matches the host reference; pins given targets reach them
  * exactly at the end of each call, and a call of k steps equals k one-step
- * calls given the path's points, bitwise; GRID, BUFFER and IMAGE2D in
- * planes stay bitwise one another with the controls on; the moving pins
+ * calls given the path's points, bitwise; GRID, BUFFER and IMAGE2D stay
+ * bitwise one another with the controls on; the moving pins
  * match the reference; partial reads and writes touch only their points;
  * and every bad input is refused with a clear error. */
 #include "scenes.h"
@@ -29,9 +29,9 @@ static float dt_for(const msocl_model *m, msocl_integrator in)
 }
 
 static msocl_sim *make(const msocl_model *m, msocl_integrator in,
-                       msocl_layout layout, msocl_choice planes)
+                       msocl_layout layout)
 {
-  return scene_sim(m, in, dt_for(m, in), layout, planes, 0);
+  return scene_sim(m, in, dt_for(m, in), layout, 0);
 }
 
 static msocl_reference *make_ref(const msocl_model *m, msocl_integrator in)
@@ -64,9 +64,9 @@ static double vs_ref(msocl_sim *s, msocl_reference *r, int n)
 START_TEST(gravity_vs_reference)
 {
   const msocl_integrator in = integrators[_i % 4];
-  const msocl_choice planes = _i < 4 ? MSOCL_ON : MSOCL_OFF;
+  const msocl_layout lay = _i < 4 ? MSOCL_LAYOUT_GRID : MSOCL_LAYOUT_BUFFER;
   msocl_model *m = scene_hanging(N);
-  msocl_sim *s = make(m, in, MSOCL_LAYOUT_GRID, planes);
+  msocl_sim *s = make(m, in, lay);
   msocl_reference *r = make_ref(m, in);
   const int steps = (int)(0.25f / dt_for(m, in));
   OK(msocl_sim_step(s, steps));
@@ -76,8 +76,8 @@ START_TEST(gravity_vs_reference)
   OK(msocl_sim_step(s, steps));
   OK(msocl_reference_step(r, steps));
   const double e = vs_ref(s, r, N * N);
-  ck_assert_msg(e <= 1e-4, "integrator %d planes %d: %g m", (int)in,
-                (int)planes, e);
+  ck_assert_msg(e <= 1e-4, "integrator %d layout %d: %g m", (int)in,
+                (int)lay, e);
   /* and the change did something: the cloth swung along +x */
   float p[3];
   OK(msocl_sim_read_list(s, 0, 1, (int[]){N * N - 1}, p));
@@ -105,7 +105,7 @@ START_TEST(pins_reach_targets)
   static const msocl_layout layouts[] = {MSOCL_LAYOUT_GRID, MSOCL_LAYOUT_BUFFER,
                                          MSOCL_LAYOUT_IMAGE2D};
   msocl_model *m = scene_hanging(N);
-  msocl_sim *s = make(m, integrators[_i % 4], layouts[_i / 4], MSOCL_ON);
+  msocl_sim *s = make(m, integrators[_i % 4], layouts[_i / 4]);
   for (int f = 1; f <= 6; f++) {
     float t[6], p[6];
     frame_targets(f, t);
@@ -135,7 +135,6 @@ START_TEST(batch_reaches_targets)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = dt_for(m, MSOCL_SYMPLECTIC_EULER);
-  o.tuning.planes = MSOCL_ON;
   msocl_batch *b = NULL;
   OK(msocl_batch_create(&b, rt, 2, ms, &o));
   float t[6];
@@ -195,8 +194,7 @@ START_TEST(renumbered_model_numbers)
   OK(msocl_model_add_springs(m, ns, ij, k, NULL, NULL));
   OK(msocl_model_pin(m, at[0], 1));
   OK(msocl_model_pin(m, at[S - 1], 1));
-  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_BUFFER,
-                      MSOCL_ON);
+  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_BUFFER);
   int order[P], moved = 0;
   OK(msocl_sim_point_order(s, order));
   for (int q = 0; q < P; q++)
@@ -239,8 +237,8 @@ START_TEST(k_steps_equal_k_single)
   const msocl_integrator in = integrators[_i];
   const int k = 7, n = N * N;
   msocl_model *m = scene_hanging(N);
-  msocl_sim *a = make(m, in, MSOCL_LAYOUT_GRID, MSOCL_ON),
-            *b = make(m, in, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  msocl_sim *a = make(m, in, MSOCL_LAYOUT_GRID),
+            *b = make(m, in, MSOCL_LAYOUT_GRID);
   OK(msocl_sim_step(a, 20));
   OK(msocl_sim_step(b, 20));
   for (int f = 1; f <= 3; f++) {
@@ -277,7 +275,7 @@ START_TEST(k_steps_equal_k_single)
 }
 END_TEST
 
-/* Everything at once in GRID, BUFFER and IMAGE2D planes: bitwise. */
+/* Everything at once in GRID, BUFFER and IMAGE2D: bitwise. */
 static void run_all_controls(msocl_sim *s)
 {
   OK(msocl_sim_step(s, 10));
@@ -306,10 +304,7 @@ START_TEST(layouts_bitwise)
                               MSOCL_LAYOUT_IMAGE2D};
   float *p[3], *v[3];
   for (int l = 0; l < 3; l++) {
-    msocl_sim *s = make(m, integrators[_i], ls[l], MSOCL_ON);
-    int planes = 0;
-    OK(msocl_sim_planes(s, &planes));
-    ck_assert_int_eq(planes, 1);
+    msocl_sim *s = make(m, integrators[_i], ls[l]);
     run_all_controls(s);
     p[l] = malloc(3 * (size_t)n * sizeof(float));
     v[l] = malloc(3 * (size_t)n * sizeof(float));
@@ -337,7 +332,7 @@ START_TEST(pins_vs_reference)
 {
   const msocl_integrator in = integrators[_i];
   msocl_model *m = scene_hanging(N);
-  msocl_sim *s = make(m, in, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  msocl_sim *s = make(m, in, MSOCL_LAYOUT_GRID);
   msocl_reference *r = make_ref(m, in);
   OK(msocl_sim_pin(s, 1, (int[]){N / 2}, 1));
   OK(msocl_reference_pin(r, 1, (int[]){N / 2}, 1));
@@ -365,8 +360,8 @@ START_TEST(partial_round_trip)
 {
   const int n = N * N;
   msocl_model *m = scene_hanging(N);
-  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID,
-                      _i ? MSOCL_OFF : MSOCL_ON);
+  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER,
+                      _i ? MSOCL_LAYOUT_BUFFER : MSOCL_LAYOUT_GRID);
   OK(msocl_sim_step(s, 15));
   for (int vel = 0; vel < 2; vel++) {
     float *all0 = malloc(3 * (size_t)n * sizeof(float));
@@ -412,8 +407,7 @@ START_TEST(partial_round_trip)
 }
 END_TEST
 
-/* Viscous damping and air resistance turned on while a planes simulation
- * runs, though its model had neither (its kernels rebuilt with the
+/* Viscous damping and air resistance turned on while a simulation runs, though its model had neither (its kernels rebuilt with the
  * terms), equal bitwise a simulation whose model had both, set to none
  * until that step. _i: symplectic Euler on GRID (the sweep) and BUFFER,
  * Verlet, implicit Euler. */
@@ -429,8 +423,8 @@ START_TEST(terms_turned_on)
   OK(msocl_model_set_air_resistance(with, 0.5f));
   /* one dt for all (the model's damping would change the safe one) */
   const float dt = dt_for(bare, ins[_i]);
-  msocl_sim *a = scene_sim(bare, ins[_i], dt, lay, MSOCL_ON, 0),
-            *b = scene_sim(with, ins[_i], dt, lay, MSOCL_ON, 0);
+  msocl_sim *a = scene_sim(bare, ins[_i], dt, lay, 0),
+            *b = scene_sim(with, ins[_i], dt, lay, 0);
   OK(msocl_sim_set_viscous_damping(b, 0.0f));
   OK(msocl_sim_set_air_resistance(b, 1.0f));
   OK(msocl_sim_step(a, 30));
@@ -452,7 +446,7 @@ START_TEST(terms_turned_on)
                 "case %d: positions differ by %g, velocities by %g", _i,
                 scene_max_diff(pa, pb, 3 * P), scene_max_diff(va, vb, 3 * P));
   /* and the terms act: against no damping at all */
-  msocl_sim *c = scene_sim(bare, ins[_i], dt, lay, MSOCL_ON, 0);
+  msocl_sim *c = scene_sim(bare, ins[_i], dt, lay, 0);
   OK(msocl_sim_step(c, 80));
   float pc[3 * P];
   OK(msocl_sim_read_positions(c, pc));
@@ -469,7 +463,7 @@ END_TEST
 START_TEST(bad_input)
 {
   msocl_model *m = scene_hanging(N);
-  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  msocl_sim *s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID);
   const float nan = NAN, inf = INFINITY;
   EXPECT(msocl_sim_set_gravity(s, 0.0f, nan, 0.0f), MSOCL_ERR_NOT_FINITE);
   EXPECT(msocl_sim_set_gravity(s, inf, 0.0f, 0.0f), MSOCL_ERR_NOT_FINITE);
@@ -481,14 +475,6 @@ START_TEST(bad_input)
   EXPECT(msocl_model_pin(m, 3, 1), MSOCL_ERR_INVALID_ARG);
   EXPECT(msocl_model_set_viscous_damping(m, 0.1f), MSOCL_ERR_INVALID_ARG);
   EXPECT(msocl_model_set_air_resistance(m, 0.9f), MSOCL_ERR_INVALID_ARG);
-  /* damping terms the float4 kernels were built without */
-  msocl_sim *f4 = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID,
-                       MSOCL_OFF);
-  EXPECT(msocl_sim_set_viscous_damping(f4, 0.1f), MSOCL_ERR_BAD_VALUE);
-  SAYS("float4");
-  EXPECT(msocl_sim_set_air_resistance(f4, 0.9f), MSOCL_ERR_BAD_VALUE);
-  OK(msocl_sim_set_air_resistance(f4, 1.0f));
-  msocl_sim_destroy(f4);
   EXPECT(msocl_sim_set_viscous_damping(s, -1.0f), MSOCL_ERR_BAD_VALUE);
   EXPECT(msocl_sim_set_viscous_damping(s, nan), MSOCL_ERR_NOT_FINITE);
   /* targets */
@@ -523,17 +509,27 @@ START_TEST(bad_input)
   msocl_sim_destroy(s);
   /* the model is free again once its simulation is gone */
   OK(msocl_model_set_gravity(m, 0.0f, -9.81f, 0.0f));
-  /* the float4 engine refuses moving pins clearly */
-  s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, MSOCL_OFF);
-  EXPECT(msocl_sim_set_pin_targets(s, 2, NULL, t), MSOCL_ERR_BAD_VALUE);
-  SAYS("planes engine");
-  msocl_sim_destroy(s);
+  /* a split refuses moving pins clearly */
+  char spec[64];
+  if (scene_cpu_spec(spec, sizeof spec, 2) >= 2) {
+    msocl_runtime *two = NULL;
+    OK(msocl_runtime_create(&two, spec));
+    msocl_sim_options o;
+    msocl_sim_options_init(&o);
+    o.dt = dt_for(m, MSOCL_SYMPLECTIC_EULER);
+    o.tuning.ndevices = 2;
+    OK(msocl_sim_create(&s, two, m, &o));
+    EXPECT(msocl_sim_set_pin_targets(s, 2, NULL, t), MSOCL_ERR_BAD_VALUE);
+    SAYS("needs one device");
+    msocl_sim_destroy(s);
+    msocl_runtime_destroy(two);
+  }
   msocl_model_destroy(m);
   /* a model made with no pin: runtime pins refused */
   m = scene_hanging(N);
   OK(msocl_model_pin(m, 0, 0));
   OK(msocl_model_pin(m, N - 1, 0));
-  s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID, MSOCL_ON);
+  s = make(m, MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_GRID);
   EXPECT(msocl_sim_pin(s, 1, (int[]){0}, 1), MSOCL_ERR_BAD_VALUE);
   msocl_sim_destroy(s);
   msocl_model_destroy(m);

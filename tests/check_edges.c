@@ -1,4 +1,4 @@
-/* The EDGES layout (in the planes engine: a per-point gather over each
+/* The EDGES layout (a per-point gather over each
  * point's springs in BUFFER's slot order) against the BUFFER gather: the
  * same physics, within the tolerances below, and since the sums go in the
  * same fixed order, bitwise BUFFER's result - run after
@@ -293,31 +293,6 @@ START_TEST(devices)
 }
 END_TEST
 
-/* EDGES runs in the planes engine (BUFFER's gather over its springs), on
- * AUTO as on ON; turning planes off is refused, naming both. */
-START_TEST(in_planes)
-{
-  msocl_model *m = scene_hanging(8);
-  msocl_sim_options o;
-  msocl_sim_options_init(&o);
-  o.tuning.layout = MSOCL_LAYOUT_EDGES;
-  msocl_sim *s = NULL;
-  int on = -1;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
-  ck_assert_msg(on == 1, "EDGES runs float4");
-  msocl_sim_destroy(s);
-  s = NULL;
-  o.tuning.planes = MSOCL_OFF;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
-  ck_assert_ptr_null(s);
-  ck_assert_msg(strstr(msocl_last_error(), "EDGES") &&
-                    strstr(msocl_last_error(), "planes"),
-                "unclear error: %s", msocl_last_error());
-  msocl_model_destroy(m);
-}
-END_TEST
-
 int main(void)
 {
   /* three PoCL CPU devices for the devices case unless the caller chose
@@ -336,7 +311,6 @@ int main(void)
   tcase_add_test(tc, values);
   tcase_add_test(tc, repeatable);
   tcase_add_test(tc, devices);
-  tcase_add_test(tc, in_planes);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }

@@ -23,7 +23,6 @@ static msocl_sim *sim_of(const msocl_model *m, msocl_layout layout,
   o.dt = 1e-3f;
   o.integrator = in;
   o.tuning.layout = layout;
-  o.tuning.planes = MSOCL_ON;
   o.tuning.renumber = renumber;
   msocl_sim *s = NULL;
   ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK, "%s",
@@ -246,13 +245,7 @@ START_TEST(bad_input)
   ck_assert_int_eq(msocl_reference_set_forces(NULL, f), MSOCL_ERR_NULL_HANDLE);
   msocl_reference_destroy(r);
   msocl_sim_destroy(s);
-  /* the float4 engine has no field pass */
-  o.tuning.planes = MSOCL_OFF;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   f[3 * 7 + 1] = 0.0f;
-  ck_assert_int_eq(msocl_sim_set_accelerations(s, f), MSOCL_ERR_BAD_VALUE);
-  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "planes"));
-  msocl_sim_destroy(s);
   char spec[256];
   if (scene_cpu_spec(spec, sizeof spec, 2) >= 2) {
     msocl_runtime *two = NULL;

@@ -300,7 +300,7 @@ START_TEST(hand_cloth_split)
 END_TEST
 
 /* Lattices (3-D, msocl_model_lattice's stencil) built by hand from the
- * builder's arrays: GRID (in planes, on this CPU), bitwise the builder's;
+ * builder's arrays: GRID, bitwise the builder's;
  * with one spring's k changed, BUFFER. */
 START_TEST(hand_lattice_gets_grid)
 {

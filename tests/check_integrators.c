@@ -171,25 +171,28 @@ START_TEST(convergence_order)
 END_TEST
 
 /* Implicit Euler whose CG cannot converge within its cap (2 iterations
- * at 10 ms on the hanging cloth): the float4 engine, the planes and the
- * host reference take every step with the solver's last iterate and
+ * at 10 ms on the hanging cloth): GRID, BUFFER (bit for bit GRID's) and
+ * the host reference take every step with the solver's last iterate and
  * return MSOCL_ERR_NO_CONVERGENCE naming the tolerance, the iterations
  * and the residual; the same run with room to converge returns OK. */
+static const msocl_layout capped_layouts[2] = {MSOCL_LAYOUT_GRID,
+                                               MSOCL_LAYOUT_BUFFER};
+static const char *const capped_names[2] = {"GRID", "BUFFER"};
+
 static msocl_sim *capped(const msocl_model *m, msocl_sim_options *o,
-                         int planes, int cap)
+                         msocl_layout lay, int cap)
 {
   msocl_sim_options_init(o);
   o->dt = 1e-2f;
   o->integrator = MSOCL_IMPLICIT_EULER;
-  o->tuning.layout = MSOCL_LAYOUT_GRID;
-  o->tuning.planes = planes ? MSOCL_ON : MSOCL_OFF;
+  o->tuning.layout = lay;
   o->cg_max_iterations = cap;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, o);
   ck_assert_msg(rc == MSOCL_OK, "sim_create: %s", msocl_last_error());
-  int on = -1;
-  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
-  ck_assert_int_eq(on, planes);
+  msocl_layout got;
+  ck_assert_int_eq(msocl_sim_layout(s, &got), MSOCL_OK);
+  ck_assert_int_eq(got, lay);
   return s;
 }
 
@@ -201,7 +204,8 @@ static void says(const char *text)
 
 START_TEST(implicit_no_convergence)
 {
-  const int planes = _i;
+  const msocl_layout lay = capped_layouts[_i];
+  const char *name = capped_names[_i];
   msocl_model *m = scene_hanging(12);
   int n;
   msocl_model_point_count(m, &n);
@@ -211,11 +215,11 @@ START_TEST(implicit_no_convergence)
         *p2 = malloc(3 * (size_t)n * sizeof *p2);
   msocl_model_get_positions(m, p0);
 
-  msocl_sim *s = capped(m, &o, planes, 2);
+  msocl_sim *s = capped(m, &o, lay, 2);
   int rc = msocl_sim_step(s, 5);
   ck_assert_msg(rc == MSOCL_ERR_NO_CONVERGENCE, "got %s: %s",
                 msocl_err_name(rc), msocl_last_error());
-  printf("%s: %s\n", planes ? "planes" : "float4", msocl_last_error());
+  printf("%s: %s\n", name, msocl_last_error());
   says("tolerance 1e-05 in 5 of 5 steps");
   says("after 2 iterations, cap 2");
   says("relative residual ");
@@ -231,7 +235,7 @@ START_TEST(implicit_no_convergence)
   ck_assert_int_eq(msocl_sim_read_positions(s, p1), MSOCL_OK);
   ck_assert_double_gt(scene_max_diff(p0, p1, 3 * n), 1e-4);
   msocl_sim_destroy(s);
-  s = capped(m, &o, planes, 2);
+  s = capped(m, &o, lay, 2);
   for (int q = 0; q < 5; q++) {
     ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_ERR_NO_CONVERGENCE);
     says("in 1 of 1 steps");
@@ -239,6 +243,16 @@ START_TEST(implicit_no_convergence)
   ck_assert_int_eq(msocl_sim_read_positions(s, p2), MSOCL_OK);
   ck_assert(memcmp(p1, p2, 3 * (size_t)n * sizeof *p1) == 0);
   msocl_sim_destroy(s);
+  if (lay == MSOCL_LAYOUT_BUFFER) { /* BUFFER's capped steps are GRID's */
+    s = capped(m, &o, MSOCL_LAYOUT_GRID, 2);
+    ck_assert_int_eq(msocl_sim_step(s, 5), MSOCL_ERR_NO_CONVERGENCE);
+    ck_assert_int_eq(msocl_sim_read_positions(s, p2), MSOCL_OK);
+    ck_assert_msg(memcmp(p1, p2, 3 * (size_t)n * sizeof *p1) == 0,
+                  "BUFFER differs from GRID by %g",
+                  scene_max_diff(p1, p2, 3 * n));
+    msocl_sim_destroy(s);
+    o.tuning.layout = lay; /* the reference below takes BUFFER's options */
+  }
 
   /* the host reference: the same code, the same state within float's
    * round-off of two CG iterations */
@@ -255,13 +269,13 @@ START_TEST(implicit_no_convergence)
   for (int i = 0; i < 3 * n; i++)
     worst = fmax(worst, fabs(q[i] - p1[i]));
   printf("%s: capped CG, max |device - reference| = %.3g m\n",
-         planes ? "planes" : "float4", worst);
+         name, worst);
   ck_assert_double_le(worst, 1e-5);
   msocl_reference_destroy(r);
   free(q);
 
   /* room to converge: OK, and the message of the last failure stays */
-  s = capped(m, &o, planes, 200);
+  s = capped(m, &o, lay, 200);
   rc = msocl_sim_step(s, 5);
   ck_assert_msg(rc == MSOCL_OK, "got %s: %s", msocl_err_name(rc),
                 msocl_last_error());

@@ -1,11 +1,11 @@
 /* GRID for lattices: a msocl_model_lattice's 32 neighbours, recomputed
- * from each point's (x, y, z) position, in float4 and in planes, must sum
- * what BUFFER's stored slots sum, bit for bit - under every integrator
- * and both kinds of strain limiting, with each spring set on or left out,
- * with colliders, pins and damping, rows narrower and wider than a
- * work-group, and split over several devices; AUTO must take GRID exactly
- * where it runs in planes, and GRID must refuse a lattice whose springs
- * were changed after the builder. */
+ * from each point's (x, y, z) position, must sum what BUFFER's stored
+ * slots sum, bit for bit - under every integrator and both kinds of
+ * strain limiting, with each spring set on or left out, with colliders,
+ * pins and damping, rows narrower and wider than a work-group, and split
+ * over several devices; AUTO must take GRID for an intact lattice, and
+ * GRID must refuse a lattice whose springs were changed after the
+ * builder. */
 #include "scenes.h"
 
 #include <check.h>
@@ -20,11 +20,10 @@
  * and structural springs left out. */
 enum { SETS_DEFAULT, SETS_ALL, SETS_NO_STRUCTURAL };
 /* Lattices: every set at 5^3, the builder's default and no structural
- * springs (compiled out in planes); fewer layers than the bend springs
- * reach; a single cell; rows of 19 (a work-group of 32 in planes; 8 for
- * the others). The first runs every method; the others the methods that
- * run in planes (each new lattice is a new program for PoCL to compile,
- * so the list is short). */
+ * springs (compiled out); fewer layers than the bend springs reach; a
+ * single cell; rows of 19 (wider than a work-group). Each runs every
+ * method (each new lattice is a new program for PoCL to compile, so the
+ * list is short). */
 static const struct {
   int size[3], sets;
 } cases[] = {{{5, 5, 5}, SETS_ALL}, {{5, 5, 5}, SETS_DEFAULT},
@@ -59,7 +58,7 @@ static msocl_model *busy_lattice(const int *size, int sets)
 }
 
 struct state {
-  int n, planes;
+  int n;
   msocl_layout layout;
   float *pos, *vel;
   msocl_energy e;
@@ -70,8 +69,7 @@ struct state {
  * compares. */
 static struct state run(msocl_runtime *r, const msocl_model *m,
                         msocl_layout lay, msocl_integrator in,
-                        msocl_strain strain, int fused, msocl_choice planes,
-                        int parts, int steps)
+                        msocl_strain strain, int fused, int parts, int steps)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
@@ -80,7 +78,6 @@ static struct state run(msocl_runtime *r, const msocl_model *m,
   o.integrator = in;
   o.strain = strain;
   o.tuning.fused = fused ? MSOCL_ON : MSOCL_OFF;
-  o.tuning.planes = planes;
   o.tuning.ndevices = parts;
   o.check_every = 0;
   msocl_sim *s = NULL;
@@ -97,7 +94,6 @@ static struct state run(msocl_runtime *r, const msocl_model *m,
   struct state st;
   msocl_sim_point_count(s, &st.n);
   st.layout = got;
-  ck_assert_int_eq(msocl_sim_planes(s, &st.planes), MSOCL_OK);
   st.pos = malloc(3 * (size_t)st.n * sizeof(float));
   st.vel = malloc(3 * (size_t)st.n * sizeof(float));
   ck_assert_int_eq(msocl_sim_read_positions(s, st.pos), MSOCL_OK);
@@ -132,22 +128,21 @@ static void state_free(struct state *st)
 static const struct {
   msocl_integrator in;
   msocl_strain strain;
-  int fused, planes; /* planes: whether GRID can run in planes */
+  int fused;
   const char *name;
 } methods[] = {
-    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 0, 1, "symplectic Euler"},
-    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 1, 1, "fused"},
-    {MSOCL_VERLET, MSOCL_STRAIN_NONE, 0, 1, "Verlet"},
-    {MSOCL_RK4, MSOCL_STRAIN_NONE, 0, 1, "RK4"},
-    {MSOCL_EXPLICIT_EULER, MSOCL_STRAIN_NONE, 0, 1, "explicit Euler"},
-    {MSOCL_IMPLICIT_EULER, MSOCL_STRAIN_NONE, 0, 1, "implicit Euler"},
-    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT, 0, 1, "Provot strain"},
-    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_VELOCITY, 0, 1, "velocity strain"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 0, "symplectic Euler"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_NONE, 1, "fused"},
+    {MSOCL_VERLET, MSOCL_STRAIN_NONE, 0, "Verlet"},
+    {MSOCL_RK4, MSOCL_STRAIN_NONE, 0, "RK4"},
+    {MSOCL_EXPLICIT_EULER, MSOCL_STRAIN_NONE, 0, "explicit Euler"},
+    {MSOCL_IMPLICIT_EULER, MSOCL_STRAIN_NONE, 0, "implicit Euler"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_PROVOT, 0, "Provot strain"},
+    {MSOCL_SYMPLECTIC_EULER, MSOCL_STRAIN_VELOCITY, 0, "velocity strain"},
 };
 
-/* Each lattice, every method: GRID in float4 and (where it applies) in
- * planes is BUFFER; AUTO takes GRID where it runs in planes (this CPU
- * device), BUFFER elsewhere. */
+/* Each lattice, every method: GRID is BUFFER, bit for bit; AUTO takes
+ * GRID for the intact lattice. */
 START_TEST(grid_is_buffer)
 {
   const int *size = cases[_i].size;
@@ -161,46 +156,22 @@ START_TEST(grid_is_buffer)
     char what[160];
     snprintf(what, sizeof what, "%dx%dx%d lattice, sets %d, %s", size[0],
              size[1], size[2], sets, methods[q].name);
-    const int pl = methods[q].planes;
-    if (_i > 0 && !pl)
-      continue;
-    /* GRID in float4: forced where planes apply, else by default */
     struct state g = run(rt, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                         methods[q].strain, methods[q].fused,
-                         pl ? MSOCL_OFF : MSOCL_AUTO, 1, 100);
-    ck_assert_msg(!g.planes, "%s: planes where they cannot be", what);
-    /* BUFFER: every method on the first lattice, symplectic Euler on the
-     * others (where float4 GRID, proved BUFFER's, stands in for it) */
-    struct state b = g;
-    if (_i == 0 || q == 0) {
-      b = run(rt, m, MSOCL_LAYOUT_BUFFER, methods[q].in, methods[q].strain,
-              methods[q].fused, MSOCL_AUTO, 1, 100);
-      same(b, g, 1, what);
-    }
+                         methods[q].strain, methods[q].fused, 1, 100);
+    struct state b = run(rt, m, MSOCL_LAYOUT_BUFFER, methods[q].in,
+                         methods[q].strain, methods[q].fused, 1, 100);
+    same(b, g, 1, what);
     /* it must have moved, or equality proves nothing */
     ck_assert_msg(scene_max_diff(p0, b.pos, 3 * n) > 1e-5, "%s: still",
                   what);
-    if (pl) { /* GRID in planes, by default on this CPU device */
-      struct state a = run(rt, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                           methods[q].strain, methods[q].fused, MSOCL_AUTO, 1,
-                           100);
-      ck_assert_msg(a.planes, "%s: not in planes", what);
-      same(b, a, 1, what);
-      state_free(&a);
-    }
-    if (_i == 0) { /* AUTO: GRID exactly where it runs in planes */
+    if (_i == 0) { /* AUTO: GRID, the lattice being intact */
       struct state c = run(rt, m, MSOCL_LAYOUT_AUTO, methods[q].in,
-                           methods[q].strain, methods[q].fused, MSOCL_AUTO, 1,
-                           0);
-      ck_assert_msg(c.layout == (pl ? MSOCL_LAYOUT_GRID
-                                    : MSOCL_LAYOUT_BUFFER) &&
-                        c.planes == pl,
-                    "%s: AUTO took layout %d, planes %d", what,
-                    (int)c.layout, c.planes);
+                           methods[q].strain, methods[q].fused, 1, 0);
+      ck_assert_msg(c.layout == MSOCL_LAYOUT_GRID, "%s: AUTO took layout %d",
+                    what, (int)c.layout);
       state_free(&c);
     }
-    if (b.pos != g.pos)
-      state_free(&b);
+    state_free(&b);
     state_free(&g);
   }
   free(p0);
@@ -229,22 +200,21 @@ START_TEST(split_is_one_device)
   for (int u = 0; u < 2; u++) {
     const int q = split_methods[u];
     struct state one = run(many, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                           MSOCL_STRAIN_NONE, 0, MSOCL_AUTO, 1, 100);
+                           MSOCL_STRAIN_NONE, 0, 1, 100);
     for (int parts = 2; parts <= ndev; parts++) {
       char what[160];
       snprintf(what, sizeof what, "%s on %d devices", methods[q].name,
                parts);
       struct state split = run(many, m, MSOCL_LAYOUT_GRID, methods[q].in,
-                               MSOCL_STRAIN_NONE, 0, MSOCL_AUTO, parts, 100);
+                               MSOCL_STRAIN_NONE, 0, parts, 100);
       same(one, split, 0, what);
       state_free(&split);
     }
     state_free(&one);
   }
-  /* a split runs in planes, boundary first too, so AUTO takes GRID there
-   * as on one device */
+  /* AUTO takes GRID on a split as on one device */
   struct state a = run(many, m, MSOCL_LAYOUT_AUTO, MSOCL_SYMPLECTIC_EULER,
-                       MSOCL_STRAIN_NONE, 0, MSOCL_AUTO, 2, 0);
+                       MSOCL_STRAIN_NONE, 0, 2, 0);
   ck_assert_int_eq(a.layout, MSOCL_LAYOUT_GRID);
   state_free(&a);
   msocl_model_destroy(m);

@@ -49,7 +49,6 @@ static msocl_sim *sim_of(const msocl_model *m, float *dt)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = *dt;
-  o.tuning.planes = MSOCL_ON;
   msocl_sim *s = NULL;
   ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK, "%s",
                 msocl_last_error());
@@ -250,7 +249,6 @@ static void drop(const msocl_model *base, float dt, int steps, float *p)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = dt;
-  o.tuning.planes = MSOCL_ON;
   msocl_sim *s = NULL;
   ck_assert_msg(msocl_sim_create(&s, rt, base, &o) == MSOCL_OK, "%s",
                 msocl_last_error());
@@ -387,7 +385,7 @@ START_TEST(open_sheet_keeps_side)
 END_TEST
 
 /* A static mesh acts on every step too; disabled, it does not; in
- * BUFFER's planes (points in index order) as in GRID's. */
+ * BUFFER (points in index order) as in GRID. */
 static void floor_run(msocl_layout layout)
 {
   const float v[4 * 3] = {-1, -0.6f, -1, 1, -0.6f, -1, 1, -0.6f, 1, -1, -0.6f, 1};
@@ -401,7 +399,6 @@ static void floor_run(msocl_layout layout)
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = dt;
-  o.tuning.planes = MSOCL_ON;
   o.tuning.layout = layout;
   msocl_sim *s = NULL;
   ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK, "%s",
@@ -601,15 +598,22 @@ START_TEST(bad_input)
                    MSOCL_ERR_IO);
   ck_assert_int_eq(msocl_model_add_mesh_collider(m, v, 3, t, 1, 0.01f, 0),
                    MSOCL_OK);
-  /* float4 refused at create */
+  /* a split refused at create */
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = 1e-4f;
-  o.tuning.planes = MSOCL_OFF;
   msocl_sim *s = NULL;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
-  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "planes"));
-  o.tuning.planes = MSOCL_ON;
+  char spec[64];
+  if (scene_cpu_spec(spec, sizeof spec, 2) >= 2) {
+    msocl_runtime *two = NULL;
+    ck_assert_int_eq(msocl_runtime_create(&two, spec), MSOCL_OK);
+    o.tuning.ndevices = 2;
+    ck_assert_int_eq(msocl_sim_create(&s, two, m, &o), MSOCL_ERR_BAD_VALUE);
+    ck_assert_ptr_null(s);
+    ck_assert_ptr_nonnull(strstr(msocl_last_error(), "split"));
+    o.tuning.ndevices = 0;
+    msocl_runtime_destroy(two);
+  }
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
   ck_assert_int_eq(msocl_model_add_mesh_collider(m, v, 3, t, 1, 0.01f, 0),
                    MSOCL_ERR_INVALID_ARG);

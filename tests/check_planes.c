@@ -1,18 +1,18 @@
-/* Planes (tuning.planes): a cloth grid's symplectic Euler steps
- * (two passes or fused), Verlet and RK4 steps over x, y, z planes must be
- * bitwise the float4 kernels' steps - with
- * every feature the planes kernel compiles in (colliders of each kind,
- * pins, dashpots, viscous damping, air), grids narrower and wider than a
- * work-group, and the state written between calls - and auto must take
- * planes exactly where they apply, and not where their padding would
- * multiply the memory (a skinny lattice); a grid too large for the
- * kernels' int indices is refused before anything is allocated. BUFFER
- * and IMAGE2D in planes are bitwise their float4 steps too, for every
- * integrator and strain limit, on a cloth, a lattice, an irregular mesh
- * from OBJ text and a ball (its hub in a wide table, or spilling past a
- * narrow one). */
+/* The one engine (x, y, z planes of floats) on every layout: a cloth
+ * grid's symplectic Euler steps (two passes or fused), Verlet and RK4
+ * steps on GRID must be bitwise BUFFER's - with every feature the GRID
+ * kernels compile in (colliders of each kind, pins, dashpots, viscous
+ * damping, air), grids narrower and wider than a work-group, and the state
+ * written between calls - and AUTO must take GRID exactly where it
+ * applies, and not where its padding would multiply the memory (a skinny
+ * lattice); a grid too large for the kernels' int indices is refused
+ * before anything is allocated. BUFFER and IMAGE2D are bitwise each other
+ * (or BUFFER a narrower, spilling table, or without spring classes), for
+ * every integrator and strain limit, on a cloth, a lattice, an irregular
+ * mesh from OBJ text and a ball (its hub in a wide table, or spilling past
+ * a narrow one). */
 #include "scenes.h"
-#include "sim.h" /* msocl__planes_bytes, _refused, _would */
+#include "sim.h" /* msocl__planes_bytes, _refused, _would, layout_auto */
 
 #include <check.h>
 #include <math.h>
@@ -22,7 +22,9 @@
 
 #define rt scene_rt
 
-/* An nx x ny cloth with everything the planes kernel handles: a round
+static msocl_model *obj_sheet(int nx, int ny);
+
+/* An nx x ny cloth with everything the GRID kernels handle: a round
  * table, a ball beside it and a floor under both, a pinned corner,
  * dashpots, viscous damping and air resistance. */
 static msocl_model *busy_cloth(int nx, int ny)
@@ -55,7 +57,7 @@ static msocl_model *busy_cloth(int nx, int ny)
 }
 
 struct state {
-  int n, planes;
+  int n;
   float *pos, *vel;
 };
 
@@ -65,53 +67,84 @@ static void state_free(struct state *st)
   free(st->vel);
 }
 
-/* planes: tuning.planes ON (1) or OFF (0), and 2: planes with the fused
- * kernel; 3: Verlet in planes, -3 Verlet in float4; 4 and -4 RK4; 5 and
- * -5 implicit Euler; 6 and -6 explicit Euler (otherwise symplectic Euler) */
-/* The layout, spring classes and table width the next sims get (the
- * mesh cases set them; GRID otherwise). */
-static msocl_layout layout_ = MSOCL_LAYOUT_GRID;
-/* classes_: -1 AUTO, 0 OFF, 1 ON */
-static int classes_ = -1, slots_ = 0;
+/* The layout, spring classes (-1 AUTO, 0 OFF, 1 ON) and table width the
+ * tested sims get (the mesh cases set them; GRID otherwise). */
+struct setup {
+  msocl_layout layout;
+  int classes, slots;
+};
+static struct setup setup_ = {MSOCL_LAYOUT_GRID, -1, 0};
 
-static msocl_sim *make_strained(const msocl_model *m, int planes,
+/* The setup a tested one is held to, which must step bitwise alike: GRID
+ * and IMAGE2D against BUFFER's plain table (no classes); BUFFER with
+ * classes against the same table without; a plain BUFFER against IMAGE2D
+ * where m's points fit the texture's 16 slots, else against a table of 8
+ * slots that spills (and one that already spills against its full
+ * table). */
+static struct setup held_setup(const msocl_model *m, struct setup t)
+{
+  struct setup h = {MSOCL_LAYOUT_BUFFER, 0, 0};
+  if (t.layout != MSOCL_LAYOUT_BUFFER)
+    return h;
+  if (t.classes == 1) {
+    h.slots = t.slots;
+    return h;
+  }
+  int degree = 0;
+  ck_assert_int_eq(msocl_model_max_degree(m, &degree), MSOCL_OK);
+  if (t.slots > 0 && t.slots < degree)
+    h.slots = 64; /* every spring in the table: at most 64 slots */
+  else if (degree <= 16)
+    h.layout = MSOCL_LAYOUT_IMAGE2D;
+  else
+    h.slots = 8;
+  return h;
+}
+
+/* mode: 1 symplectic Euler's two passes, 2 fused; 3 Verlet, 4 RK4, 5
+ * implicit Euler, 6 explicit Euler. held: in held_setup's setup (and
+ * two passes for fused, as a gather in two passes is what fused must
+ * equal), else in setup_. */
+static msocl_sim *make_strained(const msocl_model *m, int held, int mode,
                                 msocl_math math, float dt,
                                 msocl_strain strain)
 {
+  const struct setup t = held ? held_setup(m, setup_) : setup_;
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.tuning.classes = classes_ < 0 ? MSOCL_AUTO : classes_ ? MSOCL_ON : MSOCL_OFF;
-  o.tuning.buffer_slots = slots_;
+  o.tuning.classes =
+      t.classes < 0 ? MSOCL_AUTO : t.classes ? MSOCL_ON : MSOCL_OFF;
+  o.tuning.buffer_slots = t.slots;
   o.strain = strain;
   o.strain_iterations = 3; /* the sweeps ping-pong */
-  if (abs(planes) >= 3) {
+  if (mode >= 3) {
     static const msocl_integrator in[4] = {
         MSOCL_VERLET, MSOCL_RK4, MSOCL_IMPLICIT_EULER, MSOCL_EXPLICIT_EULER};
-    o.integrator = in[abs(planes) - 3];
-    planes = planes > 0;
+    o.integrator = in[mode - 3];
   }
-  o.tuning.layout = layout_;
-  o.tuning.planes = planes > 0 ? MSOCL_ON : MSOCL_OFF;
-  o.tuning.fused = planes == 2 ? MSOCL_ON : MSOCL_OFF;
+  o.tuning.layout = t.layout;
+  o.tuning.fused = mode == 2 && !held ? MSOCL_ON : MSOCL_OFF;
   o.math = math;
   o.dt = dt;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, &o);
   ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  msocl_layout ran = MSOCL_LAYOUT_AUTO;
+  ck_assert_int_eq(msocl_sim_layout(s, &ran), MSOCL_OK);
+  ck_assert_int_eq(ran, t.layout);
   return s;
 }
 
-static msocl_sim *make(const msocl_model *m, int planes, msocl_math math,
-                       float dt)
+static msocl_sim *make(const msocl_model *m, int held, int mode,
+                       msocl_math math, float dt)
 {
-  return make_strained(m, planes, math, dt, MSOCL_STRAIN_NONE);
+  return make_strained(m, held, mode, math, dt, MSOCL_STRAIN_NONE);
 }
 
 static struct state read_state(msocl_sim *s)
 {
   struct state st;
   ck_assert_int_eq(msocl_sim_point_count(s, &st.n), MSOCL_OK);
-  ck_assert_int_eq(msocl_sim_planes(s, &st.planes), MSOCL_OK);
   st.pos = malloc(3 * (size_t)st.n * sizeof(float));
   st.vel = malloc(3 * (size_t)st.n * sizeof(float));
   ck_assert_int_eq(msocl_sim_read_positions(s, st.pos), MSOCL_OK);
@@ -120,11 +153,11 @@ static struct state read_state(msocl_sim *s)
 }
 
 /* `calls` calls of `steps` steps each. */
-static struct state run_strained(const msocl_model *m, int planes,
+static struct state run_strained(const msocl_model *m, int held, int mode,
                                  msocl_math math, float dt, int calls,
                                  int steps, msocl_strain strain)
 {
-  msocl_sim *s = make_strained(m, planes, math, dt, strain);
+  msocl_sim *s = make_strained(m, held, mode, math, dt, strain);
   for (int c = 0; c < calls; c++) {
     int rc = msocl_sim_step(s, steps);
     ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
@@ -134,10 +167,11 @@ static struct state run_strained(const msocl_model *m, int planes,
   return st;
 }
 
-static struct state run(const msocl_model *m, int planes, msocl_math math,
-                        float dt, int calls, int steps)
+static struct state run(const msocl_model *m, int held, int mode,
+                        msocl_math math, float dt, int calls, int steps)
 {
-  return run_strained(m, planes, math, dt, calls, steps, MSOCL_STRAIN_NONE);
+  return run_strained(m, held, mode, math, dt, calls, steps,
+                      MSOCL_STRAIN_NONE);
 }
 
 static void assert_bitwise(const struct state *a, const struct state *b,
@@ -147,8 +181,8 @@ static void assert_bitwise(const struct state *a, const struct state *b,
   ck_assert_int_eq(a->n, b->n);
   ck_assert_msg(memcmp(a->pos, b->pos, bytes) == 0 &&
                     memcmp(a->vel, b->vel, bytes) == 0,
-                "%s: planes differ from float4: positions by %g, velocities "
-                "by %g",
+                "%s: the tested layout differs from the held one: positions "
+                "by %g, velocities by %g",
                 what, scene_max_diff(a->pos, b->pos, 3 * a->n),
                 scene_max_diff(a->vel, b->vel, 3 * a->n));
 }
@@ -163,111 +197,106 @@ START_TEST(busy_cloth_bitwise)
   float dt;
   ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
   dt *= 0.5f;
-  struct state f4 = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 500);
-  struct state pl = run(m, 1, MSOCL_MATH_PRECISE, dt, 1, 500);
-  struct state fu = run(m, 2, MSOCL_MATH_PRECISE, dt, 1, 500);
-  ck_assert_int_eq(f4.planes, 0);
-  ck_assert_int_eq(pl.planes, 1);
-  ck_assert_int_eq(fu.planes, 1);
+  struct state bu = run(m, 1, 1, MSOCL_MATH_PRECISE, dt, 1, 500);
+  struct state gr = run(m, 0, 1, MSOCL_MATH_PRECISE, dt, 1, 500);
+  struct state fu = run(m, 0, 2, MSOCL_MATH_PRECISE, dt, 1, 500);
   char what[64];
   snprintf(what, sizeof what, "%d x %d busy cloth", sizes[_i][0],
            sizes[_i][1]);
-  assert_bitwise(&f4, &pl, what);
+  assert_bitwise(&bu, &gr, what);
   snprintf(what, sizeof what, "%d x %d busy cloth, fused", sizes[_i][0],
            sizes[_i][1]);
-  assert_bitwise(&f4, &fu, what);
+  assert_bitwise(&bu, &fu, what);
   state_free(&fu);
-  struct state vf4 = run(m, -3, MSOCL_MATH_PRECISE, dt, 1, 500);
-  struct state vpl = run(m, 3, MSOCL_MATH_PRECISE, dt, 1, 500);
-  ck_assert_int_eq(vf4.planes, 0);
-  ck_assert_int_eq(vpl.planes, 1);
+  struct state vbu = run(m, 1, 3, MSOCL_MATH_PRECISE, dt, 1, 500);
+  struct state vgr = run(m, 0, 3, MSOCL_MATH_PRECISE, dt, 1, 500);
   snprintf(what, sizeof what, "%d x %d busy cloth, Verlet", sizes[_i][0],
            sizes[_i][1]);
-  assert_bitwise(&vf4, &vpl, what);
-  state_free(&vf4);
-  state_free(&vpl);
-  struct state rf4 = run(m, -4, MSOCL_MATH_PRECISE, dt, 1, 300);
-  struct state rpl = run(m, 4, MSOCL_MATH_PRECISE, dt, 1, 300);
-  ck_assert_int_eq(rpl.planes, 1);
+  assert_bitwise(&vbu, &vgr, what);
+  state_free(&vbu);
+  state_free(&vgr);
+  struct state rbu = run(m, 1, 4, MSOCL_MATH_PRECISE, dt, 1, 300);
+  struct state rgr = run(m, 0, 4, MSOCL_MATH_PRECISE, dt, 1, 300);
   snprintf(what, sizeof what, "%d x %d busy cloth, RK4", sizes[_i][0],
            sizes[_i][1]);
-  assert_bitwise(&rf4, &rpl, what);
-  state_free(&rf4);
-  state_free(&rpl);
+  assert_bitwise(&rbu, &rgr, what);
+  state_free(&rbu);
+  state_free(&rgr);
   /* and it moved: the test compares a motion, not a rest state */
   double far = 0.0;
-  for (int i = 0; i < f4.n; i++)
-    far = fmax(far, fabs(f4.vel[3 * i + 1]));
+  for (int i = 0; i < bu.n; i++)
+    far = fmax(far, fabs(bu.vel[3 * i + 1]));
   ck_assert_msg(far > 0.01, "fastest vertical speed %g m/s", far);
-  state_free(&f4);
-  state_free(&pl);
+  state_free(&bu);
+  state_free(&gr);
   msocl_model_destroy(m);
 }
 END_TEST
 
 /* The paper's scene, and a hanging cloth (pins, dashpots, no contact):
- * 500 steps in calls of 7 - the state copied into planes and back each
- * call - against one call of the float4 kernels. */
+ * 500 steps on GRID in calls of 7 - the state kept in the planes between
+ * calls - against one call on BUFFER. */
 START_TEST(scenes_in_calls_bitwise)
 {
   msocl_model *m = _i == 0 ? scene_tablecloth(33) : scene_hanging(24);
   float dt = scene_tablecloth_dt(_i == 0 ? 33 : 24);
-  struct state f4 = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 497);
-  struct state pl = run(m, 1, MSOCL_MATH_PRECISE, dt, 71, 7);
-  struct state fu = run(m, 2, MSOCL_MATH_PRECISE, dt, 71, 7);
-  assert_bitwise(&f4, &pl, _i == 0 ? "tablecloth" : "hanging cloth");
-  assert_bitwise(&f4, &fu, _i == 0 ? "tablecloth, fused" : "hanging, fused");
+  struct state bu = run(m, 1, 1, MSOCL_MATH_PRECISE, dt, 1, 497);
+  struct state gr = run(m, 0, 1, MSOCL_MATH_PRECISE, dt, 71, 7);
+  struct state fu = run(m, 0, 2, MSOCL_MATH_PRECISE, dt, 71, 7);
+  assert_bitwise(&bu, &gr, _i == 0 ? "tablecloth" : "hanging cloth");
+  assert_bitwise(&bu, &fu, _i == 0 ? "tablecloth, fused" : "hanging, fused");
   state_free(&fu);
   /* Verlet carries its acceleration from call to call */
-  struct state vf4 = run(m, -3, MSOCL_MATH_PRECISE, dt, 1, 497);
-  struct state vpl = run(m, 3, MSOCL_MATH_PRECISE, dt, 71, 7);
-  assert_bitwise(&vf4, &vpl, _i == 0 ? "tablecloth, Verlet" : "hanging, Verlet");
-  state_free(&vf4);
-  state_free(&vpl);
-  struct state rf4 = run(m, -4, MSOCL_MATH_PRECISE, dt, 1, 203);
-  struct state rpl = run(m, 4, MSOCL_MATH_PRECISE, dt, 29, 7);
-  assert_bitwise(&rf4, &rpl, _i == 0 ? "tablecloth, RK4" : "hanging, RK4");
-  state_free(&rf4);
-  state_free(&rpl);
-  state_free(&f4);
-  state_free(&pl);
+  struct state vbu = run(m, 1, 3, MSOCL_MATH_PRECISE, dt, 1, 497);
+  struct state vgr = run(m, 0, 3, MSOCL_MATH_PRECISE, dt, 71, 7);
+  assert_bitwise(&vbu, &vgr,
+                 _i == 0 ? "tablecloth, Verlet" : "hanging, Verlet");
+  state_free(&vbu);
+  state_free(&vgr);
+  struct state rbu = run(m, 1, 4, MSOCL_MATH_PRECISE, dt, 1, 203);
+  struct state rgr = run(m, 0, 4, MSOCL_MATH_PRECISE, dt, 29, 7);
+  assert_bitwise(&rbu, &rgr, _i == 0 ? "tablecloth, RK4" : "hanging, RK4");
+  state_free(&rbu);
+  state_free(&rgr);
+  state_free(&bu);
+  state_free(&gr);
   msocl_model_destroy(m);
 }
 END_TEST
 
-/* Runs float4 (mode f4) and planes (mode pl), 3 calls of `steps` with
- * strain limit `kind`, asserts that the planes ran and that both end bit
- * for bit alike (the label: scene, then what); returns the float4 run. */
-static struct state float4_vs_planes(const msocl_model *m, int f4, int pl,
-                                     float dt, int steps, msocl_strain kind,
-                                     const char *scene, const char *what)
+/* Runs mode (make_strained's codes) in the held setup and in the tested
+ * one, 3 calls of `steps` with strain limit `kind`, and asserts that both
+ * end bit for bit alike (the label: scene, then what); returns the tested
+ * run. */
+static struct state held_vs_tested(const msocl_model *m, int mode, float dt,
+                                   int steps, msocl_strain kind,
+                                   const char *scene, const char *what)
 {
-  struct state a = run_strained(m, f4, MSOCL_MATH_PRECISE, dt, 3, steps,
-                                kind);
-  struct state b = run_strained(m, pl, MSOCL_MATH_PRECISE, dt, 3, steps,
-                                kind);
-  ck_assert_int_eq(b.planes, 1);
+  struct state a = run_strained(m, 1, mode, MSOCL_MATH_PRECISE, dt, 3,
+                                steps, kind);
+  struct state b = run_strained(m, 0, mode, MSOCL_MATH_PRECISE, dt, 3,
+                                steps, kind);
   char label[96];
   snprintf(label, sizeof label, "%s, %s", scene, what);
   assert_bitwise(&a, &b, label);
-  state_free(&b);
-  return a;
+  state_free(&a);
+  return b;
 }
 
-/* Strain limiting in planes (three sweeps a step, the default limit) is
- * bitwise float4's: Provot's after every integrator that runs in planes,
- * two passes and fused, and the velocity kind between symplectic Euler's
- * two passes (with the table's contact on the tablecloth), on the paper's
- * scene and on a cloth hanging from two pinned corners (whose springs to
- * a pinned point move only the free end); and each changed the motion. */
+/* Strain limiting (three sweeps a step, the default limit) on GRID is
+ * bitwise BUFFER's: Provot's after every integrator, two passes and
+ * fused, and the velocity kind between symplectic Euler's two passes
+ * (with the table's contact on the tablecloth), on the paper's scene and
+ * on a cloth hanging from two pinned corners (whose springs to a pinned
+ * point move only the free end); and it changed the motion. */
 START_TEST(strain_bitwise)
 {
   msocl_model *m = _i ? scene_hanging(16) : scene_tablecloth(20);
   float dt;
   ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
   dt *= 0.5f;
-  struct state free_ = run(m, 0, MSOCL_MATH_PRECISE, dt, 3, 67);
-  static const int modes[5][2] = {{0, 1}, {0, 2}, {-3, 3}, {-4, 4}, {0, 1}};
+  struct state free_ = run(m, 0, 1, MSOCL_MATH_PRECISE, dt, 3, 67);
+  static const int modes[5] = {1, 2, 3, 4, 1};
   static const char *const names[5] = {"Provot, two passes", "Provot, fused",
                                        "Provot, Verlet", "Provot, RK4",
                                        "velocity kind"};
@@ -278,21 +307,21 @@ START_TEST(strain_bitwise)
      * push points on the table into it (the response without friction) */
     const int steps = q < 4 ? 67 : 200;
     const char *scene = _i ? "hanging cloth" : "tablecloth";
-    struct state f4 = float4_vs_planes(m, modes[q][0], modes[q][1], dt,
-                                       steps, kind, scene, names[q]);
+    struct state gr = held_vs_tested(m, modes[q], dt, steps, kind, scene,
+                                     names[q]);
     if (q == 0)
-      ck_assert_msg(scene_max_diff(free_.pos, f4.pos, 3 * f4.n) > 1e-5,
+      ck_assert_msg(scene_max_diff(free_.pos, gr.pos, 3 * gr.n) > 1e-5,
                     "%s, %s: the strain limit changed nothing (%g m)", scene,
-                    names[q], scene_max_diff(free_.pos, f4.pos, 3 * f4.n));
-    state_free(&f4);
+                    names[q], scene_max_diff(free_.pos, gr.pos, 3 * gr.n));
+    state_free(&gr);
   }
   state_free(&free_);
   msocl_model_destroy(m);
 }
 END_TEST
 
-/* Implicit Euler in planes is bitwise float4's: its dot products are
- * summed from the points' terms in float4's groups of 64 (the 20-wide
+/* Implicit Euler on GRID is bitwise BUFFER's: its dot products are summed
+ * from the points' terms in groups of 64 whatever the layout (the 20-wide
  * tablecloth's rows, padded to 32, are not), on the tablecloth into its
  * contact and on the hanging cloth (pins, dashpots), at two and four times
  * the explicit stable step, unlimited and with each strain limit. */
@@ -308,17 +337,16 @@ START_TEST(implicit_bitwise)
                                        "implicit Euler, Provot",
                                        "implicit Euler, velocity kind"};
   for (int k = 0; k < 3; k++) {
-    struct state f4 = float4_vs_planes(m, -5, 5, dt, 40, kinds[k],
-                                       _i ? "hanging cloth" : "tablecloth",
-                                       names[k]);
-    ck_assert_int_eq(f4.planes, 0);
-    state_free(&f4);
+    struct state gr = held_vs_tested(m, 5, dt, 40, kinds[k],
+                                     _i ? "hanging cloth" : "tablecloth",
+                                     names[k]);
+    state_free(&gr);
   }
   msocl_model_destroy(m);
 }
 END_TEST
 
-/* Explicit Euler in planes is bitwise float4's (at a tenth of the
+/* Explicit Euler on GRID is bitwise BUFFER's (at a tenth of the
  * symplectic step, where damping keeps it stable): its collisions are a
  * projection, unlike the other methods'; unlimited and with Provot's
  * correction. */
@@ -329,29 +357,26 @@ START_TEST(explicit_bitwise)
   ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
   dt *= 0.1f;
   for (int k = MSOCL_STRAIN_NONE; k <= MSOCL_STRAIN_PROVOT; k++) {
-    struct state f4 = float4_vs_planes(
-        m, -6, 6, dt, 100, (msocl_strain)k,
-        _i ? "hanging cloth" : "tablecloth",
+    struct state gr = held_vs_tested(
+        m, 6, dt, 100, (msocl_strain)k, _i ? "hanging cloth" : "tablecloth",
         k ? "explicit Euler, Provot" : "explicit Euler, unlimited");
-    state_free(&f4);
+    state_free(&gr);
   }
   msocl_model_destroy(m);
 }
 END_TEST
 
-/* A write between calls reaches the planes: the state is copied in at
- * every call, never kept from the last. */
+/* A write between calls reaches the planes: GRID after a write is
+ * bitwise BUFFER after the same write. */
 START_TEST(writes_between_calls)
 {
   msocl_model *m = scene_tablecloth(20);
   const float dt = scene_tablecloth_dt(20);
-  /* symplectic Euler float4 and planes, then Verlet's (whose stored
+  /* symplectic Euler held and tested, then Verlet's (whose stored
    * acceleration a write must renew) */
-  const int modes[4] = {0, 1, -3, 3};
   struct state out[4];
   for (int q = 0; q < 4; q++) {
-    const int planes = modes[q];
-    msocl_sim *s = make(m, planes, MSOCL_MATH_PRECISE, dt);
+    msocl_sim *s = make(m, q % 2 == 0, q < 2 ? 1 : 3, MSOCL_MATH_PRECISE, dt);
     ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
     struct state mid = read_state(s);
     for (int i = 0; i < mid.n; i++) {
@@ -362,7 +387,6 @@ START_TEST(writes_between_calls)
     ck_assert_int_eq(msocl_sim_write_velocities(s, mid.vel), MSOCL_OK);
     ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
     out[q] = read_state(s);
-    ck_assert_int_eq(out[q].planes, planes > 0);
     state_free(&mid);
     msocl_sim_destroy(s);
   }
@@ -374,16 +398,15 @@ START_TEST(writes_between_calls)
 }
 END_TEST
 
-/* Relaxed math compiles its own arithmetic, so planes and float4 may
- * round differently: they must still agree closely. */
 /* The state stays in the planes between calls: everything that looks at
  * it between one-step calls - the energy, the normals, a write of only
  * the velocities or only the positions (the other half comes from the
  * planes), the blow-up check's saved state and its restore - sees and
- * leaves what float4 does, bit for bit. q: symplectic Euler, Verlet, RK4. */
+ * leaves on GRID what it does on BUFFER, bit for bit. q: symplectic
+ * Euler, Verlet, RK4. */
 START_TEST(resident_between_calls)
 {
-  static const int modes[3][2] = {{0, 1}, {-3, 3}, {-4, 4}};
+  static const int modes[3] = {1, 3, 4};
   msocl_model *m = scene_tablecloth(20);
   const float dt = scene_tablecloth_dt(20);
   int n = 0;
@@ -399,7 +422,7 @@ START_TEST(resident_between_calls)
     push[3 * i + 1] = push[3 * i + 2] = 0.0f;
   }
   for (int k = 0; k < 2; k++) {
-    msocl_sim *s = make(m, modes[_i][k], MSOCL_MATH_PRECISE, dt);
+    msocl_sim *s = make(m, k == 0, modes[_i], MSOCL_MATH_PRECISE, dt);
     for (int c = 0; c < 5; c++)
       ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_OK);
     ck_assert_int_eq(msocl_sim_energy(s, &e[k][0]), MSOCL_OK);
@@ -416,13 +439,12 @@ START_TEST(resident_between_calls)
       ck_assert_int_eq(msocl_sim_step(s, 1), MSOCL_OK);
     ck_assert_int_eq(msocl_sim_energy(s, &e[k][1]), MSOCL_OK);
     out[k] = read_state(s);
-    ck_assert_int_eq(out[k].planes, k);
     msocl_sim_destroy(s);
   }
   assert_bitwise(&out[0], &out[1], "resident planes");
   ck_assert_msg(e[0][0].total == e[1][0].total &&
                     e[0][1].total == e[1][1].total,
-                "energy: float4 %.17g, %.17g; planes %.17g, %.17g",
+                "energy: BUFFER %.17g, %.17g; GRID %.17g, %.17g",
                 e[0][0].total, e[0][1].total, e[1][0].total, e[1][1].total);
   ck_assert(memcmp(nrm[0], nrm[1], bytes) == 0);
   for (int k = 0; k < 2; k++) {
@@ -435,10 +457,9 @@ START_TEST(resident_between_calls)
 }
 END_TEST
 
-/* A blow-up restores the state saved at the last check into the float4
- * buffers: the planes must start again from it, as float4 does. At 3x the
- * stable step the cloth blows up before the check at step 100, which
- * restores step 0. */
+/* A blow-up restores the state saved at the last check: the planes must
+ * start again from it, on GRID as on BUFFER. At 3x the stable step the
+ * cloth blows up before the check at step 100, which restores step 0. */
 START_TEST(restore_in_planes)
 {
   msocl_model *m = scene_tablecloth(16);
@@ -446,7 +467,7 @@ START_TEST(restore_in_planes)
   msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &limit);
   struct state out[2];
   for (int k = 0; k < 2; k++) {
-    msocl_sim *s = make(m, k, MSOCL_MATH_PRECISE, 3.0f * limit);
+    msocl_sim *s = make(m, k == 0, 1, MSOCL_MATH_PRECISE, 3.0f * limit);
     int rc = MSOCL_OK, c = 0;
     for (; c < 100 && rc == MSOCL_OK; c++)
       rc = msocl_sim_step(s, 1);
@@ -464,67 +485,87 @@ START_TEST(restore_in_planes)
 }
 END_TEST
 
+/* Relaxed math compiles its own arithmetic, so GRID and BUFFER may round
+ * differently: they must still agree closely. */
 START_TEST(relaxed_close)
 {
   msocl_model *m = scene_tablecloth(32);
   const float dt = scene_tablecloth_dt(32);
-  struct state f4 = run(m, 0, MSOCL_MATH_RELAXED, dt, 1, 300);
-  struct state pl = run(m, 1, MSOCL_MATH_RELAXED, dt, 1, 300);
-  ck_assert_int_eq(pl.planes, 1);
-  double d = scene_max_diff(f4.pos, pl.pos, 3 * f4.n);
-  printf("relaxed math, planes vs float4 after 300 steps: %g m\n", d);
-  ck_assert_msg(d < 1e-4, "relaxed planes differ by %g m", d);
-  state_free(&f4);
-  state_free(&pl);
+  struct state bu = run(m, 1, 1, MSOCL_MATH_RELAXED, dt, 1, 300);
+  struct state gr = run(m, 0, 1, MSOCL_MATH_RELAXED, dt, 1, 300);
+  double d = scene_max_diff(bu.pos, gr.pos, 3 * bu.n);
+  printf("relaxed math, GRID vs BUFFER after 300 steps: %g m\n", d);
+  ck_assert_msg(d < 1e-4, "relaxed GRID differs from BUFFER by %g m", d);
+  state_free(&bu);
+  state_free(&gr);
   msocl_model_destroy(m);
 }
 END_TEST
 
-/* Auto takes GRID's planes on a CPU device wherever they apply, and only
- * there (and EDGES always);
- * forcing them where they cannot run is a clear error. */
+/* The layout a sim of m under o took; fails the test if it was refused. */
+static msocl_layout layout_of(const msocl_model *m, const msocl_sim_options *o)
+{
+  msocl_sim *s = NULL;
+  int rc = msocl_sim_create(&s, rt, m, o);
+  ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
+  msocl_layout kind = MSOCL_LAYOUT_AUTO;
+  ck_assert_int_eq(msocl_sim_layout(s, &kind), MSOCL_OK);
+  msocl_sim_destroy(s);
+  return kind;
+}
+
+/* AUTO takes GRID for an intact cloth grid or lattice, whatever the
+ * integrator and strain limit, and BUFFER for anything else (a mesh, a
+ * grid with a spring added); EDGES runs where asked; forcing GRID where
+ * it cannot run is a clear error. */
 START_TEST(auto_and_errors)
 {
   msocl_model *m = scene_tablecloth(16);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
   o.dt = scene_tablecloth_dt(16);
-  o.tuning.layout = MSOCL_LAYOUT_GRID;
-  msocl_sim *s = NULL;
-  int on = -1;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
-  ck_assert_int_eq(on, 1); /* scene_rt is a CPU device */
-  msocl_sim_destroy(s);
+  ck_assert_int_eq(layout_of(m, &o), MSOCL_LAYOUT_GRID);
   for (int in = MSOCL_EXPLICIT_EULER; in <= MSOCL_IMPLICIT_EULER; in++) {
     o.integrator = (msocl_integrator)in;
-    ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-    ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
-    ck_assert_int_eq(on, 1);
-    msocl_sim_destroy(s);
+    ck_assert_int_eq(layout_of(m, &o), MSOCL_LAYOUT_GRID);
   }
   o.integrator = MSOCL_SYMPLECTIC_EULER; /* and with either strain limit */
   for (int k = MSOCL_STRAIN_PROVOT; k <= MSOCL_STRAIN_VELOCITY; k++) {
     o.strain = (msocl_strain)k;
-    ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-    ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
-    ck_assert_int_eq(on, 1);
-    msocl_sim_destroy(s);
+    ck_assert_int_eq(layout_of(m, &o), MSOCL_LAYOUT_GRID);
   }
-  /* EDGES runs in planes, AUTO or ON (it has no float4 kernels) */
-  o.tuning.layout = MSOCL_LAYOUT_EDGES;
   o.strain = MSOCL_STRAIN_NONE;
-  for (int c = MSOCL_AUTO; c <= MSOCL_ON; c++) {
-    o.tuning.planes = (msocl_choice)c;
-    ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-    ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
-    ck_assert_msg(on == 1, "EDGES not in planes");
-    msocl_sim_destroy(s);
-  }
-  o = (msocl_sim_options){0};
-  msocl_sim_options_init(&o);
-  o.tuning.planes = (msocl_choice)3;
+  /* EDGES where asked (AUTO never takes it) */
+  o.tuning.layout = MSOCL_LAYOUT_EDGES;
+  ck_assert_int_eq(layout_of(m, &o), MSOCL_LAYOUT_EDGES);
+  o.tuning.layout = MSOCL_LAYOUT_AUTO;
+  /* a lattice is a grid too */
+  msocl_lattice_desc ld;
+  msocl_lattice_desc_init(&ld);
+  ld.nx = 6;
+  ld.ny = 5;
+  ld.nz = 4;
+  msocl_model *lat = NULL;
+  ck_assert_int_eq(msocl_model_lattice(&lat, &ld), MSOCL_OK);
+  ck_assert_int_eq(layout_of(lat, &o), MSOCL_LAYOUT_GRID);
+  msocl_model_destroy(lat);
+  /* a spring across the cloth: no longer the grid GRID computes */
+  const int ij[2] = {0, 16 * 16 - 1};
+  const float k = 1.0f, rest = -1.0f;
+  ck_assert_int_eq(msocl_model_add_springs(m, 1, ij, &k, &rest, NULL),
+                   MSOCL_OK);
+  ck_assert_int_eq(layout_of(m, &o), MSOCL_LAYOUT_BUFFER);
+  msocl_model *sheet = obj_sheet(12, 10);
+  ck_assert_int_eq(layout_of(sheet, &o), MSOCL_LAYOUT_BUFFER);
+  /* GRID forced on either: refused, with the way out named */
+  msocl_sim *s = NULL;
+  o.tuning.layout = MSOCL_LAYOUT_GRID;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_msg(strstr(msocl_last_error(), "BUFFER"), "unclear error: %s",
+                msocl_last_error());
+  ck_assert_int_eq(msocl_sim_create(&s, rt, sheet, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_ptr_null(s);
+  msocl_model_destroy(sheet);
   msocl_model_destroy(m);
 }
 END_TEST
@@ -533,10 +574,10 @@ static const char *const inames[] = {"symplectic Euler", "explicit Euler",
                                      "Verlet", "RK4", "implicit Euler"};
 
 /* `steps` steps (in two calls, the state read between) of m on `parts`
- * CPU devices of `two`; *planes: whether it ran in planes. */
+ * CPU devices of `two`. */
 static void split_run(msocl_runtime *two, const msocl_model *m,
                       const msocl_sim_options *o, int parts, int steps,
-                      float *pos, float *vel, int *planes)
+                      float *pos, float *vel)
 {
   msocl_sim_options q = *o;
   q.tuning.ndevices = parts;
@@ -549,7 +590,9 @@ static void split_run(msocl_runtime *two, const msocl_model *m,
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, two, m, &q);
   ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
-  ck_assert_int_eq(msocl_sim_planes(s, planes), MSOCL_OK);
+  msocl_layout kind = MSOCL_LAYOUT_AUTO;
+  ck_assert_int_eq(msocl_sim_layout(s, &kind), MSOCL_OK);
+  ck_assert_int_eq(kind, o->tuning.layout);
   for (int half = 0; half < 2; half++) {
     rc = msocl_sim_step(s, steps / 2);
     ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
@@ -559,20 +602,19 @@ static void split_run(msocl_runtime *two, const msocl_model *m,
   msocl_sim_destroy(s);
 }
 
-/* A split runs in planes (AUTO on CPU devices, as one device does), the
- * halos exchanged plane by plane, bitwise one device's planes, for every
- * integrator on GRID, BUFFER and IMAGE2D (forced: AUTO keeps IMAGE2D in
- * float4), with colliders, pins and dashpots (so velocities cross too),
- * without boundary first and with it (tuning.overlap AUTO and ON: each
- * phase span by span, rows whole); strain limiting stays refused on a
- * split. Over 2 and (where there are) 3 CPU devices
- * (POCL_DEVICES="pthread pthread pthread"). _i: integrator * 3 + layout. */
-START_TEST(split_runs_planes)
+/* A split, the halos exchanged plane by plane, is bitwise one device, for
+ * every integrator on GRID, BUFFER and IMAGE2D, with colliders, pins and
+ * dashpots (so velocities cross too), without boundary first and with it
+ * (tuning.overlap AUTO and ON: each phase span by span, rows whole);
+ * strain limiting stays refused on a split. Over 2 and (where there are)
+ * 3 CPU devices (POCL_DEVICES="pthread pthread pthread"). _i: integrator
+ * * 3 + layout. */
+START_TEST(split_bitwise)
 {
   char spec[64];
   const int ndev = scene_cpu_spec(spec, sizeof spec, 3);
   if (ndev < 2) {
-    printf("split_runs_planes: one CPU device only, not run\n");
+    printf("split_bitwise: one CPU device only, not run\n");
     return;
   }
   const msocl_integrator in = (msocl_integrator)(_i / 3);
@@ -590,27 +632,20 @@ START_TEST(split_runs_planes)
   o.tuning.layout = lay;
   o.check_every = 0;
   o.tuning.overlap = MSOCL_OFF;
-  /* AUTO keeps IMAGE2D in float4 (its texel reads do not vectorise) */
-  if (lay == MSOCL_LAYOUT_IMAGE2D)
-    o.tuning.planes = MSOCL_ON;
   const size_t bytes = 3 * 256 * sizeof(float);
   float *p1 = malloc(bytes), *v1 = malloc(bytes), *p2 = malloc(bytes),
         *v2 = malloc(bytes), *p0 = malloc(bytes);
   msocl_model_get_positions(m, p0);
-  int on1 = -1, on2 = -1;
-  split_run(two, m, &o, 1, 200, p1, v1, &on1);
+  split_run(two, m, &o, 1, 200, p1, v1);
   ck_assert_msg(scene_max_diff(p0, p1, 3 * 256) > 1e-4, "did not move");
   const msocl_choice overlaps[3] = {MSOCL_OFF, MSOCL_AUTO, MSOCL_ON};
   for (int q = 0; q < 3; q++)
     for (int parts = 2; parts <= ndev; parts++) {
       o.tuning.overlap = overlaps[q];
-      split_run(two, m, &o, parts, 200, p2, v2, &on2);
-      ck_assert_msg(on1 == 1 && on2 == 1,
-                    "%s: planes on one device %d, split %d", inames[in], on1,
-                    on2);
+      split_run(two, m, &o, parts, 200, p2, v2);
       ck_assert_msg(memcmp(p1, p2, bytes) == 0 && memcmp(v1, v2, bytes) == 0,
-                    "%s, %s, split in planes over %d, overlap %d: positions "
-                    "differ by %g, velocities by %g",
+                    "%s, %s, split over %d, overlap %d: positions differ "
+                    "by %g, velocities by %g",
                     inames[in], lnames[_i % 3], parts, (int)overlaps[q],
                     scene_max_diff(p1, p2, 3 * 256),
                     scene_max_diff(v1, v2, 3 * 256));
@@ -627,10 +662,10 @@ START_TEST(split_runs_planes)
 END_TEST
 
 /* A 2 x 2 x n lattice pads to 12 x 6 x (n + 4) points a plane: AUTO
- * keeps it in float4 (memory in proportion to its points), forced planes
- * still run; one whose planes pass 2^31 floats is refused when forced,
- * before any allocation (a model with only its grid record: no arrays to
- * allocate from), and AUTO leaves it in float4. */
+ * takes BUFFER for it (memory in proportion to its points), forced GRID
+ * still runs; one whose planes pass 2^31 floats is refused when GRID is
+ * forced, before any allocation (a model with only its grid record: no
+ * arrays to allocate from), and AUTO takes BUFFER for it. */
 START_TEST(skinny_lattice)
 {
   msocl_lattice_desc d;
@@ -651,18 +686,21 @@ START_TEST(skinny_lattice)
                     plane * (14 + 18 + 6) * sizeof(float));
   o.integrator = MSOCL_SYMPLECTIC_EULER;
   o.strain = MSOCL_STRAIN_NONE;
+  o.tuning.layout = MSOCL_LAYOUT_AUTO;
   msocl_sim *s = NULL;
-  int on = -1;
+  msocl_layout kind = MSOCL_LAYOUT_AUTO;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
-  ck_assert_msg(on == 0, "auto took planes of %zu bytes for %d points",
-                msocl__planes_bytes(m, &o), 4 * 20000);
+  ck_assert_int_eq(msocl_sim_layout(s, &kind), MSOCL_OK);
+  ck_assert_msg(kind == MSOCL_LAYOUT_BUFFER,
+                "auto took layout %d, GRID's planes of %zu bytes for %d "
+                "points", (int)kind, msocl__planes_bytes(m, &o), 4 * 20000);
   ck_assert_int_eq(msocl_sim_step(s, 2), MSOCL_OK);
   msocl_sim_destroy(s);
-  o.tuning.planes = MSOCL_ON;
+  o.tuning.layout = MSOCL_LAYOUT_GRID;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-  ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
-  ck_assert_int_eq(on, 1);
+  ck_assert_int_eq(msocl_sim_layout(s, &kind), MSOCL_OK);
+  ck_assert_int_eq(kind, MSOCL_LAYOUT_GRID);
+  ck_assert_int_eq(msocl_sim_step(s, 2), MSOCL_OK);
   msocl_sim_destroy(s);
   msocl_model_destroy(m);
 
@@ -675,9 +713,12 @@ START_TEST(skinny_lattice)
   ck_assert_msg(strstr(msocl_last_error(), "2^31") &&
                     strstr(msocl_last_error(), "2 x 2 x 40000000"),
                 "unclear error: %s", msocl_last_error());
-  o.tuning.planes = MSOCL_AUTO;
+  o.tuning.layout = MSOCL_LAYOUT_AUTO;
   ck_assert_int_eq(msocl__planes_refused(&o, &big, 0, big.n), MSOCL_OK);
-  ck_assert_int_eq(msocl__planes_would(&rt->dev[0], &o, &big, 0, big.n), 0);
+  ck_assert_int_eq(msocl__planes_would(&o, &big, 0, big.n), 0);
+  ck_assert_int_eq(msocl__layout_auto(&rt->dev[0].info, &big,
+                                      msocl__planes_would(&o, &big, 0, big.n)),
+                   MSOCL_LAYOUT_BUFFER);
 }
 END_TEST
 
@@ -769,32 +810,32 @@ static msocl_model *small_ball(void)
   return m;
 }
 
-/* Every integrator and strain limit the planes run: float4 mode, planes
- * mode (make_strained's codes), strain limit. */
+/* Every integrator and strain limit: mode (make_strained's codes),
+ * strain limit. */
 static const struct {
-  int f4, pl;
+  int mode;
   msocl_strain strain;
   const char *what;
 } methods[] = {
-    {0, 1, MSOCL_STRAIN_NONE, "symplectic Euler"},
-    {0, 1, MSOCL_STRAIN_PROVOT, "symplectic Euler, Provot"},
-    {0, 1, MSOCL_STRAIN_VELOCITY, "symplectic Euler, velocity kind"},
-    {0, 2, MSOCL_STRAIN_NONE, "fused"},
-    {0, 2, MSOCL_STRAIN_PROVOT, "fused, Provot"},
-    {-3, 3, MSOCL_STRAIN_NONE, "Verlet"},
-    {-3, 3, MSOCL_STRAIN_PROVOT, "Verlet, Provot"},
-    {-4, 4, MSOCL_STRAIN_NONE, "RK4"},
-    {-4, 4, MSOCL_STRAIN_PROVOT, "RK4, Provot"},
-    {-5, 5, MSOCL_STRAIN_NONE, "implicit Euler"},
-    {-5, 5, MSOCL_STRAIN_PROVOT, "implicit Euler, Provot"},
-    {-5, 5, MSOCL_STRAIN_VELOCITY, "implicit Euler, velocity kind"},
-    {-6, 6, MSOCL_STRAIN_NONE, "explicit Euler"},
-    {-6, 6, MSOCL_STRAIN_PROVOT, "explicit Euler, Provot"},
+    {1, MSOCL_STRAIN_NONE, "symplectic Euler"},
+    {1, MSOCL_STRAIN_PROVOT, "symplectic Euler, Provot"},
+    {1, MSOCL_STRAIN_VELOCITY, "symplectic Euler, velocity kind"},
+    {2, MSOCL_STRAIN_NONE, "fused"},
+    {2, MSOCL_STRAIN_PROVOT, "fused, Provot"},
+    {3, MSOCL_STRAIN_NONE, "Verlet"},
+    {3, MSOCL_STRAIN_PROVOT, "Verlet, Provot"},
+    {4, MSOCL_STRAIN_NONE, "RK4"},
+    {4, MSOCL_STRAIN_PROVOT, "RK4, Provot"},
+    {5, MSOCL_STRAIN_NONE, "implicit Euler"},
+    {5, MSOCL_STRAIN_PROVOT, "implicit Euler, Provot"},
+    {5, MSOCL_STRAIN_VELOCITY, "implicit Euler, velocity kind"},
+    {6, MSOCL_STRAIN_NONE, "explicit Euler"},
+    {6, MSOCL_STRAIN_PROVOT, "explicit Euler, Provot"},
 };
 
 /* Mesh case _i: scene (cloth, lattice, OBJ sheet, ball's wide table,
  * ball spilling; the cloth, sheet and spill also with spring classes)
- * and layout. */
+ * and layout; each held to held_setup's. */
 static const struct {
   int scene;
   msocl_layout layout;
@@ -808,79 +849,88 @@ static const struct {
     {4, MSOCL_LAYOUT_BUFFER, 1},
 };
 
+static void setup_name(struct setup t, char *out, size_t cap)
+{
+  const int image = t.layout == MSOCL_LAYOUT_IMAGE2D;
+  char slots[24] = "";
+  if (!image && t.slots > 0)
+    snprintf(slots, sizeof slots, ", %d slots", t.slots);
+  snprintf(out, cap, "%s%s%s", image ? "IMAGE2D" : "BUFFER", slots,
+           !image && t.classes == 1 ? " with classes" : "");
+}
+
+/* label: scene, tested setup against held setup. */
 static msocl_model *mesh_scene(int q, char *label, size_t cap)
 {
   static const char *const scenes[5] = {"cloth", "lattice", "OBJ sheet",
-                                        "ball", "ball, spilling"};
+                                        "ball", "ball"};
   const int sc = meshes[q].scene;
   const int image = meshes[q].layout == MSOCL_LAYOUT_IMAGE2D;
   msocl_model *m = sc == 0   ? busy_cloth(20, 17)
                    : sc == 1 ? busy_lattice(image)
                    : sc == 2 ? obj_sheet(18, 15)
                              : small_ball();
-  layout_ = meshes[q].layout;
-  classes_ = meshes[q].classes;
+  setup_.layout = meshes[q].layout;
+  setup_.classes = meshes[q].classes;
   /* the ball's hub in the table, or past a table of 8 slots */
-  slots_ = sc == 3 ? 48 : sc == 4 ? 8 : 0;
-  snprintf(label, cap, "%s, %s%s", scenes[sc], image ? "IMAGE2D" : "BUFFER",
-           meshes[q].classes ? " with classes" : "");
+  setup_.slots = sc == 3 ? 48 : sc == 4 ? 8 : 0;
+  char tested[48], held[48];
+  setup_name(setup_, tested, sizeof tested);
+  setup_name(held_setup(m, setup_), held, sizeof held);
+  snprintf(label, cap, "%s, %s against %s", scenes[sc], tested, held);
   return m;
 }
 
 static void mesh_done(msocl_model *m)
 {
-  layout_ = MSOCL_LAYOUT_GRID;
-  classes_ = -1;
-  slots_ = 0;
+  setup_ = (struct setup){MSOCL_LAYOUT_GRID, -1, 0};
   msocl_model_destroy(m);
 }
 
-/* BUFFER and IMAGE2D in planes are bitwise float4's, for every
- * integrator and strain limit, in three calls (the state kept in the
- * planes between them); and the motion was not nothing. */
+/* BUFFER and IMAGE2D are bitwise their held setups, for every integrator
+ * and strain limit, in three calls (the state kept in the planes between
+ * them); and the motion was not nothing. */
 START_TEST(meshes_bitwise)
 {
-  char label[64];
+  char label[128];
   msocl_model *m = mesh_scene(_i, label, sizeof label);
   int degree = 0;
   msocl_model_max_degree(m, &degree);
   float dt;
   ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
   for (size_t q = 0; q < sizeof methods / sizeof methods[0]; q++) {
-    const int in = abs(methods[q].pl);
+    const int in = methods[q].mode;
     const float h = in == 5 ? 2.0f * dt : in == 6 ? 0.1f * dt : 0.5f * dt;
-    struct state f4 = float4_vs_planes(m, methods[q].f4, methods[q].pl, h,
-                                       20, methods[q].strain, label,
-                                       methods[q].what);
-    ck_assert_int_eq(f4.planes, 0);
+    struct state st = held_vs_tested(m, in, h, 20, methods[q].strain, label,
+                                     methods[q].what);
     if (q == 0) {
       double far = 0.0;
-      for (int i = 0; i < f4.n; i++)
-        far = fmax(far, fabs(f4.vel[3 * i + 1]));
+      for (int i = 0; i < st.n; i++)
+        far = fmax(far, fabs(st.vel[3 * i + 1]));
       ck_assert_msg(far > 1e-3, "%s: fastest vertical speed %g m/s", label,
                     far);
     }
-    state_free(&f4);
+    state_free(&st);
   }
-  printf("%s (degree %d): planes bitwise float4 for %zu methods\n", label,
-         degree, sizeof methods / sizeof methods[0]);
+  printf("%s (degree %d): bitwise for %zu methods\n", label, degree,
+         sizeof methods / sizeof methods[0]);
   mesh_done(m);
 }
 END_TEST
 
 /* Writes between calls reach BUFFER's and IMAGE2D's planes, as GRID's
- * (writes_between_calls): symplectic Euler and Verlet. */
+ * (writes_between_calls): symplectic Euler and Verlet, each bitwise its
+ * held setup after the same writes. */
 START_TEST(mesh_writes_between_calls)
 {
-  char label[64];
+  char label[128];
   msocl_model *m = mesh_scene(_i == 0 ? 5 : 7, label, sizeof label);
   float dt;
   ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
   dt *= 0.5f;
-  const int modes[4] = {0, 1, -3, 3};
   struct state out[4];
   for (int q = 0; q < 4; q++) {
-    msocl_sim *s = make(m, modes[q], MSOCL_MATH_PRECISE, dt);
+    msocl_sim *s = make(m, q % 2 == 0, q < 2 ? 1 : 3, MSOCL_MATH_PRECISE, dt);
     ck_assert_int_eq(msocl_sim_step(s, 30), MSOCL_OK);
     struct state mid = read_state(s);
     for (int i = 0; i < mid.n; i++) {
@@ -892,7 +942,6 @@ START_TEST(mesh_writes_between_calls)
     ck_assert_int_eq(msocl_sim_write_velocities(s, mid.vel), MSOCL_OK);
     ck_assert_int_eq(msocl_sim_step(s, 30), MSOCL_OK);
     out[q] = read_state(s);
-    ck_assert_int_eq(out[q].planes, modes[q] > 0);
     state_free(&mid);
     msocl_sim_destroy(s);
   }
@@ -904,7 +953,8 @@ START_TEST(mesh_writes_between_calls)
 }
 END_TEST
 
-/* AUTO runs every layout in planes, IMAGE2D too (the one engine). */
+/* A mesh gets BUFFER from AUTO, and runs on it as on forced BUFFER and
+ * IMAGE2D. */
 START_TEST(auto_meshes)
 {
   msocl_model *m = obj_sheet(12, 10);
@@ -915,10 +965,12 @@ START_TEST(auto_meshes)
   for (int q = 0; q < 3; q++) {
     o.tuning.layout = kinds[q];
     msocl_sim *s = NULL;
-    int on = -1;
+    msocl_layout kind = MSOCL_LAYOUT_AUTO;
     ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-    ck_assert_int_eq(msocl_sim_planes(s, &on), MSOCL_OK);
-    ck_assert_int_eq(on, 1);
+    ck_assert_int_eq(msocl_sim_layout(s, &kind), MSOCL_OK);
+    ck_assert_int_eq(kind, q == 0 ? MSOCL_LAYOUT_BUFFER : kinds[q]);
+    int rc = msocl_sim_step(s, 5);
+    ck_assert_msg(rc == MSOCL_OK, "%s", msocl_last_error());
     msocl_sim_destroy(s);
   }
   msocl_model_destroy(m);
@@ -926,7 +978,7 @@ START_TEST(auto_meshes)
 END_TEST
 
 /* The one-sweep symplectic Euler (lib/engine/planes_rows.c: rows of at
- * least 16 points) is bitwise float4's, two passes or fused: rows a
+ * least 16 points) is bitwise BUFFER's, two passes or fused: rows a
  * vector wide, one more, two rows (the least a cloth has), three, many
  * rows a work-item; each collider kind alone, all three, none; pins at
  * corners and along the edges; dashpots on every other case; and a grid
@@ -988,53 +1040,52 @@ START_TEST(rows_bitwise)
   float dt;
   ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
   dt *= 0.5f;
-  struct state f4 = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 400);
-  struct state pl = run(m, 1, MSOCL_MATH_PRECISE, dt, 4, 100);
-  struct state fu = run(m, 2, MSOCL_MATH_PRECISE, dt, 57, 7);
+  struct state bu = run(m, 1, 1, MSOCL_MATH_PRECISE, dt, 1, 400);
+  struct state gr = run(m, 0, 1, MSOCL_MATH_PRECISE, dt, 4, 100);
+  struct state fu = run(m, 0, 2, MSOCL_MATH_PRECISE, dt, 57, 7);
   char what[96];
   snprintf(what, sizeof what,
            "%d x %d cloth, colliders %d, pins %d, dashpots %d",
            rows_cases[_i].nx, rows_cases[_i].ny, rows_cases[_i].colliders,
            rows_cases[_i].pins, _i % 2);
-  ck_assert_int_eq(pl.planes, 1);
-  assert_bitwise(&f4, &pl, what);
-  struct state f4b = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 399);
-  assert_bitwise(&f4b, &fu, what);
+  assert_bitwise(&bu, &gr, what);
+  struct state bub = run(m, 1, 1, MSOCL_MATH_PRECISE, dt, 1, 399);
+  assert_bitwise(&bub, &fu, what);
   double far = 0.0;
-  for (int i = 0; i < f4.n; i++)
-    far = fmax(far, fabs(f4.vel[3 * i + 1]));
+  for (int i = 0; i < bu.n; i++)
+    far = fmax(far, fabs(bu.vel[3 * i + 1]));
   ck_assert_msg(far > 0.01, "%s: fastest vertical speed %g m/s", what, far);
-  state_free(&f4);
-  state_free(&f4b);
-  state_free(&pl);
+  state_free(&bu);
+  state_free(&bub);
+  state_free(&gr);
   state_free(&fu);
   msocl_model_destroy(m);
 }
 END_TEST
 
 /* Dashpotted cloth in the sweep (the hanging cloth, 48 points a row) is
- * bitwise BUFFER's, in float4 and in its planes passes, after 200
- * symplectic steps that swing it. */
+ * bitwise BUFFER's, and BUFFER in calls bitwise IMAGE2D in one, after
+ * 200 symplectic steps that swing it. */
 START_TEST(rows_dashpots_buffer)
 {
   msocl_model *m = scene_hanging(48);
   const float dt = scene_tablecloth_dt(48);
-  struct state g = run(m, 1, MSOCL_MATH_PRECISE, dt, 4, 50);
-  layout_ = MSOCL_LAYOUT_BUFFER;
-  struct state b4 = run(m, 0, MSOCL_MATH_PRECISE, dt, 1, 200);
-  struct state bp = run(m, 1, MSOCL_MATH_PRECISE, dt, 2, 100);
-  layout_ = MSOCL_LAYOUT_GRID;
-  ck_assert_int_eq(g.planes, 1);
-  ck_assert_int_eq(bp.planes, 1);
-  assert_bitwise(&b4, &g, "hanging cloth, GRID's sweep against BUFFER");
-  assert_bitwise(&b4, &bp, "hanging cloth, BUFFER's planes");
+  struct state g = run(m, 0, 1, MSOCL_MATH_PRECISE, dt, 4, 50);
+  struct state b = run(m, 1, 1, MSOCL_MATH_PRECISE, dt, 1, 200);
+  setup_.layout = MSOCL_LAYOUT_BUFFER;
+  struct state bp = run(m, 0, 1, MSOCL_MATH_PRECISE, dt, 2, 100);
+  struct state im = run(m, 1, 1, MSOCL_MATH_PRECISE, dt, 1, 200);
+  setup_.layout = MSOCL_LAYOUT_GRID;
+  assert_bitwise(&b, &g, "hanging cloth, GRID's sweep against BUFFER");
+  assert_bitwise(&im, &bp, "hanging cloth, BUFFER against IMAGE2D");
   double far = 0.0;
   for (int i = 0; i < g.n; i++)
     far = fmax(far, fabs(g.vel[3 * i + 1]));
   ck_assert_msg(far > 0.1, "fastest vertical speed %g m/s", far);
   state_free(&g);
-  state_free(&b4);
+  state_free(&b);
   state_free(&bp);
+  state_free(&im);
   msocl_model_destroy(m);
 }
 END_TEST
@@ -1069,7 +1120,7 @@ int main(void)
   TCase *split = tcase_create("split");
   tcase_add_checked_fixture(split, scene_setup_cpu, scene_teardown);
   tcase_set_timeout(split, 300);
-  tcase_add_loop_test(split, split_runs_planes, 0, 15);
+  tcase_add_loop_test(split, split_bitwise, 0, 15);
   suite_add_tcase(su, split);
   TCase *rows = tcase_create("rows");
   tcase_add_checked_fixture(rows, scene_setup_cpu, scene_teardown);

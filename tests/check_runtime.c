@@ -340,8 +340,7 @@ START_TEST(test_tuning_zero_is_auto) {
                      mass[4] = {1, 1, 1, 1};
   static const int ij[8] = {0, 1, 1, 2, 2, 3, 3, 0};
   static const float k[4] = {10, 10, 10, 10};
-  static const char *names[5] = {"fused", "renumber", "overlap", "classes",
-                                 "planes"};
+  static const char *names[4] = {"fused", "renumber", "overlap", "classes"};
   const msocl_tuning zero = {0};
   msocl_sim_options o;
   msocl_sim_options_init(&o);
@@ -355,18 +354,16 @@ START_TEST(test_tuning_zero_is_auto) {
   ck_assert_int_eq(msocl_model_create(&m), MSOCL_OK);
   ck_assert_int_eq(msocl_model_add_points(m, 4, xyz, mass, NULL), MSOCL_OK);
   ck_assert_int_eq(msocl_model_add_springs(m, 4, ij, k, NULL, NULL), MSOCL_OK);
-  for (int f = 0; f < 5; f++) {
+  for (int f = 0; f < 4; f++) {
     static const int values[5] = {MSOCL_AUTO, MSOCL_ON, MSOCL_OFF, 3, -1};
     for (int q = 0; q < 5; q++) {
       msocl_sim_options_init(&o);
-      msocl_choice *c[5] = {&o.tuning.fused, &o.tuning.renumber,
-                            &o.tuning.overlap, &o.tuning.classes,
-                            &o.tuning.planes};
+      msocl_choice *c[4] = {&o.tuning.fused, &o.tuning.renumber,
+                            &o.tuning.overlap, &o.tuning.classes};
       *c[f] = (msocl_choice)values[q];
       msocl_sim *s = NULL;
       int rc = msocl_sim_create(&s, rt, m, &o);
-      /* every choice applies to a ring of four points (BUFFER, which
-       * runs in planes too) */
+      /* every choice applies to a ring of four points (BUFFER) */
       const int want = q > 2 ? MSOCL_ERR_BAD_VALUE : MSOCL_OK;
       ck_assert_msg(rc == want, "%s = %d: got %s (%s)", names[f], values[q],
                     msocl_err_name(rc), msocl_last_error());

@@ -18,7 +18,7 @@ enum { N = 16, P = N * N };
 
 static msocl_sim *sim_in(const msocl_model *m, float dt, msocl_layout l)
 {
-  return scene_sim(m, MSOCL_SYMPLECTIC_EULER, dt, l, MSOCL_ON, -1);
+  return scene_sim(m, MSOCL_SYMPLECTIC_EULER, dt, l, -1);
 }
 
 static msocl_sim *sim_of(const msocl_model *m, float dt)

@@ -567,21 +567,23 @@ static msocl_model *at_rest(int kind)
 static const char *const rest_kinds[] = {"free", "on a plane",
                                          "on a sphere"};
 
-/* The ways a scene at rest runs: integrators, the float4 engine beside
- * the planes, and a split over two devices. */
+/* The ways a scene at rest runs: integrators, BUFFER beside the layout
+ * AUTO takes, and a split over two devices. */
 struct rest_run {
   const char *what;
   msocl_integrator in;
-  msocl_choice planes;
+  msocl_layout layout;
   int ndevices;
 };
 static const struct rest_run rest_runs[] = {
-    {"symplectic Euler", MSOCL_SYMPLECTIC_EULER, MSOCL_AUTO, 1},
-    {"symplectic Euler, float4", MSOCL_SYMPLECTIC_EULER, MSOCL_OFF, 1},
-    {"Verlet", MSOCL_VERLET, MSOCL_AUTO, 1},
-    {"RK4", MSOCL_RK4, MSOCL_AUTO, 1},
-    {"implicit Euler", MSOCL_IMPLICIT_EULER, MSOCL_AUTO, 1},
-    {"symplectic Euler, two devices", MSOCL_SYMPLECTIC_EULER, MSOCL_OFF, 2},
+    {"symplectic Euler", MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_AUTO, 1},
+    {"symplectic Euler, BUFFER", MSOCL_SYMPLECTIC_EULER, MSOCL_LAYOUT_BUFFER,
+     1},
+    {"Verlet", MSOCL_VERLET, MSOCL_LAYOUT_AUTO, 1},
+    {"RK4", MSOCL_RK4, MSOCL_LAYOUT_AUTO, 1},
+    {"implicit Euler", MSOCL_IMPLICIT_EULER, MSOCL_LAYOUT_AUTO, 1},
+    {"symplectic Euler, two devices", MSOCL_SYMPLECTIC_EULER,
+     MSOCL_LAYOUT_AUTO, 2},
 };
 #define REST_RUNS (int)(sizeof rest_runs / sizeof rest_runs[0])
 
@@ -619,7 +621,7 @@ START_TEST(at_rest_no_false_alarm)
   msocl_sim_options_init(&o);
   o.dt = 0.5f * limit;
   o.integrator = r->in;
-  o.tuning.planes = r->planes;
+  o.tuning.layout = r->layout;
   o.tuning.ndevices = r->ndevices;
   msocl_sim *s = NULL;
   int rc = msocl_sim_create(&s, rt, m, &o);
@@ -702,8 +704,8 @@ static msocl_sim *perturbed_split(const msocl_model *m, float dt, int parts)
  * own pins, say: here the positions it read, every 10 steps) is checked
  * all the same: at 1.2x the stable step the call that completes step 50
  * reports the blow-up and leaves a finite state, where every call used
- * to return MSOCL_OK until a write met the NaNs. On one device (in
- * planes) and split over two (_i). */
+ * to return MSOCL_OK until a write met the NaNs. On one device and split
+ * over two (_i). */
 START_TEST(frame_loop_checked)
 {
   msocl_model *m = grid();
@@ -781,7 +783,7 @@ END_TEST
  * loop swings by hand, lifted 0.5 m every 10 steps (200 m in all, over
  * the bound's 100 x m g extent = 140 m of lift) and its velocities halved
  * every 100 steps, runs 4000 steps without MSOCL_ERR_UNSTABLE, on one
- * device (in planes) and split over two (_i). */
+ * device and split over two (_i). */
 START_TEST(writes_do_work)
 {
   if (_i + 1 > rest_devices()) {

@@ -102,17 +102,17 @@ START_TEST(draped_within_limit)
 END_TEST
 
 /* Runs the device and the reference `steps` steps from model m with
- * options o; returns the largest position difference (m). planes: what
- * msocl_sim_planes says of the device's run. */
+ * options o; returns the largest position difference (m). layout: the
+ * device run's. */
 static double device_minus_reference(const msocl_model *m,
                                      const msocl_sim_options *o, int steps,
-                                     int *planes)
+                                     msocl_layout *layout)
 {
   msocl_sim *s = NULL;
   msocl_reference *r = NULL;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, o), MSOCL_OK);
   ck_assert_int_eq(msocl_reference_create(&r, m, o), MSOCL_OK);
-  ck_assert_int_eq(msocl_sim_planes(s, planes), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_layout(s, layout), MSOCL_OK);
   ck_assert_int_eq(msocl_sim_step(s, steps), MSOCL_OK);
   ck_assert_int_eq(msocl_reference_step(r, steps), MSOCL_OK);
   float *p = malloc(3 * (size_t)m->n * sizeof *p);
@@ -138,8 +138,8 @@ START_TEST(matches_reference)
   msocl_sim_options_init(&o);
   o.dt = 0.5f * dt;
   o.strain = (msocl_strain)_i;
-  int planes;
-  double worst = device_minus_reference(m, &o, 60, &planes);
+  msocl_layout layout;
+  double worst = device_minus_reference(m, &o, 60, &layout);
   printf("strain limiting %s: max |device - reference| %.3g m\n", names[_i],
          worst);
   ck_assert_double_le(worst, 1e-5);
@@ -149,7 +149,7 @@ END_TEST
 
 /* Verlet takes Provot's correction between its drift and its kick, RK4
  * after its step: both as the reference does, on the hanging cloth (no
- * contact, so the two stay close for long), in float4 and in planes. */
+ * contact, so the two stay close for long), on GRID and on BUFFER. */
 START_TEST(verlet_rk4_match_reference)
 {
   msocl_model *m = scene_hanging(16);
@@ -161,14 +161,13 @@ START_TEST(verlet_rk4_match_reference)
   o.integrator = _i & 1 ? MSOCL_RK4 : MSOCL_VERLET;
   o.strain = MSOCL_STRAIN_PROVOT;
   o.strain_iterations = 3;
-  o.tuning.layout = MSOCL_LAYOUT_GRID;
-  o.tuning.planes = _i >> 1 ? MSOCL_ON : MSOCL_OFF;
-  int planes;
-  double worst = device_minus_reference(m, &o, 200, &planes);
-  ck_assert_int_eq(planes, _i >> 1);
-  printf("Provot with %s in %s, hanging cloth: max |device - reference| "
+  o.tuning.layout = _i >> 1 ? MSOCL_LAYOUT_BUFFER : MSOCL_LAYOUT_GRID;
+  msocl_layout layout;
+  double worst = device_minus_reference(m, &o, 200, &layout);
+  ck_assert_int_eq(layout, o.tuning.layout);
+  printf("Provot with %s on %s, hanging cloth: max |device - reference| "
          "%.3g m\n",
-         _i & 1 ? "RK4" : "Verlet", planes ? "planes" : "float4", worst);
+         _i & 1 ? "RK4" : "Verlet", _i >> 1 ? "BUFFER" : "GRID", worst);
   ck_assert_double_le(worst, 1e-5);
   msocl_model_destroy(m);
 }

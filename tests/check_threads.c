@@ -15,16 +15,16 @@
 #define THREADS 4
 #define ROUNDS 2
 
-/* Layouts and engines whose kernels build with different options, so the
+/* Layouts and options whose kernels build with different options, so the
  * threads build several programs at once as well as the same one. */
 static const struct config {
   msocl_layout layout;
-  msocl_choice planes, fused;
+  msocl_choice fused;
 } configs[] = {
-    {MSOCL_LAYOUT_GRID, MSOCL_ON, MSOCL_OFF},
-    {MSOCL_LAYOUT_GRID, MSOCL_OFF, MSOCL_OFF},
-    {MSOCL_LAYOUT_BUFFER, MSOCL_OFF, MSOCL_OFF},
-    {MSOCL_LAYOUT_BUFFER, MSOCL_OFF, MSOCL_ON},
+    {MSOCL_LAYOUT_GRID, MSOCL_OFF},
+    {MSOCL_LAYOUT_IMAGE2D, MSOCL_OFF},
+    {MSOCL_LAYOUT_BUFFER, MSOCL_OFF},
+    {MSOCL_LAYOUT_BUFFER, MSOCL_ON},
 };
 #define NCONFIGS (int)(sizeof configs / sizeof configs[0])
 
@@ -38,7 +38,6 @@ static int run(msocl_runtime *rt, int c, float *xyz)
   msocl_sim_options_init(&o);
   o.dt = scene_tablecloth_dt(N);
   o.tuning.layout = configs[c].layout;
-  o.tuning.planes = configs[c].planes;
   o.tuning.fused = configs[c].fused;
   msocl_sim *s = NULL;
   int rc = m ? msocl_sim_create(&s, rt, m, &o) : MSOCL_ERR_NO_MEMORY;

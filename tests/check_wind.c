@@ -37,7 +37,6 @@ static msocl_sim *sim_of(const msocl_model *m, msocl_layout layout,
   o.dt = dt;
   o.integrator = in;
   o.tuning.layout = layout;
-  o.tuning.planes = MSOCL_ON;
   msocl_sim *s = NULL;
   ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK, "%s",
                 msocl_last_error());
@@ -172,7 +171,7 @@ static void positions_after(const msocl_model *m, msocl_layout layout,
   msocl_sim_destroy(s);
 }
 
-/* GRID, BUFFER and IMAGE2D in planes keep one result with wind. */
+/* GRID, BUFFER and IMAGE2D keep one result with wind. */
 START_TEST(layouts_bitwise)
 {
   msocl_wind w;
@@ -388,17 +387,8 @@ START_TEST(bad_input)
   w.drag = NAN;
   ck_assert_int_eq(msocl_reference_set_wind(r, &w), MSOCL_ERR_NOT_FINITE);
   msocl_reference_destroy(r);
-  /* the float4 engine */
-  msocl_sim_options o;
-  msocl_sim_options_init(&o);
-  o.dt = 1e-3f;
-  o.tuning.planes = MSOCL_OFF;
-  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
-  msocl_wind_init(&w);
-  ck_assert_int_eq(msocl_sim_set_wind(s, &w), MSOCL_ERR_BAD_VALUE);
-  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "planes"));
-  msocl_sim_destroy(s);
   msocl_model_destroy(m);
+  msocl_wind_init(&w);
   /* a chain: springs, no triangles */
   const float xyz[9] = {0, 0, 0, 0.1f, 0, 0, 0.2f, 0, 0}, mass[3] = {1, 1, 1};
   const int ij[4] = {0, 1, 1, 2};

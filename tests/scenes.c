@@ -222,8 +222,7 @@ int scene_icosphere(int level, double radius, const double centre[3],
 }
 
 msocl_sim *scene_sim(const msocl_model *m, msocl_integrator in, float dt,
-                     msocl_layout layout, msocl_choice planes,
-                     int check_every)
+                     msocl_layout layout, int check_every)
 {
   msocl_sim_options o;
   msocl_sim_options_init(&o);
@@ -232,7 +231,6 @@ msocl_sim *scene_sim(const msocl_model *m, msocl_integrator in, float dt,
   if (check_every >= 0)
     o.check_every = check_every;
   o.tuning.layout = layout;
-  o.tuning.planes = planes;
   msocl_sim *s = NULL;
   ck_assert_msg(msocl_sim_create(&s, scene_rt, m, &o) == MSOCL_OK, "%s",
                 msocl_last_error());

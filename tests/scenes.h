@@ -49,12 +49,11 @@ int scene_icosphere(int level, double radius, const double centre[3],
                     float **verts, int **tris, int *ntri);
 
 /* A simulation of m on scene_rt (scene_setup_cpu's runtime): integrator
- * in, step dt, layout, planes engine choice; check_every >= 0 sets the
+ * in, step dt, layout; check_every >= 0 sets the
  * blow-up check's period (0: off), < 0 keeps its default. Fails the test,
  * with the library's message, if it cannot be made. */
 msocl_sim *scene_sim(const msocl_model *m, msocl_integrator in, float dt,
-                     msocl_layout layout, msocl_choice planes,
-                     int check_every);
+                     msocl_layout layout, int check_every);
 
 /* max |a - b| over n floats. */
 double scene_max_diff(const float *a, const float *b, int n);

@@ -1,5 +1,5 @@
 /* The conjugate gradients of an implicit Euler step, run on the host over
- * the engines' operations (schedule.h: float4 or planes), on one engine or
+ * the engines' operations (schedule.h), on one engine or
  * over a split: each dot product's partials are added up here in double,
  * engine by engine in point order, so a split sums as one engine does. */
 #include "config.h"
@@ -9,10 +9,7 @@
 
 #define TRY MSOCL__TRY
 
-static const struct msocl__cg_ops *ops(const msocl__engine *s)
-{
-  return s->planes ? &msocl__planes_cg : &msocl__float4_cg;
-}
+static const struct msocl__cg_ops *const ops = &msocl__planes_cg;
 
 enum { RHS, APPLY, STEP };
 
@@ -23,13 +20,12 @@ static int reduce_all(msocl__engine *const *e, int parts, int which,
 {
   *sum = 0.0;
   for (int d = 0; d < parts; d++) {
-    const struct msocl__cg_ops *o = ops(e[d]);
-    TRY(which == RHS     ? o->rhs(e[d])
-        : which == APPLY ? o->apply(e[d])
-                         : o->step(e[d], alpha));
+    TRY(which == RHS     ? ops->rhs(e[d])
+        : which == APPLY ? ops->apply(e[d])
+                         : ops->step(e[d], alpha));
   }
   for (int d = 0; d < parts; d++)
-    TRY(ops(e[d])->collect(e[d], sum));
+    TRY(ops->collect(e[d], sum));
   return MSOCL_OK;
 }
 
@@ -65,7 +61,7 @@ int msocl__implicit_cg(msocl__engine *const *e, int parts,
       break; /* p = 0 or a non-SPD round-off: x is as good as it gets */
     TRY(reduce_all(e, parts, STEP, (float)(rr / pap), &rr_new));
     for (int d = 0; d < parts; d++)
-      TRY(ops(e[d])->direction(e[d], (float)(rr_new / rr)));
+      TRY(ops->direction(e[d], (float)(rr_new / rr)));
     if (exchange)
       TRY(exchange(ctx));
     rr = rr_new;
@@ -76,7 +72,7 @@ int msocl__implicit_cg(msocl__engine *const *e, int parts,
     s->cg_iterations = it;
     s->cg_residual = bb > 0.0 ? sqrt(rr / bb) : 0.0;
     cg_note(s, rr <= goal); /* NaN: not converged */
-    TRY(ops(s)->finish(s));
+    TRY(ops->finish(s));
   }
   return MSOCL_OK;
 }

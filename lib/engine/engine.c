@@ -1,5 +1,6 @@
-/* A model on one device: state buffers, the two passes per step with
- * ping-pong buffers, and reading and writing of the state. */
+/* A model on one device: the state the host reads and writes, the
+ * program built for the model's features, and the planes engine that
+ * steps it (planes.c). */
 #include "config.h"
 #include "planes.h"
 
@@ -40,12 +41,11 @@ static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
   cl_device_fp_config fp = 0;
   clGetDeviceInfo(s->dev->id, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp,
                   NULL);
-  /* GRID in planes: its kernels, with the colliders' loop unrolled */
-  char planes[80] = "";
-  if (s->planes)
-    snprintf(planes, sizeof planes,
-             " -DMSOCL_PLANES -DMSOCL_NCOL=%d -DMSOCL_GRID_KINDS=%d", ncol,
-             s->opt_grid_kinds);
+  /* the planes' kernels, with the colliders' loop unrolled */
+  char planes[80];
+  snprintf(planes, sizeof planes,
+           " -DMSOCL_PLANES -DMSOCL_NCOL=%d -DMSOCL_GRID_KINDS=%d", ncol,
+           s->opt_grid_kinds);
 #define KIND(k) (kinds & (1u << (k)))
   /* EDGES holds BUFFER's table (layout.c) */
   int len = snprintf(
@@ -120,7 +120,7 @@ static int make_buffers(msocl__engine *s, const msocl_model *m)
     col[8 * c + 1] = m->col[c].friction;
     memcpy(col + 8 * c + 4, m->col[c].p, 4 * sizeof(float));
     memcpy(s->pl_colx + 8 * c, m->col[c].x, sizeof m->col[c].x);
-    s->pl_shapes |= MSOCL__PLANES_ONLY_KIND(m->col[c].kind);
+    s->pl_shapes |= MSOCL__SHAPE_KIND(m->col[c].kind);
   }
   /* Each triangle (a, b, c) lists (b, c) at a, (c, a) at b, (a, b) at c:
    * the same winding at every corner. */
@@ -154,21 +154,9 @@ static int make_buffers(msocl__engine *s, const msocl_model *m)
   s->tri_off = buffer(s, CL_MEM_READ_ONLY, (n + 1) * sizeof *off, off, &rc);
   s->tri_ab = buffer(s, CL_MEM_READ_ONLY,
                      (size_t)(2 * 3 * m->nt + 2) * sizeof *ab, ab, &rc);
-  /* Scratch only where the integrator and options use it. */
-  const msocl_integrator in = s->o.integrator;
-  if (in == MSOCL_VERLET)
+  /* Verlet's first acceleration, from the state as the host wrote it */
+  if (s->o.integrator == MSOCL_VERLET)
     s->acc = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
-  if (in == MSOCL_RK4 || in == MSOCL_IMPLICIT_EULER ||
-      s->o.strain != MSOCL_STRAIN_NONE) {
-    for (int k = 0; k < 2; k++) {
-      s->stage_p[k] = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
-      s->stage_v[k] = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
-    }
-  }
-  if (in == MSOCL_RK4) {
-    s->sum_p = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
-    s->sum_v = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
-  }
   if (s->o.check_every > 0) {
     s->backup_p = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
     s->backup_v = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
@@ -192,56 +180,14 @@ out:
   return rc;
 }
 
-/* Kernels by enum index; NULL: not a kernel of the library's program. */
+/* Kernels by enum index; all three gather but the normals. */
 static const char *const kernel_names[MSOCL__K_COUNT] = {
-    "msocl_velocity",   "msocl_position",   "msocl_normals",
-    "msocl_euler",      "msocl_accel",      "msocl_verlet_drift",
-    "msocl_verlet_kick", "msocl_rk4_stage", "msocl_energy",
-    "msocl_ie_rhs",     "msocl_ie_apply",   "msocl_cg_step",
-    "msocl_cg_direction", "msocl_ie_finish", "msocl_strain_velocity",
-    "msocl_strain_position", "msocl_strain_commit", "msocl_fused"};
+    "msocl_normals", "msocl_accel", "msocl_energy"};
 
-/* Kernels that read a point's springs take the connectivity first. */
-static const unsigned char gathers[MSOCL__K_COUNT] = {
-    [MSOCL__K_VELOCITY] = 1, [MSOCL__K_EULER] = 1,  [MSOCL__K_ACCEL] = 1,
-    [MSOCL__K_KICK] = 1,     [MSOCL__K_RK4] = 1,    [MSOCL__K_ENERGY] = 1,
-    [MSOCL__K_IE_RHS] = 1,   [MSOCL__K_IE_APPLY] = 1,
-    [MSOCL__K_STRAIN_VEL] = 1, [MSOCL__K_STRAIN_POS] = 1,
-    [MSOCL__K_FUSED] = 1};
-
-/* Creates just the kernels the chosen integrator and options use. */
+/* Creates the float4 kernels the model uses. */
 static int make_kernels(msocl__engine *s, cl_program prog)
 {
-  int want[MSOCL__K_COUNT] = {0};
-  want[MSOCL__K_NORMALS] = want[MSOCL__K_ENERGY] = 1;
-  switch (s->o.integrator) {
-  case MSOCL_SYMPLECTIC_EULER:
-    if (s->o.tuning.fused == MSOCL_ON) {
-      want[MSOCL__K_FUSED] = 1;
-    } else {
-      want[MSOCL__K_VELOCITY] = 1;
-    }
-    want[MSOCL__K_POSITION] = 1;
-    break;
-  case MSOCL_EXPLICIT_EULER:
-    want[MSOCL__K_EULER] = 1;
-    break;
-  case MSOCL_VERLET:
-    want[MSOCL__K_ACCEL] = want[MSOCL__K_DRIFT] = want[MSOCL__K_KICK] = 1;
-    break;
-  case MSOCL_RK4:
-    want[MSOCL__K_RK4] = 1;
-    break;
-  case MSOCL_IMPLICIT_EULER:
-    want[MSOCL__K_IE_RHS] = want[MSOCL__K_IE_APPLY] = 1;
-    want[MSOCL__K_CG_STEP] = want[MSOCL__K_CG_DIR] = 1;
-    want[MSOCL__K_IE_FINISH] = want[MSOCL__K_POSITION] = 1;
-    break;
-  }
-  if (s->o.strain == MSOCL_STRAIN_VELOCITY)
-    want[MSOCL__K_STRAIN_VEL] = 1;
-  if (s->o.strain == MSOCL_STRAIN_PROVOT)
-    want[MSOCL__K_STRAIN_POS] = want[MSOCL__K_STRAIN_COMMIT] = 1;
+  int want[MSOCL__K_COUNT] = {1, s->o.integrator == MSOCL_VERLET, 1};
   for (int q = 0; q < MSOCL__K_COUNT; q++) {
     if (!want[q])
       continue;
@@ -250,7 +196,7 @@ static int make_kernels(msocl__engine *s, cl_program prog)
     if (e != CL_SUCCESS)
       return msocl__fail(e, "clCreateKernel(%s): %s", kernel_names[q],
                          msocl_err_name(e));
-    if (gathers[q]) {
+    if (q != MSOCL__K_NORMALS) {
       int rc = msocl__layout_set_args(&s->lay, s->k[q], &s->nconn);
       if (rc != MSOCL_OK)
         return rc;
@@ -307,22 +253,18 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     goto fail;
   }
   rc = msocl__adjacency_build(m, &adj);
-  /* AUTO takes GRID for a lattice only where it would run in planes */
+  /* AUTO takes GRID only where its padded planes fit */
   msocl_layout kind = o->tuning.layout;
   if (kind == MSOCL_LAYOUT_AUTO)
     kind = msocl__layout_auto(&dev->info, m,
-                              msocl__planes_would(dev, o, m, lo, hi));
+                              msocl__planes_would(o, m, lo, hi));
   if (rc == MSOCL_OK)
     rc = msocl__layout_create(s->dev, m, &adj, kind, o->tuning.buffer_slots,
                               o->tuning.classes, &s->lay);
   if (rc == MSOCL_OK)
-    rc = make_buffers(s, m);
+    rc = msocl__planes_fit(s);
   if (rc == MSOCL_OK)
-    rc = msocl__planes_choose(s, m);
-  if (rc == MSOCL_OK && s->pl_shapes && !s->planes)
-    rc = msocl__fail(MSOCL_ERR_BAD_VALUE,
-                     "capsule and box colliders need the planes engine "
-                     "(tuning.planes, one device, not EDGES)");
+    rc = make_buffers(s, m);
   char opt[512];
   cl_program prog = NULL;
   if (rc == MSOCL_OK) {
@@ -340,7 +282,7 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     rc = msocl__wind_create(s, m, prog);
   if (rc == MSOCL_OK)
     rc = msocl__field_create(s, prog);
-  if (rc == MSOCL_OK && s->planes && s->o.integrator == MSOCL_IMPLICIT_EULER)
+  if (rc == MSOCL_OK && s->o.integrator == MSOCL_IMPLICIT_EULER)
     rc = msocl__pl_implicit_args(s); /* planes_implicit.c's kernels */
   if (rc == MSOCL_OK)
     rc = msocl__integrate_setup(s);
@@ -368,11 +310,10 @@ void msocl__engine_destroy(msocl__engine *s)
   for (int q = 0; q < MSOCL__K_COUNT; q++)
     if (s->k[q])
       clReleaseKernel(s->k[q]);
-  cl_mem mems[] = {s->pos[0],     s->pos[1],     s->vel[0],     s->vel[1],
-                   s->inv_mass,   s->col,        s->normal,     s->tri_off,
-                   s->tri_ab,     s->acc,        s->stage_p[0], s->stage_p[1],
-                   s->stage_v[0], s->stage_v[1], s->sum_p,      s->sum_v,
-                   s->backup_p,   s->backup_v,   s->partial};
+  cl_mem mems[] = {s->pos[0],   s->pos[1],    s->vel[0],    s->vel[1],
+                   s->inv_mass, s->col,       s->normal,    s->tri_off,
+                   s->tri_ab,   s->acc,       s->backup_p,  s->backup_v,
+                   s->partial};
   for (size_t q = 0; q < sizeof mems / sizeof mems[0]; q++)
     if (mems[q])
       clReleaseMemObject(mems[q]);
@@ -436,8 +377,8 @@ int msocl__engine_terms(msocl__engine *s, int viscous, int air)
     s->opt_model = was;
     return rc;
   }
-  /* the float4 kernels too: Verlet's acceleration is recomputed by
-   * msocl_accel when the forces change (sim_controls.c) */
+  /* the float4 kernels too: Verlet's first acceleration and the energy
+   * read the forces */
   MSOCL__CL(clFinish(s->dev->queue));
   for (int q = 0; q < MSOCL__K_COUNT; q++)
     if (s->k[q]) {

@@ -1,6 +1,6 @@
 /* An engine: a whole copy of the model on one device, advancing the points
  * of its own range. Shared by the files that set it up (engine.c), step it
- * (schedule.c, integrate*.c, strain.c, planes*.c, cg.c) and
+ * (schedule.c, integrate.c, planes*.c, cg.c) and
  * measure it (energy.c); the simulation (sim.h) joins engines. */
 #ifndef MSOCL_ENGINE_H
 #define MSOCL_ENGINE_H
@@ -8,13 +8,9 @@
 #include "layout.h"
 
 /* Kernels the library's program holds; the enum indexes msocl__engine.k. */
-enum {
-  MSOCL__K_VELOCITY, MSOCL__K_POSITION, MSOCL__K_NORMALS, MSOCL__K_EULER,
-  MSOCL__K_ACCEL, MSOCL__K_DRIFT, MSOCL__K_KICK, MSOCL__K_RK4,
-  MSOCL__K_ENERGY, MSOCL__K_IE_RHS, MSOCL__K_IE_APPLY, MSOCL__K_CG_STEP,
-  MSOCL__K_CG_DIR, MSOCL__K_IE_FINISH, MSOCL__K_STRAIN_VEL,
-  MSOCL__K_STRAIN_POS, MSOCL__K_STRAIN_COMMIT, MSOCL__K_FUSED, MSOCL__K_COUNT
-};
+/* Beside the planes' kernels (planes.h), three read the float4 state the
+ * host sees: the normals, Verlet's first acceleration and the energy. */
+enum { MSOCL__K_NORMALS, MSOCL__K_ACCEL, MSOCL__K_ENERGY, MSOCL__K_COUNT };
 
 typedef struct msocl__engine msocl__engine;
 
@@ -24,10 +20,10 @@ struct msocl__engine {
   int n;
   cl_uint nconn;          /* connectivity arguments before the others */
   struct msocl__layout lay;
-  cl_mem pos[2], vel[2];  /* ping-pong: [r] is current */
+  cl_mem pos[2], vel[2];  /* the state as the host reads and writes it,
+                             float4 a point: [r] is current */
   cl_mem inv_mass, col, normal, tri_off, tri_ab;
   cl_mem acc;             /* Verlet: a at the current state */
-  cl_mem stage_p[2], stage_v[2], sum_p, sum_v; /* RK4 stages; CG vectors */
   cl_mem backup_p, backup_v; /* last state that passed the blow-up check */
   cl_mem partial;         /* one float4 per work-group of reductions */
   cl_kernel k[MSOCL__K_COUNT];
@@ -54,9 +50,8 @@ struct msocl__engine {
   float *stage;           /* 4n floats, the initial upload */
   cl_float4 *partial_host;
   float *inv_host; /* the points' inverse masses, in the engine's order */
-  /* GRID in planes (planes.c, kernels/planes.cl): the state as x, y, z
-   * planes of padded rows, kept there between calls */
-  int planes;
+  /* the engine's state (planes.c, kernels/planes.cl): x, y, z planes of
+   * floats, rows padded on GRID, kept there between calls */
   int pl_valid;           /* the planes hold the current state */
   int pl_ahead;           /* ... and the float4 buffers are behind */
   int pl_set;             /* the plane set that holds it */
@@ -66,7 +61,7 @@ struct msocl__engine {
   cl_mem pl_s[2];         /* strain sweeps (velocity: pl_s[0]) */
   cl_mem pl_col;          /* the colliders, a float4 a value (planes.c) */
   float pl_colx[8 * MSOCL__MAX_COLLIDERS]; /* their msocl__collider.x */
-  int pl_shapes;          /* a capsule or box: planes only, not rows */
+  int pl_shapes;          /* a capsule or box: not the rows' sweep */
   unsigned pl_kinds;      /* the collider kinds compiled in, 1 << kind */
   unsigned opt_model;     /* the model's -D options beside its colliders
                              (engine.c), kept for a rebuild */
@@ -87,7 +82,7 @@ struct msocl__engine {
   cl_mem pl_ring;         /* its work-items' rings of spring terms */
   size_t pl_blocks;       /* its work-items: blocks of rows */
   int pl_rows_wind;       /* it blows wind on the quads (wind.c) */
-  /* wind on the triangles, planes only (wind.c, kernels/wind.cl) */
+  /* wind on the triangles (wind.c, kernels/wind.cl) */
   int wind_on, wind_ntri, wind_nspill;
   int wind_quads;         /* the cloth builder's triangles on GRID */
   float wind_air[3], wind_kd, wind_kl; /* as last set (a rebuild's) */
@@ -96,11 +91,11 @@ struct msocl__engine {
                              a point on more triangles than the slots; the
                              quads' forces and a point's sum of them */
   cl_mem wind_tri, wind_slot, wind_third, wind_corner, wind_list;
-  /* a user's acceleration field, planes only (field.c, kernels/field.cl) */
+  /* a user's acceleration field (field.c, kernels/field.cl) */
   int field_on;
   cl_kernel field_k;
   cl_mem field_acc;       /* three planes, laid out as the state's */
-  /* soft pins, planes only (soft_pins.c, kernels/planes_pins.cl) */
+  /* soft pins (soft_pins.c, kernels/planes_pins.cl) */
   int soft_m, soft_cap;
   float soft_f;           /* the anchors' place from `from` to `to` */
   cl_kernel soft_k;
@@ -135,21 +130,18 @@ int msocl__phase_count(const msocl__engine *s);
 int msocl__phase(msocl__engine *s, int phase, unsigned *exchange);
 /* That mask, without queuing anything. */
 unsigned msocl__phase_mask(const msocl__engine *s, int phase);
-/* GRID in planes (planes.c). would: whether model m's GRID on dev, over
- * points [lo, hi), would run in planes (what AUTO weighs for a lattice);
- * choose: whether this engine runs in planes (tuning.planes;
- * MSOCL_ERR_BAD_VALUE when forced where it cannot); create: its buffers
- * and kernels, from the program built with -DMSOCL_PLANES; release: frees
+/* The planes (planes.c). would: whether model m's grid, over points
+ * [lo, hi), fits GRID's padded planes (what AUTO weighs); refused:
+ * MSOCL_ERR_BAD_VALUE, before anything is allocated, where GRID is forced
+ * on a grid whose planes the kernels' int indices cannot address; fit:
+ * the same for the engine's chosen layout; create: its buffers and
+ * kernels, from the program built with -DMSOCL_PLANES; release: frees
  * them. Its passes: schedule.h. */
-int msocl__planes_would(const struct msocl__device *dev,
-                        const msocl_sim_options *o, const msocl_model *m,
+int msocl__planes_would(const msocl_sim_options *o, const msocl_model *m,
                         int lo, int hi);
-int msocl__planes_choose(msocl__engine *s, const msocl_model *m);
-/* MSOCL_ERR_BAD_VALUE, before anything is allocated, where planes are
- * forced (tuning.planes ON) on a grid the kernels' int indices cannot
- * address; else MSOCL_OK. */
 int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
                           int lo, int hi);
+int msocl__planes_fit(const msocl__engine *s);
 /* Device bytes the planes of model m's grid take under options o
  * (msocl.h's formula). */
 size_t msocl__planes_bytes(const msocl_model *m, const msocl_sim_options *o);
@@ -161,25 +153,24 @@ void msocl__planes_step_done(msocl__engine *s);
 /* The state stays in the planes between calls. current: brings the
  * engine's float4 buffers up to date before anything reads them (a copy
  * back only when the planes are ahead); written: after anything writes
- * them, the planes are stale (copied in again at the next step). Both do
- * nothing for an engine without planes. */
+ * them, the planes are stale (copied in again at the next step). */
 int msocl__planes_current(msocl__engine *s);
 void msocl__planes_written(msocl__engine *s);
 void msocl__planes_release(msocl__engine *s);
 /* The planes kernels' gravity, viscous damping and air resistance
  * arguments again, from s->gravity, viscous and air (a live change). */
 int msocl__planes_forces(msocl__engine *s);
-/* Verlet: the acceleration at the current state into acc, over the whole
- * range, unless acc already holds it. */
+/* Verlet: the acceleration at the current float4 state into acc, over
+ * the whole range, unless acc already holds it. */
 int msocl__verlet_accel(msocl__engine *s);
-/* Colliders added to a running planes engine (engine.c): the program
+/* Colliders added to a running engine (engine.c): the program
  * built for ncol colliders of the kinds in `kinds` (1 << kind each), and
  * the kernels that read the collider table re-created from it, their
  * arguments set again (msocl__planes_rebuild, planes.c; planes_rows.c's
  * sweep, dropped once a capsule or box is compiled in); the state and
  * every other kernel stay. */
 int msocl__engine_colliders(msocl__engine *s, int ncol, unsigned kinds);
-/* Viscous damping or air resistance turned on in a running planes engine
+/* Viscous damping or air resistance turned on in a running engine
  * whose kernels were built without the term: the program with it, every
  * planes kernel re-created (the gathers, the sweep and implicit Euler's
  * read it); the state stays. */
@@ -188,19 +179,15 @@ int msocl__engine_terms(msocl__engine *s, int viscous, int air);
 int msocl__planes_rebuild(msocl__engine *s, cl_program prog, int all);
 /* Ends a step: swaps the ping-pong buffers (or plane sets). */
 void msocl__step_done(msocl__engine *s);
-/* The buffer an exchange bit names, at this point of the step. */
-cl_mem msocl__exchange_buffer(const msocl__engine *s, unsigned bit);
-/* exchange_slices.c: the planes' buffer a bit names; and where points
- * [a, b) lie in such a buffer: n slices (returned; float4 1, planes 3,
- * one a plane), each *len bytes at off[c]. */
+/* exchange_slices.c: the planes' buffer an exchange bit names, at this
+ * point of the step; and where points [a, b) lie in such a buffer: n
+ * slices (returned: 3, one a plane), each *len bytes at off[c]. */
 cl_mem msocl__planes_exchange_buffer(const msocl__engine *s, unsigned bit);
 int msocl__exchange_slices(const msocl__engine *s, int a, int b,
                            size_t off[3], size_t *len);
-/* Enqueues `n` whole steps on one engine (no wait, no exchange), float4
- * or planes. */
+/* Enqueues `n` whole steps on one engine (no wait, no exchange). */
 int msocl__integrate(msocl__engine *s, int n);
-/* Wind (wind.c): create: its kernels, where the engine runs in planes and
- * the model has triangles; set: air at air[3] with kd = rho Cd / 2 and
+/* Wind (wind.c): create: its kernels, where the model has triangles; set: air at air[3] with kd = rho Cd / 2 and
  * kl = rho Cl / 2 from the next step (air NULL: none); pass: its velocity
  * change, before a step's phases; release: frees it. */
 int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog);
@@ -211,7 +198,7 @@ void msocl__wind_release(msocl__engine *s);
  * MSOCL_PLANES_AT). */
 int msocl__pl_address(const msocl__engine *s, int j);
 /* The points a planes pass runs in one piece (a row, a lattice's layer,
- * a work-group): a split's spans are cut at its multiples; 1 in float4. */
+ * a work-group): a split's spans are cut at its multiples. */
 int msocl__planes_unit(const msocl__engine *s);
 /* Soft pins (soft_pins.c): set: the engine's points k[0..m) pulled by
  * springs of `stiffness` toward anchors xyz (3 m floats), from the next
@@ -224,8 +211,7 @@ int msocl__soft_set(msocl__engine *s, int m, const int *k, const float *xyz,
 void msocl__soft_fraction(msocl__engine *s, float f);
 int msocl__soft_pass(msocl__engine *s);
 void msocl__soft_release(msocl__engine *s);
-/* A user's field (field.c): create: its kernel, where the engine runs in
- * planes; set: xyz (3 floats a point, the engine's order) as accelerations
+/* A user's field (field.c): create: its kernel; set: xyz (3 floats a point, the engine's order) as accelerations
  * or, `forces`, as forces divided by the points' masses, from the next
  * step (xyz NULL: none); pass: its velocity change, before a step's
  * phases; release: frees it. */
@@ -233,8 +219,7 @@ int msocl__field_create(msocl__engine *s, cl_program prog);
 int msocl__field_set(msocl__engine *s, const float *xyz, int forces);
 int msocl__field_pass(msocl__engine *s);
 void msocl__field_release(msocl__engine *s);
-/* Mesh colliders (mesh_collider.c, kernels/mesh_collider.cl), planes
- * only: create: collider c's device copy on the engine; vertices: the
+/* Mesh colliders (mesh_collider.c, kernels/mesh_collider.cl): create: collider c's device copy on the engine; vertices: the
  * positions it reaches at the end of the next call (3 nv floats); begin:
  * before a call of n steps, its end vertices uploaded and its grid built
  * if it moves or has none; pass: its push after a step that ran from
@@ -268,7 +253,7 @@ int msocl__energy(msocl__engine *s, msocl_energy *e);
 int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m);
 int msocl__arg_float(cl_kernel k, cl_uint i, float f);
 int msocl__arg_int(cl_kernel k, cl_uint i, int v);
-/* Sets the argument of the engine's float4 kernel k (MSOCL__K_*) that
+/* Sets the argument of the engine's kernel k (MSOCL__K_*) that
  * kernels/ names `name` (kernel_args.c): to size bytes at v, a buffer, a
  * float, an int. */
 int msocl__set(msocl__engine *s, int k, const char *name, size_t size,
@@ -276,22 +261,17 @@ int msocl__set(msocl__engine *s, int k, const char *name, size_t size,
 int msocl__set_mem(msocl__engine *s, int k, const char *name, cl_mem m);
 int msocl__set_float(msocl__engine *s, int k, const char *name, float f);
 int msocl__set_int(msocl__engine *s, int k, const char *name, int v);
-/* Sets every argument of the float4 kernels that holds a value fixed for
- * the engine's life (inv_mass, dt, n, ...), by name. */
+/* Sets every argument of those kernels that holds a value fixed for the
+ * engine's life (inv_mass, dt, n, ...), by name. */
 int msocl__set_fixed(msocl__engine *s);
 /* Implicit Euler: the new velocities of one step's CG (cg.c) over
- * `parts` engines, into vel[1 - r] (planes: the other plane set), where
+ * `parts` engines, into the other plane set, where
  * exchange(ctx) spreads the CG direction's halo between products. */
 int msocl__implicit_cg(msocl__engine *const *e, int parts,
                        int (*exchange)(void *ctx), void *ctx);
 /* Adds the engine's reduction partials (s->partial), in group order, to
  * *sum (launch.c). */
 int msocl__implicit_collect(msocl__engine *s, double *sum);
-/* Strain limiting (strain.c): the velocity correction on vel[1 - r];
- * Provot's position correction on pos[1 - r], taken up by the velocities
- * vel. */
-int msocl__strain_velocity(msocl__engine *s);
-int msocl__strain_position(msocl__engine *s, cl_mem vel);
 /* Enqueues kernel k (launch.c) over the engine's current span
  * (run_offset, run_global); _range: over its whole range (offset, global);
  * _all: over every point. */

@@ -1,5 +1,4 @@
 /* Where the data a split's exchange moves lies in an engine's buffers:
- * the float4 engine's points are one slice of float4s; the planes' are
  * three slices, one a plane, each over the padded positions of the
  * range's first to last point (a grid's row padding between them is
  * zeros on every engine, so copying it changes nothing). */
@@ -21,11 +20,6 @@ static size_t padded(const msocl__engine *s, int k)
 int msocl__exchange_slices(const msocl__engine *s, int a, int b,
                            size_t off[3], size_t *len)
 {
-  if (!s->planes) {
-    off[0] = (size_t)a * sizeof(cl_float4);
-    *len = (size_t)(b - a) * sizeof(cl_float4);
-    return 1;
-  }
   const size_t first = padded(s, a), plane = (size_t)s->pl_plane;
   *len = (padded(s, b - 1) + 1 - first) * sizeof(float);
   for (int c = 0; c < 3; c++)

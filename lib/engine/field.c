@@ -11,8 +11,6 @@
 
 int msocl__field_create(msocl__engine *s, cl_program prog)
 {
-  if (!s->planes)
-    return MSOCL_OK;
   cl_int e;
   s->field_k = clCreateKernel(prog, "msocl_field_kick", &e);
   if (e != CL_SUCCESS)
@@ -56,11 +54,6 @@ int msocl__field_set(msocl__engine *s, const float *xyz, int forces)
     s->field_on = 0;
     return MSOCL_OK;
   }
-  if (!s->planes)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "a point field needs the planes engine, and this "
-                       "simulation runs float4 (tuning.planes off, or its "
-                       "layout)");
   const size_t bytes = 3 * (size_t)s->pl_plane * sizeof(float);
   float *acc = calloc(1, bytes);
   if (!acc)

@@ -15,16 +15,13 @@
 msocl_layout msocl__layout_auto(const msocl_device_info *info,
                                 const msocl_model *m, int planes)
 {
-  /* A cloth grid as the builder made it: GRID stores nothing, moves the
-   * fewest bytes, and on a CPU runs in planes (2.3x its float4 step at
-   * 256x256 and 1024x1024 on PoCL: docs/PERFORMANCE.md). Otherwise
-   * BUFFER: it reads 12 bytes a slot against the texture's 16, and PoCL's
-   * image reads are about 3x slower than buffer reads on a CPU; no device
-   * measured so far prefers the texture. A lattice takes GRID only in
-   * planes: 2.3-5.6x BUFFER at 16^3-64^3 on PoCL, where its float4 GRID
-   * is 0.8-1.7x, not reliably faster. */
+  /* A grid or lattice as the builders make it: GRID stores nothing and
+   * moves the fewest bytes, where its padded planes fit. Otherwise BUFFER:
+   * it reads 12 bytes a slot against the texture's 16, and PoCL's image
+   * reads are about 3x slower than buffer reads on a CPU; no device
+   * measured so far prefers the texture (docs/PERFORMANCE.md). */
   (void)info;
-  if (msocl__grid_intact(m) && (m->grid.nz == 0 || planes))
+  if (msocl__grid_intact(m) && planes)
     return MSOCL_LAYOUT_GRID;
   return MSOCL_LAYOUT_BUFFER;
 }
@@ -136,13 +133,14 @@ static int build_image(struct msocl__device *dev, const msocl_model *m,
 
 int msocl__table_slots(const struct msocl__adjacency *adj, int want)
 {
-  const int n = adj->n, top = adj->max_degree;
+  const int n = adj->n, most = adj->max_degree;
+  const int top = most < MSOCL__TABLE_SLOTS ? most : MSOCL__TABLE_SLOTS;
   if (want > 0)
     return want < top ? want : top;
   /* a table of up to 32 slots costs little whatever the spread */
   if (top <= 32 || n == 0)
     return top;
-  int *count = calloc((size_t)top + 1, sizeof *count);
+  int *count = calloc((size_t)most + 1, sizeof *count);
   if (!count)
     return top; /* the caller's own allocation reports the shortage */
   for (int i = 0; i < n; i++)

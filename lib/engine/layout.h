@@ -32,7 +32,7 @@ struct msocl__layout {
 };
 
 /* The layout AUTO stands for on this device, for this model; planes:
- * whether its GRID would run in planes. */
+ * whether GRID's padded planes fit it (msocl__planes_would). */
 msocl_layout msocl__layout_auto(const msocl_device_info *info,
                                 const msocl_model *m, int planes);
 
@@ -44,11 +44,16 @@ int msocl__image_dims(int n, size_t max_w, size_t max_h, int *w, int *h);
  * the model's springs do not fit `kind`'s slots. */
 int msocl__layout_fits(const msocl_model *m, msocl_layout kind);
 
+/* The widest BUFFER table: the kernels unroll its slots, and wider ones
+ * bloat them; a point's springs past it spill. */
+#define MSOCL__TABLE_SLOTS 64
+
 /* BUFFER's table width for these degrees: all of a point's springs,
  * unless a few points (a hub such as a solid's centre) have far more than
  * the rest - then a width that holds 99% of the points' springs, the rest
  * spilling into per-point lists, so the table is not the hub's degree
- * times every point. `want` > 0 chooses (capped at the largest degree). */
+ * times every point. `want` > 0 chooses. Either way at most the largest
+ * degree and MSOCL__TABLE_SLOTS. */
 int msocl__table_slots(const struct msocl__adjacency *adj, int want);
 
 /* classes (tuning.classes): BUFFER may number its springs' (rest, k,

@@ -1,10 +1,9 @@
-/* Planes (tuning.planes, kernels/planes.cl): a model's steps, every
- * integrator's (implicit Euler's CG: planes_implicit.c), over x, y, z
- * planes of floats - GRID's padded rows, or BUFFER's and IMAGE2D's points
+/* The planes (kernels/planes.cl): a model's steps, every integrator's
+ * (implicit Euler's CG: planes_implicit.c), over x, y, z planes of
+ * floats - GRID's padded rows, or BUFFER's, EDGES's and IMAGE2D's points
  * in index order, their neighbours found through the layout's own
  * connectivity - which PoCL's CPU device runs eight or sixteen points to
- * an instruction. The state is copied
- * into the planes at the first step and stays there between calls;
+ * an instruction. The state is copied into the planes at the first step and stays there between calls;
  * whatever reads the engine's float4 buffers (reads, energy, normals, the
  * blow-up check's saved state) first calls msocl__planes_current, and
  * whatever writes them msocl__planes_written. */
@@ -142,70 +141,33 @@ static int lavish(const msocl_model *m, const msocl_sim_options *o)
          msocl__planes_bytes(m, o) > LAVISH_BYTES;
 }
 
-/* Whether GRID would run in planes: where it fits, when forced, or by
- * default (the one engine issue 15 asks for: on PoCL measured faster,
- * docs/PERFORMANCE.md; on a GPU its 12 bytes a state against float4's 16,
- * measured by bench/gpu.sh's -P and -F rows when one is lent), unless the
- * padding would multiply the memory. */
-static int chosen(const struct msocl__device *dev, const msocl_sim_options *o,
-                  const msocl_model *m, const char *why)
-{
-  (void)dev;
-  const msocl_choice c = o->tuning.planes;
-  return !why && (c == MSOCL_ON || (c == MSOCL_AUTO && !lavish(m, o)));
-}
-
-int msocl__planes_would(const struct msocl__device *dev,
-                        const msocl_sim_options *o, const msocl_model *m,
+int msocl__planes_would(const msocl_sim_options *o, const msocl_model *m,
                         int lo, int hi)
 {
-  return chosen(dev, o, m, unfit(m, lo, hi));
+  return !unfit(m, lo, hi) && !lavish(m, o);
 }
 
 int msocl__planes_refused(const msocl_sim_options *o, const msocl_model *m,
                           int lo, int hi)
 {
-  const char *why = o->tuning.planes == MSOCL_ON ? unfit(m, lo, hi) : NULL;
+  const char *why =
+      o->tuning.layout == MSOCL_LAYOUT_GRID ? unfit(m, lo, hi) : NULL;
   if (why)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "planes %s: a %d x %d x %d grid pads to %zu floats a "
-                       "plane", why, m->grid.nx, m->grid.ny, m->grid.nz,
-                       geometry_of(m).plane);
+                       "GRID's planes %s: a %d x %d x %d grid pads to %zu "
+                       "floats a plane (use BUFFER)", why, m->grid.nx,
+                       m->grid.ny, m->grid.nz, geometry_of(m).plane);
   return MSOCL_OK;
 }
 
-/* The widest BUFFER table the planes kernels unroll. */
-#define MSOCL__PLANES_SLOTS 64
-
-/* Why BUFFER's, EDGES's or IMAGE2D's connectivity cannot run in planes;
- * NULL: it can. */
-static const char *unfit_row(const msocl__engine *s)
+int msocl__planes_fit(const msocl__engine *s)
 {
-  if (3 * geometry_row(s->n).plane > (size_t)INT_MAX)
-    return "index at most 2^31 floats (too many points)";
-  /* a wide table's unrolled slots would bloat the kernels */
-  if (s->lay.slots > MSOCL__PLANES_SLOTS)
-    return "take BUFFER tables of at most 64 slots";
-  return NULL;
-}
-
-int msocl__planes_choose(msocl__engine *s, const msocl_model *m)
-{
-  const msocl_layout kind = s->lay.kind;
-  const char *why =
-      kind == MSOCL_LAYOUT_GRID ? unfit(m, s->lo, s->hi) : unfit_row(s);
-  if (s->o.tuning.planes == MSOCL_ON && why)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "planes %s", why);
-  /* EDGES has no float4 kernels: it runs in planes or not at all */
-  if (kind == MSOCL_LAYOUT_EDGES &&
-      (why || s->o.tuning.planes == MSOCL_OFF))
+  /* GRID: msocl__planes_refused, before anything was allocated */
+  if (s->lay.kind != MSOCL_LAYOUT_GRID &&
+      3 * geometry_row(s->n).plane > (size_t)INT_MAX)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "the EDGES layout runs in the planes engine, which %s "
-                       "(use BUFFER)",
-                       why ? why : "tuning.planes OFF turns off");
-  s->planes = kind == MSOCL_LAYOUT_GRID
-                  ? chosen(s->dev, &s->o, m, why)
-                  : !why && s->o.tuning.planes != MSOCL_OFF;
+                       "the planes index at most 2^31 floats: %d points are "
+                       "too many", s->n);
   return MSOCL_OK;
 }
 
@@ -381,7 +343,7 @@ static int collider_table(msocl__engine *s)
   if (used > 0)
     MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->col, CL_TRUE, 0, used,
                                   packed, 0, NULL, NULL));
-  /* the float4 engine's 8, then msocl__collider.x; no motion */
+  /* s->col's 8, then msocl__collider.x; no motion */
   for (int c = 0; c < s->ncol; c++)
     for (int k = 0; k < 8; k++) {
       spread[4 * (MSOCL__COL_VALUES * c + k)] = packed[8 * c + k];
@@ -564,8 +526,6 @@ int msocl__planes_rebuild(msocl__engine *s, cl_program prog, int all)
 
 int msocl__planes_create(msocl__engine *s, cl_program prog)
 {
-  if (!s->planes)
-    return MSOCL_OK;
   /* unfit() kept 3 planes within INT_MAX floats */
   const struct geometry g = geometry_engine(s);
   s->pl_group = g.group;
@@ -642,8 +602,6 @@ static void own_part(const msocl__engine *s, int k, size_t off[3],
 
 int msocl__planes_unit(const msocl__engine *s)
 {
-  if (!s->planes)
-    return 1;
   if (s->lay.kind != MSOCL_LAYOUT_GRID)
     return (int)s->pl_group;
   return s->lay.grid_nz > 0 ? s->lay.grid_nx * s->lay.grid_ny
@@ -839,7 +797,7 @@ void msocl__planes_step_done(msocl__engine *s)
 
 int msocl__planes_current(msocl__engine *s)
 {
-  if (!s->planes || !s->pl_ahead)
+  if (!s->pl_ahead)
     return MSOCL_OK;
   if (s->o.integrator == MSOCL_VERLET)
     TRY(acceleration(s, 0)); /* acc_valid holds: it is this state's */

@@ -111,7 +111,7 @@ static int run_pass(msocl__engine *s, enum msocl__pass p)
 {
   if (p == MSOCL__P_CG)
     return msocl__implicit_cg(&s, 1, NULL, NULL);
-  return s->planes ? msocl__planes_pass(s, p) : msocl__float4_pass(s, p);
+  return msocl__planes_pass(s, p);
 }
 
 int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
@@ -126,25 +126,19 @@ int msocl__phase(msocl__engine *s, int phase, unsigned *exchange)
 
 void msocl__step_done(msocl__engine *s)
 {
-  if (s->planes)
-    msocl__planes_step_done(s);
-  else
-    s->r = 1 - s->r;
+  msocl__planes_step_done(s);
 }
 
 int msocl__integrate(msocl__engine *s, int n)
 {
   if (n <= 0)
     return MSOCL_OK;
-  if (s->planes)
-    TRY(msocl__planes_enter(s));
+  TRY(msocl__planes_enter(s));
   const int phases = msocl__phase_count(s);
   for (int q = 0; q < n; q++) {
-    if (s->planes) {
-      TRY(msocl__wind_pass(s));
-      TRY(msocl__field_pass(s));
-      TRY(msocl__soft_pass(s));
-    }
+    TRY(msocl__wind_pass(s));
+    TRY(msocl__field_pass(s));
+    TRY(msocl__soft_pass(s));
     for (int ph = 0; ph < phases; ph++) {
       unsigned x;
       TRY(msocl__phase(s, ph, &x));

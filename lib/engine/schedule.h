@@ -1,7 +1,6 @@
 /* Each integrator's step, described once (schedule.c): its phases, the
  * passes each phase runs, and what other engines must receive after it.
- * The float4 engine (integrate.c) and the planes (planes.c) each run a
- * pass; the one-engine loop and the split runtime (sim_step.c) walk the
+ * The planes (planes.c) run each pass; the one-engine loop and the split runtime (sim_step.c) walk the
  * table. The host reference (reference.c) keeps its own schedule: it is
  * the oracle, and must not share this one. */
 #ifndef MSOCL_SCHEDULE_H
@@ -53,13 +52,11 @@ struct msocl__schedule {
 /* The schedule that options o run (integrator, strain limit, fused). */
 const struct msocl__schedule *msocl__schedule_of(const msocl_sim_options *o);
 
-/* Each engine's pass p on its current state (integrate.c: the float4
- * buffers; planes.c: the planes). MSOCL__P_CG is the walker's own. */
-int msocl__float4_pass(msocl__engine *s, enum msocl__pass p);
+/* Each engine's pass p on its current state in the planes (planes.c).
+ * MSOCL__P_CG is the walker's own. */
 int msocl__planes_pass(msocl__engine *s, enum msocl__pass p);
 
-/* The CG's operations on one engine (integrate_implicit.c: float4;
- * planes_implicit.c: planes). rhs, apply, step (given alpha): queue the
+/* The CG's operations on one engine (planes_implicit.c). rhs, apply, step (given alpha): queue the
  * kernel and the partials of its dot product, added up by collect;
  * direction (given beta): the new search direction; finish: the new
  * velocities from the solution. */
@@ -71,6 +68,6 @@ struct msocl__cg_ops {
   int (*collect)(msocl__engine *s, double *sum);
   int (*finish)(msocl__engine *s);
 };
-extern const struct msocl__cg_ops msocl__float4_cg, msocl__planes_cg;
+extern const struct msocl__cg_ops msocl__planes_cg;
 
 #endif

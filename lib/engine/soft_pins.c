@@ -61,11 +61,6 @@ int msocl__soft_set(msocl__engine *s, int m, const int *k, const float *xyz,
     s->soft_m = 0;
     return MSOCL_OK;
   }
-  if (!s->planes)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "soft pins need the planes engine, and this "
-                       "simulation runs float4 (tuning.planes off, or its "
-                       "layout)");
   const double w = largest_inverse_mass(s, k, m);
   /* alone, the point and its anchor are an oscillator of w^2 = k / m:
    * a first-order kick holds while dt w stays well inside 2 */

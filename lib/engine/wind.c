@@ -33,7 +33,7 @@ static int quads(const msocl__engine *s, const msocl_model *m)
 
 int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog)
 {
-  if (!s->planes || m->nt == 0)
+  if (m->nt == 0)
     return MSOCL_OK;
   s->wind_host = malloc(3 * (size_t)m->nt * sizeof *s->wind_host);
   if (!s->wind_host)
@@ -188,10 +188,6 @@ int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
     s->wind_on = 0;
     return s->pl_rows ? msocl__pl_rows_wind(s, NULL, 0.0f, 0.0f) : MSOCL_OK;
   }
-  if (!s->planes)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "wind needs the planes engine, and this simulation "
-                       "runs float4 (tuning.planes off, or its layout)");
   if (s->wind_ntri == 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "wind pushes on triangles, and the model has none "

@@ -5,8 +5,8 @@
  * engine then writes its halos from those slices (scatter). The staging
  * areas alternate between two sets, so one exchange's writes may still be
  * in flight on one device while the next exchange's reads fill the other
- * set. A slice of a buffer is one copy for the float4 engine, three (one
- * a plane) for the planes (exchange_slices.c). */
+ * set. A slice of a buffer is three copies, one a plane
+ * (exchange_slices.c). */
 #include "config.h"
 #include "sim.h"
 
@@ -77,7 +77,7 @@ int msocl__exchange_gather(msocl_sim *s, int d, unsigned mask)
     return rc;
   for (int k = 0; k < nk; k++) {
     unsigned char *area = x->area[x->parity][k];
-    cl_mem buf = msocl__exchange_buffer(e, bit[k]);
+    cl_mem buf = msocl__planes_exchange_buffer(e, bit[k]);
     /* the slices of d's points each other engine r reads */
     for (int r = 0; r < s->nparts; r++) {
       const int *h = s->halo[r][d];
@@ -122,7 +122,7 @@ int msocl__exchange_send(msocl_sim *s, int d, unsigned mask)
   if (rc != MSOCL_OK)
     return rc;
   for (int k = 0; k < nk; k++) {
-    cl_mem buf = msocl__exchange_buffer(e, bit[k]);
+    cl_mem buf = msocl__planes_exchange_buffer(e, bit[k]);
     for (int r = 0; r < s->nparts; r++) {
       const int *h = s->halo[r][d];
       if (r == d || h[0] >= h[1])

@@ -151,7 +151,7 @@ int msocl__colliders_slot(msocl_sim *s, const char *call, int *slot);
 int msocl__colliders_insert(msocl_sim *s, int slot,
                             const struct msocl__collider *c);
 /* Mesh colliders (sim_mesh.c): their device copies from the caller's
- * model (refused unless the simulation runs in planes on one device);
+ * model (refused on a split);
  * freed; whether a call must run step by step for them; before a call of
  * n steps; after each step, from fraction f0 to f1 of the call; after the
  * call. */

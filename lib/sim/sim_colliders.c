@@ -47,12 +47,6 @@ static int refuse_engine(const msocl_sim *s, const char *call)
                        "needs one device (each device's table would have "
                        "to follow the pose)",
                        call, s->nparts);
-  if (!s->part[0]->planes)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "%s needs the planes engine (tuning.planes, GRID, "
-                       "BUFFER, EDGES or IMAGE2D layout); this simulation "
-                       "runs the float4 engine, whose colliders are static",
-                       call);
   return MSOCL_OK;
 }
 

@@ -88,8 +88,7 @@ static int apply(msocl_sim *s)
       e->acc_valid = 0;
     }
     MSOCL__TRY(msocl__integrate_setup(e));
-    if (e->planes)
-      MSOCL__TRY(msocl__planes_forces(e));
+    MSOCL__TRY(msocl__planes_forces(e));
   }
   return MSOCL_OK;
 }
@@ -135,17 +134,6 @@ static int set_damping(msocl_sim *s, int air, float value)
   const int off = air ? value == 1.0f : value == 0.0f;
   int *built = air ? &c->air_built : &c->viscous_built;
   if (!*built && !off) {
-    /* the planes engine builds the term in; float4 cannot */
-    for (int d = 0; d < s->nparts; d++)
-      if (!s->part[d]->planes)
-        return msocl__fail(
-            MSOCL_ERR_BAD_VALUE,
-            "%s %g: the simulation was created without %s and runs the "
-            "float4 engine (tuning.planes), whose kernels leave the term "
-            "out; give the model a %s before msocl_sim_create, or run in "
-            "planes",
-            what, (double)value, what,
-            air ? "factor below 1" : "positive value");
     for (int d = 0; d < s->nparts; d++)
       MSOCL__TRY(msocl__engine_terms(s->part[d], !air, air));
     *built = 1;
@@ -281,11 +269,10 @@ int msocl_sim_set_pin_targets(msocl_sim *s, int count, const int *idx,
   if (idx)
     MSOCL__TRY(check_indices(s, count, idx, "msocl_sim_set_pin_targets"));
   msocl__engine *e = s->part[0];
-  if (!e->planes || s->nparts > 1)
+  if (s->nparts > 1)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "msocl_sim_set_pin_targets needs the planes engine "
-                       "(tuning.planes, one device, GRID, BUFFER or IMAGE2D "
-                       "layout); this simulation runs the float4 engine");
+                       "msocl_sim_set_pin_targets needs one device; this "
+                       "simulation is split over %d", s->nparts);
   struct msocl__controls *c;
   MSOCL__TRY(controls(s, &c));
   int npins = 0;

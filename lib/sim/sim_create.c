@@ -97,8 +97,6 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
   if (rc == MSOCL_OK)
     rc = check_choice(t->classes, "classes");
   if (rc == MSOCL_OK)
-    rc = check_choice(t->planes, "planes");
-  if (rc == MSOCL_OK)
     rc = check_choice(t->renumber, "renumber");
   if (rc != MSOCL_OK)
     return rc;
@@ -367,11 +365,9 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
                               (struct msocl__device *)&rt->dev[t->device + d],
                               m, &o, s->halo[d][d][0], s->halo[d][d][1]);
     /* the exchange copies one state layout: every engine runs the first
-     * one's engine and connectivity */
-    if (rc == MSOCL_OK && d == 0 && s->nparts > 1 && s->part[0]->planes) {
-      o.tuning.planes = MSOCL_ON;
+     * one's connectivity */
+    if (rc == MSOCL_OK && d == 0 && s->nparts > 1)
       o.tuning.layout = s->part[0]->lay.kind;
-    }
   }
   if (rc == MSOCL_OK)
     rc = msocl__meshes_create(s, model);

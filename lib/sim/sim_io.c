@@ -162,13 +162,6 @@ int msocl_sim_connectivity(const msocl_sim *s, int *slots, int *classes)
   return MSOCL_OK;
 }
 
-int msocl_sim_planes(const msocl_sim *s, int *planes)
-{
-  if (!s || !planes)
-    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
-  *planes = s->part[0]->planes;
-  return MSOCL_OK;
-}
 
 int msocl_sim_device_info(const msocl_sim *s, msocl_device_info *info)
 {

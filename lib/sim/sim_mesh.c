@@ -12,11 +12,10 @@ int msocl__meshes_create(msocl_sim *s, const msocl_model *m)
 {
   if (m->nmesh == 0)
     return MSOCL_OK;
-  if (s->nparts > 1 || !s->part[0]->planes)
+  if (s->nparts > 1)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "mesh colliders need the planes engine on one device "
-                       "(this simulation runs %s)",
-                       s->nparts > 1 ? "split over devices" : "float4");
+                       "mesh colliders need one device (this simulation is "
+                       "split over %d)", s->nparts);
   s->mesh = calloc((size_t)m->nmesh, sizeof *s->mesh);
   s->mesh_on = malloc((size_t)m->nmesh);
   if (!s->mesh || !s->mesh_on)

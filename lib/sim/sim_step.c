@@ -189,7 +189,7 @@ static int split_steps(msocl_sim *s, int n)
   struct job j = {s, 0, 0, 0};
   /* planes: the state into them, halos and all, unless they hold it */
   for (int d = 0; d < s->nparts; d++) {
-    int rc = s->part[d]->planes ? msocl__planes_enter(s->part[d]) : MSOCL_OK;
+    int rc = msocl__planes_enter(s->part[d]);
     if (rc != MSOCL_OK)
       return rc;
   }
