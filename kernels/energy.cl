@@ -19,7 +19,7 @@ void msocl_energy(MSOCL_CONN, __global const float4 *pos,
     float3 p = pos[i].xyz, v = vel[i].xyz;
     float m = 1.0f / inv_mass[i];
     e.x = 0.5f * m * dot(v, v);
-    /* four slots at a time, as msocl_force gathers (a free slot, the
+    /* four slots at a time (a free slot, the
      * point itself with k 0, adds an exact 0): one slot at a time this
      * loop cost five velocity passes on PoCL */
 #if MSOCL_TABLE_SLOTS <= 64

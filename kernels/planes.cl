@@ -1,8 +1,9 @@
-/* GRID in planes (tuning.planes): symplectic Euler's two passes (or
- * fused), velocity Verlet's and RK4's stages and both strain limits'
- * sweeps, over a cloth grid or lattice whose state is held as separate
- * x, y, z planes of floats, each row padded by two points on every side.
- * Needs common.cl before it.
+/* The steps: symplectic Euler's two passes (or fused), explicit Euler,
+ * velocity Verlet's and RK4's stages, both strain limits' sweeps and the
+ * collision response, on every layout, over state held as separate x, y,
+ * z planes of floats - a grid's or lattice's rows padded by two points on
+ * every side, other models' points in index order. Needs common.cl
+ * before it.
  *
  * Why: PoCL's CPU device vectorises across work-items only when a kernel's
  * per-work-item code is all scalar (its loop vectorizer takes no vector-
@@ -13,10 +14,9 @@
  * point - within the padding at the grid's edge - so eight or sixteen
  * work-items read it with one vector load, not a gather.
  *
- * Same arithmetic as msocl_force, msocl_kick, msocl_collide, the position
- * pass, Verlet's drift and kick, RK4's stage and the strain sweeps, slot
- * by slot in the same order, so the result is bitwise theirs
- * (tests/check_planes.c). The state stays in the planes between calls
+ * Every layout sums a point's springs slot by slot in the same order, so
+ * that layouts and device splits agree bitwise (tests/check_planes.c,
+ * check_multidevice.c). The state stays in the planes between calls
  * (lib/engine/planes.c): msocl_planes_pack copies it in after the engine's
  * float4 buffers were written, msocl_planes_unpack back before they are
  * read.
@@ -62,7 +62,7 @@
 /* dot(a, b) of float3 as the other kernels compute it: (x + y) + z. */
 #define MSOCL_DOT3(ax, ay, az, bx, by, bz) ((ax) * (bx) + (ay) * (by) + (az) * (bz))
 
-/* MSOCL_PINNED of pos.w, a scalar */
+/* Whether aux's pinned value w marks a pinned point */
 #ifdef MSOCL_PINS
 #define MSOCL_PLANES_PINNED(w) ((w) != 0.0f)
 #else
@@ -70,7 +70,7 @@
 #endif
 
 /* Value k of collider c (0: kind, 1: friction, 2: 1 while it moves,
- * 4-7: msocl_collider_gap's prm, 8-15: a capsule's or box's
+ * 4-7: its parameters (msocl_planes_gap), 8-15: a capsule's or box's
  * msocl__collider.x, 16-18: its pose's velocity, 19-21: its angular
  * velocity, 22-24: its pose position) in the planes' collider table
  * (lib/engine/planes.c, lib/sim/sim_colliders.c), where each value has a
@@ -88,8 +88,8 @@
   const T uy = fma((T)cv(21), rx_, -(cv(19) * rz_)) + cv(17);                 \
   const T uz = cv(18) - (cv(20) * rx_ - cv(19) * ry_)
 
-/* msocl_collider_gap in scalars for collider c: g, and the unit gradient
- * in *nx.. */
+/* Collider c's gap g at the point (>= 0 outside; convex), and its unit
+ * gradient in *nx.. */
 static MSOCL_PLANES_INLINE float msocl_planes_gap(float px, float py, float pz,
                               __constant const float *col, int c, float *nx,
                               float *ny, float *nz)
@@ -206,7 +206,7 @@ static MSOCL_PLANES_INLINE float msocl_planes_gap(float px, float py, float pz,
  * user (they replace the exact zeros its float4 twin adds). GRID: the
  * neighbour a fixed offset away, past the grid's edge (or of a kind with
  * k 0) reading the padding or another row; BUFFER and IMAGE2D: the other
- * end that msocl_slot finds, a free slot the point itself (a padding
+ * end that the table holds (common.cl's msocl_slot4), a free slot the point itself (a padding
  * work-item reads no slot: the table holds n points a slot). */
 static MSOCL_PLANES_INLINE bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, int y, int z,
                                   int a, int pitch, int slab, int *b,
@@ -236,7 +236,7 @@ static MSOCL_PLANES_INLINE bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, 
   (void)y; (void)z; (void)a; (void)slab;
 #if defined(MSOCL_LAYOUT_IMAGE2D)
   if (x < pitch) { /* a padding work-item reads no texel */
-    /* msocl_slot's reads: the entry, and the dashpot in its group's texel */
+    /* the entry, and the dashpot in its group's texel */
     const sampler_t smp =
         CLK_NORMALIZED_COORDS_FALSE | CLK_ADDRESS_NONE | CLK_FILTER_NEAREST;
     const int tx = x % tex_w, ty = x / tex_w;
@@ -331,8 +331,8 @@ static MSOCL_PLANES_INLINE void msocl_planes_spill_slot(MSOCL_CONN, int o, int s
 /* A gathering kernel runs twice: over the rows (pass 0), storing nothing
  * for a point with springs past the table, and over just those points
  * (pass 1, the kernel's _spill twin), their springs past the table
- * summed after the table's one at a time, as msocl_force and msocl_slot
- * do. A loop of run-time length in the first would stop PoCL
+ * summed after the table's one at a time, in the order a table long
+ * enough for all would sum them. A loop of run-time length in the first would stop PoCL
  * vectorising it; `pass` is a constant in each, so the loop below
  * folds away in the first. */
 #define MSOCL_PLANES_SPILLS                                                   \
@@ -373,7 +373,7 @@ static MSOCL_PLANES_INLINE void msocl_planes_spill_slot(MSOCL_CONN, int o, int s
   static void name##_at(const int pass, const int x, const int y,            \
                         const int z, MSOCL_PLANES_UNPAREN params)
 
-/* One slot's part of msocl_force on the point whose position and
+/* One slot's part of the force on the point whose position and
  * velocity are q[0..5]: the spring's and its dashpot's pull from the
  * neighbour at b, added to f[0..2] where the spring exists. */
 static MSOCL_PLANES_INLINE void msocl_planes_pull(__global const float *p,
@@ -402,7 +402,10 @@ static MSOCL_PLANES_INLINE void msocl_planes_pull(__global const float *p,
   (void)v; (void)cc; /* read by dashpots */
 }
 
-/* msocl_force at the point at a = (x, y, z), viscous damping included
+/* Internal force at the point at a = (x, y, z): each spring k (len -
+ * rest) / len d (Hooke, eq. 2 of the paper; a zero-length spring exerts
+ * nothing rather than NaN) and each dashpot c dot(vq - vp, d) / len^2 d,
+ * slot by slot, viscous damping included
  * (pass: MSOCL_PLANES_SPILLS). */
 static MSOCL_PLANES_INLINE void msocl_planes_force(MSOCL_CONN, const int pass,
                                __global const float *p,
@@ -441,7 +444,10 @@ static MSOCL_PLANES_INLINE void msocl_planes_force(MSOCL_CONN, const int pass,
   *fz_out = fz;
 }
 
-/* msocl_collide, its branches as selects. */
+/* Collision response by changing velocity (the paper's way): g is convex
+ * and >= 0 outside, so raising n.v to at least -g/dt keeps p + dt v
+ * outside; friction scales away that fraction of the tangential velocity
+ * on contact. Branches as selects. */
 static MSOCL_PLANES_INLINE void msocl_planes_collide(float px, float py, float pz, float *vx_io,
                                  float *vy_io, float *vz_io, float dt,
                                  __constant float4 *col, float fscale)
@@ -452,9 +458,8 @@ static MSOCL_PLANES_INLINE void msocl_planes_collide(float px, float py, float p
   for (int c = 0; c < MSOCL_NCOL; c++) {
     float nx, ny, nz;
     const float g = msocl_planes_gap(px, py, pz, cf, c, &nx, &ny, &nz);
-    /* msocl_respond, its branch as selects, on the velocity relative to a
-     * moving collider's surface (a static one's, selected, is v itself:
-     * bitwise the float4 engine's) */
+    /* on the velocity relative to a moving collider's surface (a static
+     * one's, selected, is v itself) */
 #define cv(k) MSOCL_PLANES_COL(cf, c, k)
     MSOCL_PLANES_SURFACE(float, cv, px, py, pz);
     const bool moving = cv(2) != 0.0f;
@@ -556,7 +561,7 @@ MSOCL_PLANES_GATHER(msocl_planes_velocity,
   }
 }
 
-/* Both passes in one kernel (tuning.fused), as msocl_fused: the point
+/* Both passes in one kernel (tuning.fused): the point
  * moves by its new velocity at once; others read only the old p. */
 MSOCL_PLANES_GATHER(msocl_planes_fused,
                     (MSOCL_CONN, __global const float *p,
@@ -600,7 +605,7 @@ __kernel void msocl_planes_position(__global const float *p,
   }
 }
 
-/* Velocity Verlet in planes, as msocl_verlet_drift and msocl_verlet_kick.
+/* Velocity Verlet in planes.
  * Drift: v+ = v + dt/2 a with the collision response on it, in place (no
  * other point reads it here), and p' = p + dt v+. */
 __kernel void msocl_planes_drift(__global const float *p, __global float *v,
@@ -659,7 +664,7 @@ MSOCL_PLANES_GATHER(msocl_planes_vkick,
   }
 }
 
-/* msocl_project in scalars (explicit methods: a point found inside a
+/* Projection out of the colliders (explicit methods: a point found inside a
  * collider at the end of the step goes back to its surface and loses its
  * inward speed). A moving collider's table holds its shape at the step's
  * start: its gap at the step's end is the gap at p - dt u, to first order,
@@ -704,7 +709,7 @@ static MSOCL_PLANES_INLINE void msocl_planes_project(float *px, float *py, float
   (void)cf;
 }
 
-/* Forward Euler in planes, as msocl_euler: p' = p + dt v, v' = v + dt
+/* Forward Euler in planes: p' = p + dt v, v' = v + dt
  * a(p, v), times air, projected out of the colliders; pinned points
  * stay. */
 MSOCL_PLANES_GATHER(msocl_planes_euler,
@@ -738,7 +743,7 @@ MSOCL_PLANES_GATHER(msocl_planes_euler,
   }
 }
 
-/* One RK4 stage in planes, as msocl_rk4_stage; mode a constant in each of
+/* One RK4 stage in planes; mode a constant in each of
  * the three kernels below, so its branches fold away. */
 static MSOCL_PLANES_INLINE void msocl_planes_rk4(MSOCL_CONN, const int pass, const int x,
                              const int y, const int z,
@@ -830,7 +835,7 @@ MSOCL_PLANES_GATHER(msocl_planes_rk4_last, MSOCL_PLANES_RK4_ARGS,
   MSOCL_PLANES_RK4_CALL(2);
 }
 
-/* Provot's strain limiting in planes, as msocl_strain_position: a Jacobi
+/* Provot's strain limiting in planes: a Jacobi
  * sweep from p into p_out, each point moved by the size-weighted average
  * of what its over-long springs ask (half the excess, a pinned
  * neighbour's spring all of it); pinned points stay. (In
@@ -898,7 +903,7 @@ MSOCL_PLANES_GATHER(msocl_planes_strain,
   }
 }
 
-/* And its end, as msocl_strain_commit: v += (corrected - p) / dt, then p
+/* And its end: v += (corrected - p) / dt, then p
  * takes the corrected position. */
 __kernel void msocl_planes_commit(__global float *p,
                                   __global const float *corrected,
@@ -920,7 +925,7 @@ __kernel void msocl_planes_commit(__global float *p,
   }
 }
 
-/* The velocity kind in planes, as msocl_strain_velocity: a Jacobi sweep
+/* The velocity kind in planes: a Jacobi sweep
  * from v into v_out at the step's starting positions p, each point's
  * velocity changed by the size-weighted average of what its springs ask
  * (the relative speed along a spring beyond what brings it to the limit
@@ -1010,25 +1015,6 @@ MSOCL_PLANES_GATHER(msocl_planes_strain_v,
   (void)slab;                                                                \
   if (x >= nx || i >= n)                                                     \
     return
-
-/* Another float4 buffer's xyz (Verlet's acceleration) into planes, and
- * back with w 0. */
-__kernel void msocl_planes_in(__global const float4 *src, __global float *dst,
-                              int nx, int pitch, int slab, int plane, int n)
-{
-  MSOCL_PLANES_POINT;
-  const float4 q = src[i];
-  dst[a] = q.x;
-  dst[plane + a] = q.y;
-  dst[2 * plane + a] = q.z;
-}
-
-__kernel void msocl_planes_out(__global const float *src, __global float4 *dst,
-                               int nx, int pitch, int slab, int plane, int n)
-{
-  MSOCL_PLANES_POINT;
-  dst[i] = (float4)(src[a], src[plane + a], src[2 * plane + a], 0.0f);
-}
 
 /* The engine's float4 state into planes. */
 __kernel void msocl_planes_pack(__global const float4 *pos,

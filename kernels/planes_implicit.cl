@@ -1,12 +1,37 @@
-/* Implicit Euler in planes: kernels/implicit.cl's system and conjugate
- * gradients over x, y, z planes, point by point the same arithmetic. The
- * dot products are where the two could part: a planes work-group is a
- * row's stretch, not 64 consecutive points. So each kernel writes its
- * point's term to dots[i] (i its float4 index) and msocl_sum_points adds
- * them in work-groups of 64 in index order, as msocl_group_sum does in
- * float4: the partials, the host's sums, every alpha and beta and so the
- * whole step are bitwise float4's. Needs implicit.cl and planes.cl before
- * it. */
+/* Backward Euler in the Baraff-Witkin form (Large steps in cloth
+ * simulation, 1998): one linearised step
+ *   (M - dt D - dt^2 K) dv = dt (f(p, v) + dt K v),  v' = v + dv,
+ *   p' = p + dt v'
+ * solved by conjugate gradients (lib/engine/cg.c) without forming the
+ * matrix: each product is a gather over the point's springs with the
+ * spring Jacobian
+ *   J = k (u u^T + max(0, 1 - r/l) (I - u u^T))
+ * (the clamp keeps J positive semi-definite for compressed springs, so the
+ * system stays symmetric positive definite), D from the dashpots (c u u^T)
+ * and viscous damping. Pinned points have dv = 0: identity rows, zero
+ * right-hand side. A planes work-group is a row's stretch, not 64
+ * consecutive points, so each kernel writes its point's term of a dot
+ * product to dots[i] (i its index) and msocl_sum_points adds them in
+ * work-groups of 64 in index order: the same partials, host sums, alphas
+ * and betas on every layout and split. Needs planes.cl before it. */
+
+#define MSOCL_CG_GROUP 64
+
+/* Sums v over the work-group into partial[group].x. */
+static void msocl_group_sum(float v, __local float *part,
+                            __global float4 *partial)
+{
+  int l = get_local_id(0);
+  part[l] = v;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int w = MSOCL_CG_GROUP / 2; w > 0; w >>= 1) {
+    if (l < w)
+      part[l] += part[l + w];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (l == 0)
+    partial[get_group_id(0)] = (float4)(part[0], 0.0f, 0.0f, 0.0f);
+}
 
 /* dots[i] in groups of 64 into partial[group].x (any device). */
 __kernel __attribute__((reqd_work_group_size(MSOCL_CG_GROUP, 1, 1)))
@@ -23,8 +48,8 @@ void msocl_sum_points(__global const float *dots, __global float4 *partial,
 /* The point's float4 index, (z ny + y) nx + x. */
 #define MSOCL_PLANES_INDEX(nx) ((z * (int)get_global_size(1) + y) * (nx) + x)
 
-/* msocl_jacobian in scalars, added to *j.. where `on`: J e for the spring
- * from the point to a neighbour d = (dx, dy, dz) away. */
+/* J e for the spring from the point to a neighbour d = (dx, dy, dz) away,
+ * added to *j.. where `on`. */
 static MSOCL_PLANES_INLINE void msocl_planes_jacobian(float dx, float dy, float dz, float rest,
                                   float k, float ex, float ey, float ez,
                                   bool on, float *jx, float *jy, float *jz)
@@ -53,7 +78,7 @@ static MSOCL_PLANES_INLINE void msocl_planes_stiff(__global const float *p,
                         there, &k[0], &k[1], &k[2]);
 }
 
-/* As msocl_ie_rhs: b = dt (f + dt K v); x = 0, r = d = b; dots: b.b */
+/* b = dt (f + dt K v); x = 0, r = d = b; dots: b.b */
 MSOCL_PLANES_GATHER(msocl_planes_ie_rhs,
                     (MSOCL_CONN, __global const float *p,
                      __global const float *v, __global float *x_out,
@@ -101,7 +126,7 @@ MSOCL_PLANES_GATHER(msocl_planes_ie_rhs,
 
 /* One slot's part of A d for the point whose position and direction are
  * q[0..5]: J (d_b - d_a) added to k[0..2], the dashpot's
- * (msocl_damp_jacobian) to c[0..2]. */
+ * c u u^T (d_b - d_a) to c[0..2]. */
 static MSOCL_PLANES_INLINE void msocl_planes_product(__global const float *p,
                                  __global const float *d, int plane,
                                  const float *q, int b, bool there,
@@ -125,7 +150,7 @@ static MSOCL_PLANES_INLINE void msocl_planes_product(__global const float *p,
   (void)cc; (void)c; /* the dashpots' */
 }
 
-/* As msocl_ie_apply: ap = A d; dots: d.Ad */
+/* ap = A d; dots: d.Ad */
 MSOCL_PLANES_GATHER(msocl_planes_ie_apply,
                     (MSOCL_CONN, __global const float *p,
                      __global const float *d, __global float *ap,
@@ -174,7 +199,7 @@ MSOCL_PLANES_GATHER(msocl_planes_ie_apply,
   }
 }
 
-/* As msocl_cg_step: x += alpha d; r -= alpha ap; dots: r.r */
+/* x += alpha d; r -= alpha ap; dots: r.r */
 __kernel void msocl_planes_cg_step(__global float *xs, __global float *r,
                                    __global const float *d,
                                    __global const float *ap,
@@ -198,7 +223,7 @@ __kernel void msocl_planes_cg_step(__global float *xs, __global float *r,
   dots[MSOCL_PLANES_INDEX(nx)] = MSOCL_DOT3(rx, ry, rz, rx, ry, rz);
 }
 
-/* As msocl_cg_direction: d = r + beta d */
+/* d = r + beta d */
 __kernel void msocl_planes_cg_direction(__global float *d,
                                         __global const float *r, int nx,
                                         int pitch, int slab, int plane,
@@ -215,7 +240,7 @@ __kernel void msocl_planes_cg_direction(__global float *d,
   d[az] = r[az] + beta * d[az];
 }
 
-/* As msocl_ie_finish: v' = v + dv (times air), the collision response on
+/* v' = v + dv (times air), the collision response on
  * it; pinned points 0. */
 __kernel void msocl_planes_ie_finish(__global const float *p,
                                      __global const float *v,

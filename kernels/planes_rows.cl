@@ -53,7 +53,8 @@ typedef int8 msocl_rows_m;
 /* Terms of one ring row: six forward springs' x, y, z terms, then wind's
  * on the quad's two triangles (A, B as wind.cl's msocl_wind_quads), then
  * with dashpots the six springs' dashpot terms (term 8 + f: summed apart,
- * as msocl_force adds a slot's spring and dashpot one after the other),
+ * as msocl_planes_pull adds a slot's spring and dashpot one after the
+ * other),
  * each `ring_w` floats (a padded row's columns); engine/planes_rows.c
  * sizes the ring by the same count */
 #define MSOCL_ROWS_DASH 8
@@ -186,7 +187,8 @@ static void msocl_rows_wind(MSOCL_CONN, __global const float *p,
   }
 }
 
-/* msocl_planes_gap and msocl_respond for collider c, lane by lane. */
+/* msocl_planes_gap and msocl_planes_collide's response for collider c,
+ * lane by lane. */
 static void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
                                msocl_rows_f pz, msocl_rows_f *vx_io,
                                msocl_rows_f *vy_io, msocl_rows_f *vz_io,

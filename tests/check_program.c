@@ -48,11 +48,11 @@ static int make_sim(void)
 #define NFILES ((size_t)msocl__kernel_source_count)
 #define FILE_NAME(f) (msocl__kernel_sources[f].name)
 
-/* All kernel files into dir, with `extra` after the step file. */
+/* All kernel files into dir, with `extra` after planes.cl. */
 static void copy_all(const char *extra)
 {
   for (size_t f = 0; f < NFILES; f++)
-    copy_kernel(FILE_NAME(f), strcmp(FILE_NAME(f), "step.cl") ? "\n" : extra);
+    copy_kernel(FILE_NAME(f), strcmp(FILE_NAME(f), "planes.cl") ? "\n" : extra);
 }
 
 START_TEST(kernel_path_loads_files)

@@ -154,9 +154,6 @@ static int make_buffers(msocl__engine *s, const msocl_model *m)
   s->tri_off = buffer(s, CL_MEM_READ_ONLY, (n + 1) * sizeof *off, off, &rc);
   s->tri_ab = buffer(s, CL_MEM_READ_ONLY,
                      (size_t)(2 * 3 * m->nt + 2) * sizeof *ab, ab, &rc);
-  /* Verlet's first acceleration, from the state as the host wrote it */
-  if (s->o.integrator == MSOCL_VERLET)
-    s->acc = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
   if (s->o.check_every > 0) {
     s->backup_p = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
     s->backup_v = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
@@ -180,14 +177,14 @@ out:
   return rc;
 }
 
-/* Kernels by enum index; all three gather but the normals. */
-static const char *const kernel_names[MSOCL__K_COUNT] = {
-    "msocl_normals", "msocl_accel", "msocl_energy"};
+/* Kernels by enum index; the energy gathers. */
+static const char *const kernel_names[MSOCL__K_COUNT] = {"msocl_normals",
+                                                         "msocl_energy"};
 
-/* Creates the float4 kernels the model uses. */
+/* Creates the float4 state's kernels: the normals and the energy. */
 static int make_kernels(msocl__engine *s, cl_program prog)
 {
-  int want[MSOCL__K_COUNT] = {1, s->o.integrator == MSOCL_VERLET, 1};
+  int want[MSOCL__K_COUNT] = {1, 1};
   for (int q = 0; q < MSOCL__K_COUNT; q++) {
     if (!want[q])
       continue;
@@ -285,7 +282,7 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
   if (rc == MSOCL_OK && s->o.integrator == MSOCL_IMPLICIT_EULER)
     rc = msocl__pl_implicit_args(s); /* planes_implicit.c's kernels */
   if (rc == MSOCL_OK)
-    rc = msocl__integrate_setup(s);
+    rc = msocl__set_fixed(s);
   if (rc == MSOCL_OK) {
     cl_int e = clFinish(s->dev->queue);
     if (e != CL_SUCCESS)
@@ -312,7 +309,7 @@ void msocl__engine_destroy(msocl__engine *s)
       clReleaseKernel(s->k[q]);
   cl_mem mems[] = {s->pos[0],   s->pos[1],    s->vel[0],    s->vel[1],
                    s->inv_mass, s->col,       s->normal,    s->tri_off,
-                   s->tri_ab,   s->acc,       s->backup_p,  s->backup_v,
+                   s->tri_ab,   s->backup_p,  s->backup_v,
                    s->partial};
   for (size_t q = 0; q < sizeof mems / sizeof mems[0]; q++)
     if (mems[q])
@@ -377,8 +374,7 @@ int msocl__engine_terms(msocl__engine *s, int viscous, int air)
     s->opt_model = was;
     return rc;
   }
-  /* the float4 kernels too: Verlet's first acceleration and the energy
-   * read the forces */
+  /* the energy's kernel too: it reads the springs */
   MSOCL__CL(clFinish(s->dev->queue));
   for (int q = 0; q < MSOCL__K_COUNT; q++)
     if (s->k[q]) {
@@ -386,7 +382,7 @@ int msocl__engine_terms(msocl__engine *s, int viscous, int air)
       s->k[q] = NULL;
     }
   MSOCL__TRY(make_kernels(s, prog));
-  MSOCL__TRY(msocl__integrate_setup(s));
+  MSOCL__TRY(msocl__set_fixed(s));
   MSOCL__TRY(msocl__planes_rebuild(s, prog, 1));
   return rebound(s);
 }

@@ -1,6 +1,6 @@
 /* An engine: a whole copy of the model on one device, advancing the points
  * of its own range. Shared by the files that set it up (engine.c), step it
- * (schedule.c, integrate.c, planes*.c, cg.c) and
+ * (schedule.c, planes*.c, cg.c) and
  * measure it (energy.c); the simulation (sim.h) joins engines. */
 #ifndef MSOCL_ENGINE_H
 #define MSOCL_ENGINE_H
@@ -8,9 +8,9 @@
 #include "layout.h"
 
 /* Kernels the library's program holds; the enum indexes msocl__engine.k. */
-/* Beside the planes' kernels (planes.h), three read the float4 state the
- * host sees: the normals, Verlet's first acceleration and the energy. */
-enum { MSOCL__K_NORMALS, MSOCL__K_ACCEL, MSOCL__K_ENERGY, MSOCL__K_COUNT };
+/* Beside the planes' kernels (planes.h), two read the float4 state the
+ * host sees: the normals and the energy. */
+enum { MSOCL__K_NORMALS, MSOCL__K_ENERGY, MSOCL__K_COUNT };
 
 typedef struct msocl__engine msocl__engine;
 
@@ -23,12 +23,10 @@ struct msocl__engine {
   cl_mem pos[2], vel[2];  /* the state as the host reads and writes it,
                              float4 a point: [r] is current */
   cl_mem inv_mass, col, normal, tri_off, tri_ab;
-  cl_mem acc;             /* Verlet: a at the current state */
   cl_mem backup_p, backup_v; /* last state that passed the blow-up check */
   cl_mem partial;         /* one float4 per work-group of reductions */
   cl_kernel k[MSOCL__K_COUNT];
   int r;
-  int acc_valid;          /* acc matches the current state */
   int damped;             /* dashpots: gathers read neighbours' velocities */
   int lo, hi;             /* the points this engine advances */
   size_t offset, global;  /* its launches: from lo, (hi - lo) work-items
@@ -71,8 +69,8 @@ struct msocl__engine {
   cl_mem pl_table[4];     /* that copy's nbr, rk, dashpots, spill (owned) */
   cl_mem pl_list;         /* BUFFER with a spill: the points that spill */
   int pl_nspill;          /* ... and how many */
-  cl_kernel pl_ks[22];    /* the gathering kernels' _spill twins */
-  cl_kernel pl_k[22];     /* planes.c's kernels (planes.h) */
+  cl_kernel pl_ks[20];    /* the gathering kernels' _spill twins */
+  cl_kernel pl_k[20];     /* planes.c's kernels (planes.h) */
   cl_uint pl_conn;        /* the gathering kernels' connectivity args */
   int pl_pitch, pl_slab, pl_plane; /* floats a row, a layer, a plane */
   size_t pl_global[3];    /* the passes' range: rows padded to a group */
@@ -121,8 +119,6 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
                          const msocl_model *m, const msocl_sim_options *o,
                          int lo, int hi);
 void msocl__engine_destroy(msocl__engine *e);
-/* Sets the kernels' fixed arguments, once. */
-int msocl__integrate_setup(msocl__engine *s);
 /* A step is a few phases (schedule.c's table); after each, the buffers in
  * the returned mask must reach the other engines before the next phase
  * reads them. */
@@ -160,9 +156,6 @@ void msocl__planes_release(msocl__engine *s);
 /* The planes kernels' gravity, viscous damping and air resistance
  * arguments again, from s->gravity, viscous and air (a live change). */
 int msocl__planes_forces(msocl__engine *s);
-/* Verlet: the acceleration at the current float4 state into acc, over
- * the whole range, unless acc already holds it. */
-int msocl__verlet_accel(msocl__engine *s);
 /* Colliders added to a running engine (engine.c): the program
  * built for ncol colliders of the kinds in `kinds` (1 << kind each), and
  * the kernels that read the collider table re-created from it, their

@@ -27,7 +27,7 @@ int msocl__exchange_slices(const msocl__engine *s, int a, int b,
   return 3;
 }
 
-/* The planes' buffer an exchange bit names (as integrate.c's float4 one):
+/* The planes' buffer an exchange bit names:
  * RK4's stages alternate between the stage sets, the CG direction is the
  * first stage velocities (planes_implicit.c). */
 cl_mem msocl__planes_exchange_buffer(const msocl__engine *s, unsigned bit)

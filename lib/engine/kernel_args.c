@@ -11,16 +11,12 @@
 
 static const char *const normals[] = {"pos", "tri_off", "tri_ab", "normal",
                                       "n", NULL};
-static const char *const accel[] = {CONN,       "pos",      "vel",
-                                    "acc_out",  "inv_mass", "gravity",
-                                    "viscous",  "n",        NULL};
 static const char *const energy[] = {CONN,      "pos", "vel", "inv_mass",
                                      "gravity", "partial", "n", "end",
                                      NULL};
 
 static const char *const *const signature[MSOCL__K_COUNT] = {
     [MSOCL__K_NORMALS] = normals,
-    [MSOCL__K_ACCEL] = accel,
     [MSOCL__K_ENERGY] = energy,
 };
 
@@ -72,7 +68,6 @@ int msocl__set_fixed(msocl__engine *s)
       {"viscous", sizeof s->viscous, &s->viscous},
       {"n", sizeof s->n, &s->n},
       {"end", sizeof s->hi, &s->hi},
-      {"acc_out", sizeof s->acc, &s->acc},
       {"partial", sizeof s->partial, &s->partial},
       {"tri_off", sizeof s->tri_off, &s->tri_off},
       {"tri_ab", sizeof s->tri_ab, &s->tri_ab},

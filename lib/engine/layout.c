@@ -149,7 +149,7 @@ int msocl__table_slots(const struct msocl__adjacency *adj, int want)
   while (width < top && within + count[width] < n - n / 100)
     within += count[width++];
   free(count);
-  width = (width + 3) / 4 * 4; /* msocl_force takes four at a time */
+  width = (width + 3) / 4 * 4; /* msocl_slot4 takes four at a time */
   return width < top ? width : top;
 }
 
@@ -234,7 +234,7 @@ static int build_buffers(struct msocl__device *dev, const msocl_model *m,
     goto out;
   }
   /* A free slot is a spring from the point to itself with rest and k 0
-   * (GRID's missing neighbour): it adds exact zeros, so msocl_force can
+   * (GRID's missing neighbour): it adds exact zeros, so msocl_slot4 can
    * take four slots at a time with no end test. */
   for (size_t t = 0; t < S * n; t++)
     nbr[t] = (int)(t % n);

@@ -26,7 +26,7 @@ _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_ks /
 static const char *const names[PL_COUNT] = {
     "msocl_planes_velocity", "msocl_planes_position", "msocl_planes_pack",
     "msocl_planes_unpack",   "msocl_planes_fused",    "msocl_planes_drift",
-    "msocl_planes_vkick",    "msocl_planes_in",       "msocl_planes_out",
+    "msocl_planes_vkick",
     "msocl_planes_rk4_first", "msocl_planes_rk4_middle",
     "msocl_planes_rk4_last", "msocl_planes_strain", "msocl_planes_commit",
     "msocl_planes_strain_v", "msocl_planes_ie_rhs", "msocl_planes_ie_apply",
@@ -309,8 +309,7 @@ static int fixed_args(msocl__engine *s)
   TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
   TRY(arg(k, c + 8, sizeof(float), &s->o.dt));
   TRY(arg(k, c + 9, sizeof s->pl_col, &s->pl_col));
-  /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col), and the
-   * acceleration in and out (src, dst, shape, n) */
+  /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col) */
   if (s->o.integrator != MSOCL_VERLET)
     return MSOCL_OK;
   k = s->pl_k[PL_DRIFT];
@@ -318,15 +317,7 @@ static int fixed_args(msocl__engine *s)
   TRY(arg(k, 4, sizeof s->pl_aux, &s->pl_aux));
   TRY(shape(s, k, 5, 1));
   TRY(arg(k, 9, sizeof(float), &s->o.dt));
-  TRY(arg(k, 10, sizeof s->pl_col, &s->pl_col));
-  for (int q = PL_IN; q <= PL_OUT; q++) {
-    k = s->pl_k[q];
-    TRY(arg(k, q == PL_IN ? 0 : 1, sizeof s->acc, &s->acc));
-    TRY(arg(k, q == PL_IN ? 1 : 0, sizeof s->pl_a, &s->pl_a));
-    TRY(shape(s, k, 2, 1));
-    TRY(arg(k, 6, sizeof(int), &s->n));
-  }
-  return MSOCL_OK;
+  return arg(k, 10, sizeof s->pl_col, &s->pl_col);
 }
 
 /* The colliders for the planes kernels: s->col's values (8 a collider),
@@ -589,8 +580,7 @@ static void own_part(const msocl__engine *s, int k, size_t off[3],
   const int span = s->run_offset != s->offset || s->run_global != s->global;
   const size_t lo = span ? s->run_offset : (size_t)s->lo,
                hi = span ? s->run_offset + s->run_global : (size_t)s->hi;
-  if ((lo == 0 && hi == (size_t)s->n) || k == PL_PACK || k == PL_UNPACK ||
-      k == PL_IN || k == PL_OUT)
+  if ((lo == 0 && hi == (size_t)s->n) || k == PL_PACK || k == PL_UNPACK)
     return;
   const int grid = s->lay.kind == MSOCL_LAYOUT_GRID,
             dim = !grid ? 0 : s->lay.grid_nz > 0 ? 2 : 1;
@@ -648,7 +638,7 @@ static int gather_args(msocl__engine *s, int k, int n, const cl_mem *bufs)
   return MSOCL_OK;
 }
 
-/* RK4's stage q (as integrate.c's rk4_stage): the stage states alternate
+/* RK4's stage q: the stage states alternate
  * between two sets so no kernel writes what its neighbours read; the last
  * stage writes set w. */
 static int rk4_stage(msocl__engine *s, int q, int r, int w)
@@ -764,10 +754,19 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
   return msocl__fail(MSOCL_ERR_INVALID_ARG, "no planes pass %d", (int)pass);
 }
 
-/* Verlet's acceleration into its planes (in) or back (out). */
-static int acceleration(msocl__engine *s, int in)
+/* Verlet's first acceleration, from the state just copied into set 0:
+ * the kick with dt 0, its velocities into set 1, which every step
+ * writes before it reads. */
+static int first_acceleration(msocl__engine *s)
 {
-  return launch(s, in ? PL_IN : PL_OUT);
+  const cl_uint dt = s->pl_conn + 11; /* after p, v, v_out, acc_out, aux,
+                                         shape (3), forces (3) */
+  const float zero = 0.0f;
+  const cl_mem kick[4] = {s->pl_p[0], s->pl_v[0], s->pl_v[1], s->pl_a};
+  TRY(gather_args(s, PL_KICK, 4, kick));
+  TRY(arg(s->pl_k[PL_KICK], dt, sizeof zero, &zero));
+  TRY(launch(s, PL_KICK));
+  return arg(s->pl_k[PL_KICK], dt, sizeof(float), &s->o.dt);
 }
 
 /* The state is copied into the planes at the first step after the float4
@@ -778,12 +777,9 @@ int msocl__planes_enter(msocl__engine *s)
 {
   if (s->pl_valid)
     return MSOCL_OK;
-  const int verlet = s->o.integrator == MSOCL_VERLET;
-  if (verlet) /* the float4 kernel's, when the state is new */
-    TRY(msocl__verlet_accel(s));
   TRY(copy(s, 0, 1));
-  if (verlet)
-    TRY(acceleration(s, 1));
+  if (s->o.integrator == MSOCL_VERLET)
+    TRY(first_acceleration(s));
   s->pl_set = 0;
   s->pl_valid = 1;
   return MSOCL_OK;
@@ -799,8 +795,6 @@ int msocl__planes_current(msocl__engine *s)
 {
   if (!s->pl_ahead)
     return MSOCL_OK;
-  if (s->o.integrator == MSOCL_VERLET)
-    TRY(acceleration(s, 0)); /* acc_valid holds: it is this state's */
   TRY(copy(s, s->pl_set, 0));
   s->pl_ahead = 0;
   return MSOCL_OK;

@@ -24,7 +24,7 @@ static void accel(const msocl_reference *r, const double *pos,
   }
 }
 
-/* Strain sweeps of kernels/strain.cl: velocity (on r->vnew) or Provot's
+/* The strain sweeps of kernels/planes.cl: velocity (on r->vnew) or Provot's
  * positions (on r->pnew), Jacobi style, each point moved by the average
  * of what its springs ask. */
 static void strain_velocity(msocl_reference *r)
@@ -95,7 +95,7 @@ static void strain_position(msocl_reference *r, double *vel)
     }
     memcpy(r->pnew, r->tmp, 3 * (size_t)r->n * sizeof(double));
   }
-  /* msocl_strain_commit: velocities take up the correction */
+  /* msocl_planes_commit: velocities take up the correction */
   for (int i = 0; i < 3 * r->n; i++)
     vel[i] += (r->pnew[i] - r->a[i]) / r->dt;
 }

@@ -6,7 +6,8 @@
 
 #include <math.h>
 
-/* msocl_respond() and msocl_collider_gap() of common.cl. */
+/* msocl_planes_gap() and the response of msocl_planes_collide()
+ * (kernels/planes.cl). */
 static double gap(const struct msocl__collider *k, const double *p, double *n)
 {
   n[0] = 0.0; n[1] = 1.0; n[2] = 0.0;
@@ -60,7 +61,7 @@ void msocl__ref_collide(const msocl_reference *r, const double *p, double *v,
   }
 }
 
-/* msocl_project() of common.cl; a moving collider's gap at the step's
+/* msocl_planes_project() of kernels/planes.cl; a moving collider's gap at the step's
  * end is its gap at p - dt u, to first order (kernels/planes.cl). */
 void msocl__ref_project(const msocl_reference *r, double *p, double *v)
 {

@@ -1,5 +1,5 @@
 /* Backward Euler on the host in double: the same linearised system and
- * matrix-free conjugate gradients as kernels/implicit.cl. */
+ * matrix-free conjugate gradients as kernels/planes_implicit.cl. */
 #include "config.h"
 #include "reference_state.h"
 

@@ -84,7 +84,6 @@ int msocl__check_backup(msocl_sim *s, int to_backup)
                                     0, NULL, NULL));
     if (!to_backup) {
       msocl__planes_written(e);
-      e->acc_valid = 0;
     }
   }
   return MSOCL_OK;

@@ -85,9 +85,8 @@ static int apply(msocl_sim *s)
     if (e->o.integrator == MSOCL_VERLET) {
       MSOCL__TRY(msocl__planes_current(e));
       msocl__planes_written(e);
-      e->acc_valid = 0;
     }
-    MSOCL__TRY(msocl__integrate_setup(e));
+    MSOCL__TRY(msocl__set_fixed(e));
     MSOCL__TRY(msocl__planes_forces(e));
   }
   return MSOCL_OK;
@@ -204,7 +203,6 @@ int msocl_sim_pin(msocl_sim *s, int count, const int *idx, int pinned)
     }
     MSOCL__CL(clFinish(e->dev->queue)); /* w lives on this stack */
     msocl__planes_written(e);
-    e->acc_valid = 0;
   }
   for (int q = 0; q < count; q++) {
     int k;

@@ -70,7 +70,6 @@ static int write_state(msocl_sim *s, int velocities, const float *xyz)
                                    CL_TRUE, 0, 4 * (size_t)s->n * sizeof(float),
                                    s->stage, 0, NULL, NULL));
     msocl__planes_written(e);
-    e->acc_valid = 0; /* a new state: new Verlet acceleration */
   }
   return MSOCL_OK;
 }

@@ -99,7 +99,6 @@ static int points_io(msocl_sim *s, int velocities, int write, int list,
                      count, f4);
     if (rc == MSOCL_OK && write) {
       msocl__planes_written(e);
-      e->acc_valid = 0;
     }
   }
   for (int q = 0; rc == MSOCL_OK && !write && q < count; q++)
