@@ -25,9 +25,11 @@
  * msocl_planes_force adds for it, with no edge test a slot. Same slot
  * order and arithmetic as msocl_planes_kick, so the result is bitwise
  * GRID's (tests/check_planes.c). */
-#if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID) && \
-    !defined(MSOCL_GRID_3D)
-
+/* The vector of points this sweep works in, and planes_wide.cl's kernels
+ * (BUFFER's table) too. */
+#if defined(MSOCL_PLANES) &&                                                 \
+    ((defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_GRID_3D)) ||               \
+     (!defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_LAYOUT_IMAGE2D)))
 #ifndef MSOCL_ROWS_W
 #define MSOCL_ROWS_W 16
 #endif
@@ -49,6 +51,78 @@ typedef int8 msocl_rows_m;
 /* c ? a : b per lane */
 #define MSOCL_ROWS_SEL(c, a, b)                                               \
   select((msocl_rows_f)(b), (msocl_rows_f)(a), (msocl_rows_m)(c))
+
+/* msocl_planes_gap and msocl_planes_collide's response for collider c,
+ * lane by lane. */
+static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
+                               msocl_rows_f pz, msocl_rows_f *vx_io,
+                               msocl_rows_f *vy_io, msocl_rows_f *vz_io,
+                               float dt, __constant const float *cf, int c)
+{
+#define cv(k) MSOCL_PLANES_COL(cf, c, k)
+  const int kind = (int)cv(0);
+  msocl_rows_f g = INFINITY, nx = 0.0f, ny = 1.0f, nz = 0.0f;
+#ifdef MSOCL_PLANE
+  if (kind == MSOCL_PLANE_KIND) {
+    nx = cv(4);
+    ny = cv(5);
+    nz = cv(6);
+    g = MSOCL_DOT3(cv(4), cv(5), cv(6), px, py, pz) - cv(7);
+  }
+#endif
+#ifdef MSOCL_SPHERE
+  if (kind == MSOCL_SPHERE_KIND) {
+    const msocl_rows_f dx = px - cv(4), dy = py - cv(5), dz = pz - cv(6);
+    const msocl_rows_f len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+    const msocl_rows_m out = len > 0.0f;
+    nx = MSOCL_ROWS_SEL(out, MSOCL_DIV(dx, len), 0.0f);
+    ny = MSOCL_ROWS_SEL(out, MSOCL_DIV(dy, len), 1.0f);
+    nz = MSOCL_ROWS_SEL(out, MSOCL_DIV(dz, len), 0.0f);
+    g = len - cv(7);
+  }
+#endif
+#ifdef MSOCL_TABLE
+  if (kind == MSOCL_TABLE_KIND) {
+    const msocl_rows_f dx = px - cv(4), dz = pz - cv(6);
+    const msocl_rows_f rr = MSOCL_SQRT(dx * dx + dz * dz);
+    const msocl_rows_f gside = rr - cv(7), gtop = py - cv(5);
+    const msocl_rows_m top = (gtop >= gside) | !(rr > 0.0f);
+    nx = MSOCL_ROWS_SEL(top, 0.0f, MSOCL_DIV(dx, rr));
+    ny = MSOCL_ROWS_SEL(top, 1.0f, 0.0f);
+    nz = MSOCL_ROWS_SEL(top, 0.0f, MSOCL_DIV(dz, rr));
+    g = MSOCL_ROWS_SEL(top, gtop, gside);
+  }
+#endif
+  (void)kind;
+  const float fr = 1.0f * cv(1);
+  /* on the velocity relative to a moving collider's surface */
+  MSOCL_PLANES_SURFACE(msocl_rows_f, cv, px, py, pz);
+  const bool moving = cv(2) != 0.0f;
+#undef cv
+  const msocl_rows_f vx = *vx_io, vy = *vy_io, vz = *vz_io;
+  const msocl_rows_f ox = moving ? vx - ux : vx, oy = moving ? vy - uy : vy,
+                     oz = moving ? vz - uz : vz;
+  const msocl_rows_f vn = MSOCL_DOT3(ox, oy, oz, nx, ny, nz);
+  const msocl_rows_f lim = MSOCL_DIV(-g, dt);
+  msocl_rows_f hx = ox + (lim - vn) * nx, hy = oy + (lim - vn) * ny,
+               hz = oz + (lim - vn) * nz;
+  hx = hx - fr * (hx - lim * nx);
+  hy = hy - fr * (hy - lim * ny);
+  hz = hz - fr * (hz - lim * nz);
+  if (moving) {
+    hx = hx + ux;
+    hy = hy + uy;
+    hz = hz + uz;
+  }
+  const msocl_rows_m hit = vn < lim;
+  *vx_io = MSOCL_ROWS_SEL(hit, hx, vx);
+  *vy_io = MSOCL_ROWS_SEL(hit, hy, vy);
+  *vz_io = MSOCL_ROWS_SEL(hit, hz, vz);
+}
+#endif
+
+#if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID) && \
+    !defined(MSOCL_GRID_3D)
 
 /* Terms of one ring row: six forward springs' x, y, z terms, then wind's
  * on the quad's two triangles (A, B as wind.cl's msocl_wind_quads), then
@@ -187,73 +261,6 @@ static void msocl_rows_wind(MSOCL_CONN, __global const float *p,
   }
 }
 
-/* msocl_planes_gap and msocl_planes_collide's response for collider c,
- * lane by lane. */
-static void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
-                               msocl_rows_f pz, msocl_rows_f *vx_io,
-                               msocl_rows_f *vy_io, msocl_rows_f *vz_io,
-                               float dt, __constant const float *cf, int c)
-{
-#define cv(k) MSOCL_PLANES_COL(cf, c, k)
-  const int kind = (int)cv(0);
-  msocl_rows_f g = INFINITY, nx = 0.0f, ny = 1.0f, nz = 0.0f;
-#ifdef MSOCL_PLANE
-  if (kind == MSOCL_PLANE_KIND) {
-    nx = cv(4);
-    ny = cv(5);
-    nz = cv(6);
-    g = MSOCL_DOT3(cv(4), cv(5), cv(6), px, py, pz) - cv(7);
-  }
-#endif
-#ifdef MSOCL_SPHERE
-  if (kind == MSOCL_SPHERE_KIND) {
-    const msocl_rows_f dx = px - cv(4), dy = py - cv(5), dz = pz - cv(6);
-    const msocl_rows_f len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
-    const msocl_rows_m out = len > 0.0f;
-    nx = MSOCL_ROWS_SEL(out, MSOCL_DIV(dx, len), 0.0f);
-    ny = MSOCL_ROWS_SEL(out, MSOCL_DIV(dy, len), 1.0f);
-    nz = MSOCL_ROWS_SEL(out, MSOCL_DIV(dz, len), 0.0f);
-    g = len - cv(7);
-  }
-#endif
-#ifdef MSOCL_TABLE
-  if (kind == MSOCL_TABLE_KIND) {
-    const msocl_rows_f dx = px - cv(4), dz = pz - cv(6);
-    const msocl_rows_f rr = MSOCL_SQRT(dx * dx + dz * dz);
-    const msocl_rows_f gside = rr - cv(7), gtop = py - cv(5);
-    const msocl_rows_m top = (gtop >= gside) | !(rr > 0.0f);
-    nx = MSOCL_ROWS_SEL(top, 0.0f, MSOCL_DIV(dx, rr));
-    ny = MSOCL_ROWS_SEL(top, 1.0f, 0.0f);
-    nz = MSOCL_ROWS_SEL(top, 0.0f, MSOCL_DIV(dz, rr));
-    g = MSOCL_ROWS_SEL(top, gtop, gside);
-  }
-#endif
-  (void)kind;
-  const float fr = 1.0f * cv(1);
-  /* on the velocity relative to a moving collider's surface */
-  MSOCL_PLANES_SURFACE(msocl_rows_f, cv, px, py, pz);
-  const bool moving = cv(2) != 0.0f;
-#undef cv
-  const msocl_rows_f vx = *vx_io, vy = *vy_io, vz = *vz_io;
-  const msocl_rows_f ox = moving ? vx - ux : vx, oy = moving ? vy - uy : vy,
-                     oz = moving ? vz - uz : vz;
-  const msocl_rows_f vn = MSOCL_DOT3(ox, oy, oz, nx, ny, nz);
-  const msocl_rows_f lim = MSOCL_DIV(-g, dt);
-  msocl_rows_f hx = ox + (lim - vn) * nx, hy = oy + (lim - vn) * ny,
-               hz = oz + (lim - vn) * nz;
-  hx = hx - fr * (hx - lim * nx);
-  hy = hy - fr * (hy - lim * ny);
-  hz = hz - fr * (hz - lim * nz);
-  if (moving) {
-    hx = hx + ux;
-    hy = hy + uy;
-    hz = hz + uz;
-  }
-  const msocl_rows_m hit = vn < lim;
-  *vx_io = MSOCL_ROWS_SEL(hit, hx, vx);
-  *vy_io = MSOCL_ROWS_SEL(hit, hy, vy);
-  *vz_io = MSOCL_ROWS_SEL(hit, hz, vz);
-}
 
 /* Term q of forward spring f in ring row r at padded column c */
 #define MSOCL_ROWS_T(r, f, q, c)                                              \

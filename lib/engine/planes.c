@@ -466,20 +466,41 @@ static int padded_table(msocl__engine *s)
 
 /* Planes kernel q from prog, and its _spill twin where it has one (the
  * twin's last argument, the list of the points that spill, set). */
+/* Whether symplectic Euler's velocity and fused passes take
+ * planes_wide.cl's kernels: BUFFER's gather (EDGES's too) on a CPU
+ * device, where PoCL may leave the scalar ones unvectorised; one engine
+ * (they launch over every point), no capsule or box (their vector
+ * collision has no gap for them), precise math (bitwise the scalar
+ * kernels'). */
+static int wide(const msocl__engine *s)
+{
+  return s->dev->info.type == MSOCL_DEVICE_CPU &&
+         (s->lay.kind == MSOCL_LAYOUT_BUFFER ||
+          s->lay.kind == MSOCL_LAYOUT_EDGES) &&
+         s->lo == 0 && s->hi == s->n && !s->pl_shapes &&
+         s->o.math == MSOCL_MATH_PRECISE;
+}
+
 static int make_kernel(msocl__engine *s, cl_program prog, int q)
 {
   cl_int e;
-  s->pl_k[q] = clCreateKernel(prog, names[q], &e);
+  const char *name = names[q];
+  if (q == PL_VELOCITY)
+    s->pl_wide = wide(s);
+  if (s->pl_wide && (q == PL_VELOCITY || q == PL_FUSED))
+    name = q == PL_VELOCITY ? "msocl_planes_wide_velocity"
+                            : "msocl_planes_wide_fused";
+  s->pl_k[q] = clCreateKernel(prog, name, &e);
   if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
+    return msocl__fail(e, "clCreateKernel(%s): %s", name,
                        msocl_err_name(e));
   if (s->pl_nspill == 0 || !gathers(q))
     return MSOCL_OK;
-  char name[64];
-  snprintf(name, sizeof name, "%s_spill", names[q]);
-  s->pl_ks[q] = clCreateKernel(prog, name, &e);
+  char twin[64];
+  snprintf(twin, sizeof twin, "%s_spill", names[q]);
+  s->pl_ks[q] = clCreateKernel(prog, twin, &e);
   if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateKernel(%s): %s", name, msocl_err_name(e));
+    return msocl__fail(e, "clCreateKernel(%s): %s", twin, msocl_err_name(e));
   cl_uint last = 0;
   MSOCL__CL(clGetKernelInfo(s->pl_ks[q], CL_KERNEL_NUM_ARGS, sizeof last,
                             &last, NULL));
@@ -602,10 +623,15 @@ int msocl__planes_unit(const msocl__engine *s)
  * pl_group points (launch.c's reason). */
 int msocl__pl_launch(msocl__engine *s, int k)
 {
-  const size_t local[3] = {s->pl_group, 1, 1};
+  size_t local[3] = {s->pl_group, 1, 1};
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
   size_t off[3], size[3];
   own_part(s, k, off, size);
+  if (s->pl_wide && (k == PL_VELOCITY || k == PL_FUSED)) {
+    /* MSOCL_ROWS_W points a work-item (planes_wide.cl) */
+    size[0] /= 16;
+    local[0] = 4;
+  }
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 3, off, size,
                                    group, 0, NULL, NULL));
   if (s->pl_ks[k]) {
