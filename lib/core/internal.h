@@ -221,6 +221,7 @@ int msocl__model_permuted(const msocl_model *m, const int *perm,
 /* ---------------------------------------------------------------- runtime */
 
 struct msocl__program; /* cache entry, program.c */
+struct msocl__kernel_names; /* a kernel's argument names, kernel_names.c */
 
 #include <pthread.h>
 
@@ -235,6 +236,9 @@ struct msocl__device {
   pthread_mutex_t programs_lock;
   int lock_made;
   struct msocl__program *programs;
+  /* the kernels made by name (kernel_names.c), under their own lock */
+  pthread_mutex_t names_lock;
+  struct msocl__kernel_names *names;
 };
 
 struct msocl_runtime {
@@ -253,6 +257,20 @@ int msocl__program_get(struct msocl__device *dev, const char *options,
 void msocl__program_cache_free(struct msocl__device *dev);
 /* Programs in the device's cache (the tests count them). */
 int msocl__program_cache_size(struct msocl__device *dev);
+
+/* Kernels by name (kernel_names.c). make: kernel `name` of prog, its
+ * arguments' names remembered; free: forgets and releases it (NULL: no-op)
+ * and sets *k NULL; arg: sets k's argument `name` (MSOCL_ERR_INVALID_ARG
+ * where k has none: a typo fails, it never sets another); has: whether k
+ * has one of that name; names_free: at the device's end. */
+int msocl__kernel_make(struct msocl__device *dev, cl_program prog,
+                       const char *name, cl_kernel *out);
+void msocl__kernel_free(struct msocl__device *dev, cl_kernel *k);
+int msocl__kernel_arg(struct msocl__device *dev, cl_kernel k,
+                      const char *name, size_t size, const void *v);
+int msocl__kernel_has(struct msocl__device *dev, cl_kernel k,
+                      const char *name);
+void msocl__kernel_names_free(struct msocl__device *dev);
 
 /* Builders' argument checks (builder_check.c): every one of n floats
  * finite; a coefficient >= 0. Messages name the builder and the field. */

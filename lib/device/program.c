@@ -82,7 +82,17 @@ static int build(struct msocl__device *dev, const char *options,
   if (rc != MSOCL_OK)
     return rc;
 
-  e = clBuildProgram(p, 1, &dev->id, options, NULL, NULL);
+  /* the kernels' argument names: callers set arguments by name
+   * (kernel_names.c) */
+  char *full = malloc(strlen(options) + sizeof " -cl-kernel-arg-info");
+  if (!full) {
+    clReleaseProgram(p);
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "build options");
+  }
+  strcpy(full, options);
+  strcat(full, " -cl-kernel-arg-info");
+  e = clBuildProgram(p, 1, &dev->id, full, NULL, NULL);
+  free(full);
   if (e != CL_SUCCESS) {
     /* Carry the compiler's own words to the user. */
     size_t len = 0;

@@ -41,6 +41,10 @@ static int open_device(struct msocl__device *dev, const cl_platform_id *plats,
 
   if (pthread_mutex_init(&dev->programs_lock, NULL) != 0)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "program cache lock");
+  if (pthread_mutex_init(&dev->names_lock, NULL) != 0) {
+    pthread_mutex_destroy(&dev->programs_lock);
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "kernel names lock");
+  }
   dev->lock_made = 1;
   if ((rc = find_ids(dev, plats, np)) != MSOCL_OK) return rc;
   props[0] = CL_CONTEXT_PLATFORM;
@@ -68,8 +72,11 @@ static void release_devices(msocl_runtime *rt) {
   for (i = 0; i < rt->ndev; i++) {
     if (rt->dev[i].queue) clReleaseCommandQueue(rt->dev[i].queue);
     if (rt->dev[i].ctx) clReleaseContext(rt->dev[i].ctx);
-    if (rt->dev[i].lock_made)
+    if (rt->dev[i].lock_made) {
+      msocl__kernel_names_free(&rt->dev[i]);
       pthread_mutex_destroy(&rt->dev[i].programs_lock);
+      pthread_mutex_destroy(&rt->dev[i].names_lock);
+    }
   }
 }
 

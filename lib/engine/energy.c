@@ -11,9 +11,9 @@ int msocl__energy(msocl__engine *s, msocl_energy *e)
   cl_kernel k = s->k[MSOCL__K_ENERGY];
   int rc = msocl__planes_current(s);
   if (rc == MSOCL_OK)
-    rc = msocl__arg_mem(k, s->nconn, s->pos[s->r]);
+    rc = msocl__arg_mem(s, k, "pos", s->pos[s->r]);
   if (rc == MSOCL_OK)
-    rc = msocl__arg_mem(k, s->nconn + 1, s->vel[s->r]);
+    rc = msocl__arg_mem(s, k, "vel", s->vel[s->r]);
   if (rc != MSOCL_OK)
     return rc;
   const size_t local = 64, global = 64 * s->groups;

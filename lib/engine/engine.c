@@ -184,22 +184,9 @@ static const char *const kernel_names[MSOCL__K_COUNT] = {"msocl_normals",
 /* Creates the float4 state's kernels: the normals and the energy. */
 static int make_kernels(msocl__engine *s, cl_program prog)
 {
-  int want[MSOCL__K_COUNT] = {1, 1};
-  for (int q = 0; q < MSOCL__K_COUNT; q++) {
-    if (!want[q])
-      continue;
-    cl_int e;
-    s->k[q] = clCreateKernel(prog, kernel_names[q], &e);
-    if (e != CL_SUCCESS)
-      return msocl__fail(e, "clCreateKernel(%s): %s", kernel_names[q],
-                         msocl_err_name(e));
-    if (q != MSOCL__K_NORMALS) {
-      int rc = msocl__layout_set_args(&s->lay, s->k[q], &s->nconn);
-      if (rc != MSOCL_OK)
-        return rc;
-    }
-  }
-  return MSOCL_OK;
+  for (int q = 0; q < MSOCL__K_COUNT; q++)
+    MSOCL__TRY(msocl__kernel_make(s->dev, prog, kernel_names[q], &s->k[q]));
+  return msocl__layout_set_args(&s->lay, s->dev, s->k[MSOCL__K_ENERGY]);
 }
 
 int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
@@ -305,8 +292,7 @@ void msocl__engine_destroy(msocl__engine *s)
   if (s->dev && s->dev->queue)
     clFinish(s->dev->queue);
   for (int q = 0; q < MSOCL__K_COUNT; q++)
-    if (s->k[q])
-      clReleaseKernel(s->k[q]);
+    msocl__kernel_free(s->dev, &s->k[q]);
   cl_mem mems[] = {s->pos[0],   s->pos[1],    s->vel[0],    s->vel[1],
                    s->inv_mass, s->col,       s->normal,    s->tri_off,
                    s->tri_ab,   s->backup_p,  s->backup_v,
@@ -327,10 +313,7 @@ void msocl__engine_destroy(msocl__engine *s)
 
 int msocl__planes_forces(msocl__engine *s)
 {
-  int rc = msocl__pl_forces(s);
-  if (rc == MSOCL_OK && s->o.integrator == MSOCL_IMPLICIT_EULER)
-    rc = msocl__pl_implicit_args(s);
-  return rc;
+  return msocl__pl_forces(s);
 }
 
 /* After msocl__planes_rebuild: the arguments its re-created kernels take
@@ -377,10 +360,7 @@ int msocl__engine_terms(msocl__engine *s, int viscous, int air)
   /* the energy's kernel too: it reads the springs */
   MSOCL__CL(clFinish(s->dev->queue));
   for (int q = 0; q < MSOCL__K_COUNT; q++)
-    if (s->k[q]) {
-      clReleaseKernel(s->k[q]);
-      s->k[q] = NULL;
-    }
+    msocl__kernel_free(s->dev, &s->k[q]);
   MSOCL__TRY(make_kernels(s, prog));
   MSOCL__TRY(msocl__set_fixed(s));
   MSOCL__TRY(msocl__planes_rebuild(s, prog, 1));

@@ -18,7 +18,6 @@ struct msocl__engine {
   struct msocl__device *dev;
   msocl_sim_options o;
   int n;
-  cl_uint nconn;          /* connectivity arguments before the others */
   struct msocl__layout lay;
   cl_mem pos[2], vel[2];  /* the state as the host reads and writes it,
                              float4 a point: [r] is current */
@@ -71,7 +70,6 @@ struct msocl__engine {
   int pl_nspill;          /* ... and how many */
   cl_kernel pl_ks[20];    /* the gathering kernels' _spill twins */
   cl_kernel pl_k[20];     /* planes.c's kernels (planes.h) */
-  cl_uint pl_conn;        /* the gathering kernels' connectivity args */
   int pl_pitch, pl_slab, pl_plane; /* floats a row, a layer, a plane */
   size_t pl_global[3];    /* the passes' range: rows padded to a group */
   size_t pl_group;        /* a work-group's points (CPU devices) */
@@ -244,20 +242,25 @@ void msocl__mesh_host_grid(int mode);
 void msocl__mesh_cull(int mode);
 /* Energy of the engine's points (waits for the device). */
 int msocl__energy(msocl__engine *s, msocl_energy *e);
-/* Sets argument i of kernel k to a buffer, a float, an int (launch.c). */
-int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m);
-int msocl__arg_float(cl_kernel k, cl_uint i, float f);
-int msocl__arg_int(cl_kernel k, cl_uint i, int v);
-/* Sets the argument of the engine's kernel k (MSOCL__K_*) that
- * kernels/ names `name` (kernel_args.c): to size bytes at v, a buffer, a
- * float, an int. */
-int msocl__set(msocl__engine *s, int k, const char *name, size_t size,
+/* Kernel k's argument that kernels/ names `name` (kernel_args.c; k made
+ * by msocl__kernel_make): to size bytes at v, a buffer, a float, an int. */
+int msocl__arg(msocl__engine *s, cl_kernel k, const char *name, size_t size,
                const void *v);
-int msocl__set_mem(msocl__engine *s, int k, const char *name, cl_mem m);
-int msocl__set_float(msocl__engine *s, int k, const char *name, float f);
-int msocl__set_int(msocl__engine *s, int k, const char *name, int v);
-/* Sets every argument of those kernels that holds a value fixed for the
- * engine's life (inv_mass, dt, n, ...), by name. */
+int msocl__arg_mem(msocl__engine *s, cl_kernel k, const char *name, cl_mem m);
+int msocl__arg_float(msocl__engine *s, cl_kernel k, const char *name,
+                     float f);
+int msocl__arg_int(msocl__engine *s, cl_kernel k, const char *name, int v);
+/* A value by name; args_named sets each of k's arguments that one of
+ * vals[0..n) names (the others are not k's). */
+struct msocl__named {
+  const char *name;
+  size_t size;
+  const void *v;
+};
+int msocl__args_named(msocl__engine *s, cl_kernel k,
+                      const struct msocl__named *vals, int n);
+/* Sets every argument of the float4 kernels (s->k) that holds a value
+ * fixed for the engine's life (inv_mass, n, ...). */
 int msocl__set_fixed(msocl__engine *s);
 /* Implicit Euler: the new velocities of one step's CG (cg.c) over
  * `parts` engines, into the other plane set, where

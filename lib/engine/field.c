@@ -11,12 +11,7 @@
 
 int msocl__field_create(msocl__engine *s, cl_program prog)
 {
-  cl_int e;
-  s->field_k = clCreateKernel(prog, "msocl_field_kick", &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateKernel(msocl_field_kick): %s",
-                       msocl_err_name(e));
-  return MSOCL_OK;
+  return msocl__kernel_make(s->dev, prog, "msocl_field_kick", &s->field_k);
 }
 
 /* The field's planes from xyz; forces divided by the masses, which the
@@ -75,11 +70,11 @@ int msocl__field_set(msocl__engine *s, const float *xyz, int forces)
   free(acc);
   TRY(rc);
   cl_kernel k = s->field_k;
-  TRY(msocl__arg_mem(k, 1, s->pl_aux));
-  TRY(msocl__arg_mem(k, 2, s->field_acc));
-  TRY(msocl__arg_float(k, 3, s->o.dt));
-  TRY(msocl__pl_shape(s, k, 4, 1));
-  TRY(msocl__arg_int(k, 8, s->n));
+  TRY(msocl__arg_mem(s, k, "acc", s->field_acc));
+  TRY(msocl__arg_mem(s, k, "aux", s->pl_aux));
+  TRY(msocl__arg_float(s, k, "dt", s->o.dt));
+  TRY(msocl__arg_int(s, k, "n", s->n));
+  TRY(msocl__pl_shape(s, k));
   s->field_on = 1;
   return MSOCL_OK;
 }
@@ -88,7 +83,7 @@ int msocl__field_pass(msocl__engine *s)
 {
   if (!s->field_on)
     return MSOCL_OK;
-  TRY(msocl__arg_mem(s->field_k, 0, s->pl_v[s->pl_set]));
+  TRY(msocl__arg_mem(s, s->field_k, "v", s->pl_v[s->pl_set]));
   const size_t local[3] = {s->pl_group, 1, 1};
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->field_k, 3, NULL,
@@ -98,8 +93,7 @@ int msocl__field_pass(msocl__engine *s)
 
 void msocl__field_release(msocl__engine *s)
 {
-  if (s->field_k)
-    clReleaseKernel(s->field_k);
+  msocl__kernel_free(s->dev, &s->field_k);
   if (s->field_acc)
     clReleaseMemObject(s->field_acc);
 }

@@ -1,71 +1,47 @@
-/* The float4 kernels' arguments by name: each kernel's signature as in
- * kernels/, so that a caller names the argument it sets and never counts
- * to it. CONN stands for the layout's connectivity arguments, the
- * engine's nconn of them (msocl__layout_set_args sets those). */
+/* Kernel arguments by name (the device's kernel_names.c reads the names
+ * from the program): one argument, or every argument of a kernel that a
+ * table of named values names. */
 #include "config.h"
 #include "engine.h"
 
-#include <string.h>
-
-#define CONN ""
-
-static const char *const normals[] = {"pos", "tri_off", "tri_ab", "normal",
-                                      "n", NULL};
-static const char *const energy[] = {CONN,      "pos", "vel", "inv_mass",
-                                     "gravity", "partial", "n", "end",
-                                     NULL};
-
-static const char *const *const signature[MSOCL__K_COUNT] = {
-    [MSOCL__K_NORMALS] = normals,
-    [MSOCL__K_ENERGY] = energy,
-};
-
-int msocl__set(msocl__engine *s, int k, const char *name, size_t size,
+int msocl__arg(msocl__engine *s, cl_kernel k, const char *name, size_t size,
                const void *v)
 {
-  cl_uint i = 0;
-  for (const char *const *a = signature[k]; a && *a; a++) {
-    if (**a == '\0') {
-      i += s->nconn;
-    } else if (strcmp(*a, name) == 0) {
-      MSOCL__CL(clSetKernelArg(s->k[k], i, size, v));
-      return MSOCL_OK;
-    } else {
-      i++;
-    }
-  }
-  return msocl__fail(MSOCL_ERR_INVALID_ARG, "kernel %d has no argument %s",
-                     k, name);
+  return msocl__kernel_arg(s->dev, k, name, size, v);
 }
 
-int msocl__set_mem(msocl__engine *s, int k, const char *name, cl_mem m)
+int msocl__arg_mem(msocl__engine *s, cl_kernel k, const char *name, cl_mem m)
 {
-  return msocl__set(s, k, name, sizeof m, &m);
+  return msocl__kernel_arg(s->dev, k, name, sizeof m, &m);
 }
 
-int msocl__set_float(msocl__engine *s, int k, const char *name, float f)
+int msocl__arg_float(msocl__engine *s, cl_kernel k, const char *name, float f)
 {
-  return msocl__set(s, k, name, sizeof f, &f);
+  return msocl__kernel_arg(s->dev, k, name, sizeof f, &f);
 }
 
-int msocl__set_int(msocl__engine *s, int k, const char *name, int v)
+int msocl__arg_int(msocl__engine *s, cl_kernel k, const char *name, int v)
 {
-  return msocl__set(s, k, name, sizeof v, &v);
+  return msocl__kernel_arg(s->dev, k, name, sizeof v, &v);
 }
 
-/* The values an argument of a given name holds in every float4 kernel
- * that has it, for the engine's whole life: everything but the state
- * buffers. */
+int msocl__args_named(msocl__engine *s, cl_kernel k,
+                      const struct msocl__named *vals, int n)
+{
+  for (int q = 0; q < n; q++)
+    if (msocl__kernel_has(s->dev, k, vals[q].name))
+      MSOCL__TRY(msocl__kernel_arg(s->dev, k, vals[q].name, vals[q].size,
+                                   vals[q].v));
+  return MSOCL_OK;
+}
+
+/* The values the float4 kernels' arguments hold for the engine's whole
+ * life: everything but the state buffers. */
 int msocl__set_fixed(msocl__engine *s)
 {
-  const struct {
-    const char *name;
-    size_t size;
-    const void *v;
-  } fixed[] = {
+  const struct msocl__named fixed[] = {
       {"inv_mass", sizeof s->inv_mass, &s->inv_mass},
       {"gravity", sizeof s->gravity, &s->gravity},
-      {"viscous", sizeof s->viscous, &s->viscous},
       {"n", sizeof s->n, &s->n},
       {"end", sizeof s->hi, &s->hi},
       {"partial", sizeof s->partial, &s->partial},
@@ -73,16 +49,9 @@ int msocl__set_fixed(msocl__engine *s)
       {"tri_ab", sizeof s->tri_ab, &s->tri_ab},
       {"normal", sizeof s->normal, &s->normal},
   };
-  for (int k = 0; k < MSOCL__K_COUNT; k++) {
-    if (!s->k[k] || !signature[k])
-      continue;
-    for (const char *const *a = signature[k]; *a; a++)
-      for (size_t f = 0; f < sizeof fixed / sizeof fixed[0]; f++)
-        if (strcmp(*a, fixed[f].name) == 0) {
-          int rc = msocl__set(s, k, *a, fixed[f].size, fixed[f].v);
-          if (rc != MSOCL_OK)
-            return rc;
-        }
-  }
+  for (int k = 0; k < MSOCL__K_COUNT; k++)
+    if (s->k[k])
+      MSOCL__TRY(msocl__args_named(s, s->k[k], fixed,
+                                   (int)(sizeof fixed / sizeof fixed[0])));
   return MSOCL_OK;
 }

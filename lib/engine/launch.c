@@ -1,26 +1,7 @@
-/* Launching an engine's kernels and setting their arguments, the helpers
- * every engine file uses; and reading back the work-group partials of a
- * reduction. */
+/* Launching an engine's kernels, the helpers every engine file uses; and
+ * reading back the work-group partials of a reduction. */
 #include "config.h"
 #include "engine.h"
-
-int msocl__arg_mem(cl_kernel k, cl_uint i, cl_mem m)
-{
-  MSOCL__CL(clSetKernelArg(k, i, sizeof m, &m));
-  return MSOCL_OK;
-}
-
-int msocl__arg_float(cl_kernel k, cl_uint i, float f)
-{
-  MSOCL__CL(clSetKernelArg(k, i, sizeof f, &f));
-  return MSOCL_OK;
-}
-
-int msocl__arg_int(cl_kernel k, cl_uint i, int v)
-{
-  MSOCL__CL(clSetKernelArg(k, i, sizeof v, &v));
-  return MSOCL_OK;
-}
 
 /* Work-group size of a launch over `global` points. Left to choose (NULL),
  * PoCL's CPU device takes the largest group that still gives each core one:

@@ -367,30 +367,37 @@ void msocl__layout_release(struct msocl__layout *l)
   l->con = l->rk = l->damp = l->spill = NULL;
 }
 
-int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,
-                           cl_uint *next)
+int msocl__layout_set_args(const struct msocl__layout *l,
+                           struct msocl__device *dev, cl_kernel k)
 {
-  cl_uint a = 0;
+  struct {
+    const char *name;
+    size_t size;
+    const void *v;
+  } c[5];
+  int n = 0;
+#define CONN(nm, x) (c[n].name = (nm), c[n].size = sizeof(x), c[n++].v = &(x))
   if (l->kind == MSOCL_LAYOUT_GRID) {
-    MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->grid_nx));
-    MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->grid_ny));
+    CONN("grid_nx", l->grid_nx);
+    CONN("grid_ny", l->grid_ny);
     if (l->grid_nz > 0)
-      MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->grid_nz));
-    MSOCL__CL(clSetKernelArg(k, a++, sizeof l->grid_k, &l->grid_k));
-    MSOCL__CL(clSetKernelArg(k, a++, sizeof l->grid_rest, &l->grid_rest));
-    *next = a;
-    return MSOCL_OK;
-  }
-  MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->con));
-  if (l->kind == MSOCL_LAYOUT_IMAGE2D) {
-    MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->tex_w));
-    MSOCL__CL(clSetKernelArg(k, a++, sizeof(int), &l->tex_h));
+      CONN("grid_nz", l->grid_nz);
+    CONN("grid_k", l->grid_k);
+    CONN("grid_rest", l->grid_rest);
   } else {
-    MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->rk));
+    CONN(l->kind == MSOCL_LAYOUT_IMAGE2D ? "con" : "nbr", l->con);
+    if (l->kind == MSOCL_LAYOUT_IMAGE2D) {
+      CONN("tex_w", l->tex_w);
+      CONN("tex_h", l->tex_h);
+    } else {
+      CONN("rk", l->rk);
+    }
+    CONN("dmp", l->damp);
+    if (l->spill)
+      CONN("spill", l->spill);
   }
-  MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->damp));
-  if (l->spill)
-    MSOCL__CL(clSetKernelArg(k, a++, sizeof(cl_mem), &l->spill));
-  *next = a;
+#undef CONN
+  for (int q = 0; q < n; q++)
+    MSOCL__TRY(msocl__kernel_arg(dev, k, c[q].name, c[q].size, c[q].v));
   return MSOCL_OK;
 }

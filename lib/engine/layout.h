@@ -66,9 +66,9 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
                          msocl_choice classes, struct msocl__layout *out);
 void msocl__layout_release(struct msocl__layout *l);
 
-/* Sets the velocity kernel's first arguments (its connectivity); *next
- * receives the index of the first argument after them. */
-int msocl__layout_set_args(const struct msocl__layout *l, cl_kernel k,
-                           cl_uint *next);
+/* Sets kernel k's connectivity arguments (common.cl's MSOCL_CONN) by
+ * name; k made by msocl__kernel_make on dev. */
+int msocl__layout_set_args(const struct msocl__layout *l,
+                           struct msocl__device *dev, cl_kernel k);
 
 #endif

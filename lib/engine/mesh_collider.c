@@ -64,6 +64,7 @@ struct msocl__mesh_dev {
   float *hvert, *hbox, *hvbox; /* the build's: triangles', vertices' bounds */
   int *hstart, *hlist, *hlive;
   size_t hstart_cap, hlist_cap, hlive_cap;
+  struct msocl__device *dev; /* its kernels' */
   cl_kernel k, place;    /* the pass; the triangles at a step's end */
   cl_kernel cells[2];    /* CPUs: each point's cell first, into cellof
                             (the whole grid; one culled to the cloth) */
@@ -191,6 +192,7 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   if (!d)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider");
   *out = d;
+  d->dev = s->dev;
   d->nv = c->nv;
   d->thick = c->thickness;
   d->host = host_grid;
@@ -242,53 +244,41 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   if (rc == MSOCL_OK && clFinish(s->dev->queue) != CL_SUCCESS)
     rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "mesh collider's vertices");
   TRY(rc);
-  cl_int e;
   d->rows = s->dev->info.type == MSOCL_DEVICE_CPU;
   const char *name = d->rows ? "msocl_mesh_collide_rows" : "msocl_mesh_collide";
-  d->k = clCreateKernel(s->prog, name, &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateKernel(%s): %s", name, msocl_err_name(e));
-  d->place = clCreateKernel(s->prog, "msocl_mesh_place", &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateKernel(msocl_mesh_place): %s",
-                       msocl_err_name(e));
+  TRY(msocl__kernel_make(s->dev, s->prog, name, &d->k));
+  TRY(msocl__kernel_make(s->dev, s->prog, "msocl_mesh_place", &d->place));
   int rc2 = MSOCL_OK;
   d->cur = buffer(s, 16 * (size_t)d->nt * sizeof(float), NULL, &rc2);
   TRY(rc2);
-  TRY(msocl__arg_mem(d->place, 2, d->dtri));
-  TRY(msocl__arg_mem(d->place, 3, d->cur));
-  TRY(msocl__arg_int(d->place, 5, d->nv));
-  TRY(msocl__arg_int(d->place, 6, d->nt));
-  TRY(msocl__arg_mem(d->place, 7, d->dtri)); /* a list to come */
-  TRY(msocl__arg_int(d->place, 8, -1));
+  TRY(msocl__arg_mem(s, d->place, "tri", d->dtri));
+  TRY(msocl__arg_mem(s, d->place, "cur", d->cur));
+  TRY(msocl__arg_int(s, d->place, "nv", d->nv));
+  TRY(msocl__arg_int(s, d->place, "nt", d->nt));
+  TRY(msocl__arg_mem(s, d->place, "live", d->dtri)); /* a list to come */
+  TRY(msocl__arg_int(s, d->place, "nlive", -1));
   d->nlive = -1;
-  TRY(msocl__arg_mem(d->k, 23, d->cur));
+  TRY(msocl__arg_mem(s, d->k, "cur", d->cur));
   d->cellof = buffer(s, (size_t)s->pl_plane * sizeof(int), NULL, &rc2);
   TRY(rc2);
-  TRY(msocl__arg_mem(d->k, 25, d->cellof));
+  TRY(msocl__arg_mem(s, d->k, "cellof", d->cellof));
   const cl_int zero = 0;
   d->esc = buffer(s, sizeof zero, (void *)&zero, &rc2);
   TRY(rc2);
-  TRY(msocl__arg_mem(d->k, 28, d->esc));
+  TRY(msocl__arg_mem(s, d->k, "esc", d->esc));
   if (d->rows) {
     static const char *const cname[2] = {"msocl_mesh_cells",
                                          "msocl_mesh_cells_culled"};
     for (int q = 0; q < 2; q++) {
-      d->cells[q] = clCreateKernel(s->prog, cname[q], &e);
-      if (e != CL_SUCCESS)
-        return msocl__fail(e, "clCreateKernel(%s): %s", cname[q],
-                           msocl_err_name(e));
-      TRY(msocl__arg_mem(d->cells[q], 1, s->pl_aux));
-      TRY(msocl__arg_mem(d->cells[q], 3, d->cellof));
-      TRY(msocl__pl_shape(s, d->cells[q], 8, 1));
+      TRY(msocl__kernel_make(s->dev, s->prog, cname[q], &d->cells[q]));
+      TRY(msocl__arg_mem(s, d->cells[q], "aux", s->pl_aux));
+      TRY(msocl__arg_mem(s, d->cells[q], "cellof", d->cellof));
+      TRY(msocl__pl_shape(s, d->cells[q]));
     }
   }
-  d->bounds = clCreateKernel(s->prog, "msocl_mesh_bounds", &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateKernel(msocl_mesh_bounds): %s",
-                       msocl_err_name(e));
-  TRY(msocl__arg_mem(d->bounds, 2, s->pl_aux));
-  TRY(msocl__pl_shape(s, d->bounds, 4, 1));
+  TRY(msocl__kernel_make(s->dev, s->prog, "msocl_mesh_bounds", &d->bounds));
+  TRY(msocl__arg_mem(s, d->bounds, "aux", s->pl_aux));
+  TRY(msocl__pl_shape(s, d->bounds));
   d->runs[0] = (s->pl_global[0] + 255) / 256;
   d->runs[1] = s->pl_global[1];
   d->runs[2] = s->pl_global[2];
@@ -298,33 +288,30 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider");
   d->dbounds = buffer(s, 8 * runs * sizeof *d->hbounds, NULL, &rc2);
   TRY(rc2);
-  TRY(msocl__arg_mem(d->bounds, 8, d->esc));
+  TRY(msocl__arg_mem(s, d->bounds, "esc", d->esc));
   d->prev = buffer(s, 3 * (size_t)s->pl_plane * sizeof(float), NULL, &rc2);
   TRY(rc2);
   const cl_float nil = 0;
   MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, d->prev, &nil, sizeof nil, 0,
                                 3 * (size_t)s->pl_plane * sizeof nil, 0, NULL,
                                 NULL));
-  TRY(msocl__arg_mem(d->bounds, 1, d->prev));
+  TRY(msocl__arg_mem(s, d->bounds, "prev", d->prev));
   cl_kernel *grid[6] = {&d->count, &d->scan_sums, &d->scan_top,
                         &d->scan_out, &d->fill, &d->sort};
   static const char *const gname[6] = {
       "msocl_mesh_count", "msocl_mesh_scan_sums", "msocl_mesh_scan_top",
       "msocl_mesh_scan_out", "msocl_mesh_fill", "msocl_mesh_sort"};
   for (int q = 0; q < 6; q++) {
-    *grid[q] = clCreateKernel(s->prog, gname[q], &e);
-    if (e != CL_SUCCESS)
-      return msocl__fail(e, "clCreateKernel(%s): %s", gname[q],
-                         msocl_err_name(e));
+    TRY(msocl__kernel_make(s->dev, s->prog, gname[q], grid[q]));
   }
-  TRY(msocl__arg_mem(d->k, 3, s->pl_aux));
-  TRY(msocl__arg_mem(d->k, 6, d->dtri));
-  TRY(msocl__arg_mem(d->k, 7, d->drim));
-  TRY(msocl__arg_float(d->k, 15, d->orient));
-  TRY(msocl__arg_float(d->k, 16, s->o.dt));
-  TRY(msocl__arg_int(d->k, 17, d->nv));
-  TRY(msocl__arg_int(d->k, 18, d->nt));
-  return msocl__pl_shape(s, d->k, 19, 1);
+  TRY(msocl__arg_mem(s, d->k, "aux", s->pl_aux));
+  TRY(msocl__arg_mem(s, d->k, "tri", d->dtri));
+  TRY(msocl__arg_mem(s, d->k, "rim", d->drim));
+  TRY(msocl__arg_float(s, d->k, "orient", d->orient));
+  TRY(msocl__arg_float(s, d->k, "dt", s->o.dt));
+  TRY(msocl__arg_int(s, d->k, "nv", d->nv));
+  TRY(msocl__arg_int(s, d->k, "nt", d->nt));
+  return msocl__pl_shape(s, d->k);
 }
 
 int msocl__mesh_nv(const struct msocl__mesh_dev *d)
@@ -485,13 +472,14 @@ static int build_host(msocl__engine *s, struct msocl__mesh_dev *d,
   return rc;
 }
 
-/* Kernel k over n items, `run` a work-item (its last argument, at). */
-static int launch(msocl__engine *s, cl_kernel k, size_t n, int run, int at)
+/* Kernel k over n items, `run` a work-item (its argument "run", where
+ * it has one). */
+static int launch(msocl__engine *s, cl_kernel k, size_t n, int run)
 {
   if (n == 0)
     return MSOCL_OK;
-  if (at >= 0)
-    TRY(msocl__arg_int(k, (cl_uint)at, run));
+  if (msocl__kernel_has(s->dev, k, "run"))
+    TRY(msocl__arg_int(s, k, "run", run));
   const size_t items = (n + run - 1) / run;
   /* runs: a group each, spread over the cores */
   const size_t global = run > 1 ? items : (items + 63) / 64 * 64, one = 1;
@@ -500,21 +488,26 @@ static int launch(msocl__engine *s, cl_kernel k, size_t n, int run, int at)
   return MSOCL_OK;
 }
 
-/* The per-triangle kernels' common arguments, from 0: the call's start
- * and end vertices, the triangles, the counts. */
-static int span_args(struct msocl__mesh_dev *d, cl_kernel k, float reach,
-                     int at)
+/* The per-triangle kernels' common arguments: the call's start and end
+ * vertices, the triangles, the counts, the grid. */
+static int span_args(msocl__engine *s, struct msocl__mesh_dev *d,
+                     cl_kernel k, float reach)
 {
   const cl_int4 g = {{d->g[0], d->g[1], d->g[2], 0}};
-  TRY(msocl__arg_mem(k, 0, d->vert[d->a]));
-  TRY(msocl__arg_mem(k, 1, d->vert[d->moving ? 1 - d->a : d->a]));
-  TRY(msocl__arg_mem(k, 2, d->dtri));
-  TRY(msocl__arg_mem(k, 3, d->dcount));
-  MSOCL__CL(clSetKernelArg(k, at, sizeof d->origin, &d->origin));
-  MSOCL__CL(clSetKernelArg(k, at + 1, sizeof g, &g));
-  TRY(msocl__arg_float(k, at + 2, reach));
-  TRY(msocl__arg_int(k, at + 3, d->nv));
-  return msocl__arg_int(k, at + 4, d->nt);
+  const cl_mem vb = d->vert[d->moving ? 1 - d->a : d->a];
+  const struct msocl__named args[] = {
+      {"va", sizeof(cl_mem), &d->vert[d->a]},
+      {"vb", sizeof vb, &vb},
+      {"tri", sizeof d->dtri, &d->dtri},
+      {"count", sizeof d->dcount, &d->dcount},
+      {"origin", sizeof d->origin, &d->origin},
+      {"g", sizeof g, &g},
+      {"reach", sizeof reach, &reach},
+      {"nv", sizeof d->nv, &d->nv},
+      {"nt", sizeof d->nt, &d->nt}};
+  for (size_t q = 0; q < sizeof args / sizeof args[0]; q++)
+    TRY(msocl__arg(s, k, args[q].name, args[q].size, args[q].v));
+  return MSOCL_OK;
 }
 
 /* The build on the device: counts, their scan into start, the total read
@@ -533,25 +526,25 @@ static int build_dev(msocl__engine *s, struct msocl__mesh_dev *d, float reach)
   cl_command_queue q = s->dev->queue;
   MSOCL__CL(clEnqueueFillBuffer(q, d->dcount, &zero, sizeof zero, 0,
                                 ncell * sizeof zero, 0, NULL, NULL));
-  TRY(span_args(d, d->count, reach, 4));
+  TRY(span_args(s, d, d->count, reach));
   const int run = d->rows ? 256 : 1; /* items a work-item */
-  TRY(launch(s, d->count, (size_t)d->nt, run, 9));
-  TRY(msocl__arg_mem(d->scan_sums, 0, d->dcount));
-  TRY(msocl__arg_mem(d->scan_sums, 1, d->sums));
-  TRY(msocl__arg_int(d->scan_sums, 2, (int)ncell));
-  TRY(msocl__arg_int(d->scan_sums, 3, chunk));
-  TRY(launch(s, d->scan_sums, nchunk, 1, -1));
-  TRY(msocl__arg_mem(d->scan_top, 0, d->sums));
-  TRY(msocl__arg_int(d->scan_top, 1, (int)nchunk));
+  TRY(launch(s, d->count, (size_t)d->nt, run));
+  TRY(msocl__arg_mem(s, d->scan_sums, "count", d->dcount));
+  TRY(msocl__arg_mem(s, d->scan_sums, "sums", d->sums));
+  TRY(msocl__arg_int(s, d->scan_sums, "n", (int)ncell));
+  TRY(msocl__arg_int(s, d->scan_sums, "chunk", chunk));
+  TRY(launch(s, d->scan_sums, nchunk, 1));
+  TRY(msocl__arg_mem(s, d->scan_top, "sums", d->sums));
+  TRY(msocl__arg_int(s, d->scan_top, "m", (int)nchunk));
   const size_t one = 1;
   MSOCL__CL(clEnqueueNDRangeKernel(q, d->scan_top, 1, NULL, &one, NULL, 0,
                                    NULL, NULL));
-  TRY(msocl__arg_mem(d->scan_out, 0, d->dcount));
-  TRY(msocl__arg_mem(d->scan_out, 1, d->sums));
-  TRY(msocl__arg_mem(d->scan_out, 2, d->start));
-  TRY(msocl__arg_int(d->scan_out, 3, (int)ncell));
-  TRY(msocl__arg_int(d->scan_out, 4, chunk));
-  TRY(launch(s, d->scan_out, nchunk, 1, -1));
+  TRY(msocl__arg_mem(s, d->scan_out, "count", d->dcount));
+  TRY(msocl__arg_mem(s, d->scan_out, "sums", d->sums));
+  TRY(msocl__arg_mem(s, d->scan_out, "start", d->start));
+  TRY(msocl__arg_int(s, d->scan_out, "n", (int)ncell));
+  TRY(msocl__arg_int(s, d->scan_out, "chunk", chunk));
+  TRY(launch(s, d->scan_out, nchunk, 1));
   cl_int total = 0;
   MSOCL__CL(clEnqueueReadBuffer(q, d->start, CL_TRUE,
                                 ncell * sizeof total, sizeof total, &total, 0,
@@ -559,14 +552,14 @@ static int build_dev(msocl__engine *s, struct msocl__mesh_dev *d, float reach)
   TRY(room(s, &d->list, &d->list_cap, (size_t)total + 1));
   MSOCL__CL(clEnqueueFillBuffer(q, d->dcount, &zero, sizeof zero, 0,
                                 ncell * sizeof zero, 0, NULL, NULL));
-  TRY(span_args(d, d->fill, reach, 6));
-  TRY(msocl__arg_mem(d->fill, 4, d->start));
-  TRY(msocl__arg_mem(d->fill, 5, d->list));
-  TRY(launch(s, d->fill, (size_t)d->nt, run, 11));
-  TRY(msocl__arg_mem(d->sort, 0, d->start));
-  TRY(msocl__arg_mem(d->sort, 1, d->list));
-  TRY(msocl__arg_int(d->sort, 2, (int)ncell));
-  return launch(s, d->sort, ncell, run, 3);
+  TRY(span_args(s, d, d->fill, reach));
+  TRY(msocl__arg_mem(s, d->fill, "start", d->start));
+  TRY(msocl__arg_mem(s, d->fill, "list", d->list));
+  TRY(launch(s, d->fill, (size_t)d->nt, run));
+  TRY(msocl__arg_mem(s, d->sort, "start", d->start));
+  TRY(msocl__arg_mem(s, d->sort, "list", d->list));
+  TRY(msocl__arg_int(s, d->sort, "ncell", (int)ncell));
+  return launch(s, d->sort, ncell, run);
 }
 
 /* Tests: the device's lists read back against the host's, bitwise. */
@@ -688,27 +681,27 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step,
   /* the host build places only its grid's triangles */
   if (mode != 1)
     d->nlive = -1;
-  TRY(msocl__arg_mem(d->place, 7, mode == 1 ? d->live : d->dtri));
-  TRY(msocl__arg_int(d->place, 8, d->nlive));
-  TRY(msocl__arg_float(d->k, 24, reach * reach));
-  MSOCL__CL(clSetKernelArg(d->k, 26, sizeof d->lo, &d->lo));
-  MSOCL__CL(clSetKernelArg(d->k, 27, sizeof d->hi, &d->hi));
+  TRY(msocl__arg_mem(s, d->place, "live", mode == 1 ? d->live : d->dtri));
+  TRY(msocl__arg_int(s, d->place, "nlive", d->nlive));
+  TRY(msocl__arg_float(s, d->k, "reach2", reach * reach));
+  TRY(msocl__arg(s, d->k, "lo", sizeof d->lo, &d->lo));
+  TRY(msocl__arg(s, d->k, "hi", sizeof d->hi, &d->hi));
   for (int q = 0; q < 2 && d->cells[q]; q++) {
     const cl_kernel k = d->cells[q];
-    TRY(msocl__arg_mem(k, 2, d->start));
-    MSOCL__CL(clSetKernelArg(k, 4, sizeof d->origin, &d->origin));
-    TRY(msocl__arg_int(k, 5, d->g[0]));
-    TRY(msocl__arg_int(k, 6, d->g[1]));
-    TRY(msocl__arg_int(k, 7, d->g[2]));
-    MSOCL__CL(clSetKernelArg(k, 12, sizeof d->lo, &d->lo));
-    MSOCL__CL(clSetKernelArg(k, 13, sizeof d->hi, &d->hi));
+    TRY(msocl__arg_mem(s, k, "cell_start", d->start));
+    TRY(msocl__arg(s, k, "origin", sizeof d->origin, &d->origin));
+    TRY(msocl__arg_int(s, k, "gx", d->g[0]));
+    TRY(msocl__arg_int(s, k, "gy", d->g[1]));
+    TRY(msocl__arg_int(s, k, "gz", d->g[2]));
+    TRY(msocl__arg(s, k, "lo", sizeof d->lo, &d->lo));
+    TRY(msocl__arg(s, k, "hi", sizeof d->hi, &d->hi));
   }
-  TRY(msocl__arg_mem(d->k, 8, d->start));
-  TRY(msocl__arg_mem(d->k, 9, d->list));
-  MSOCL__CL(clSetKernelArg(d->k, 10, sizeof d->origin, &d->origin));
-  TRY(msocl__arg_int(d->k, 11, d->g[0]));
-  TRY(msocl__arg_int(d->k, 12, d->g[1]));
-  return msocl__arg_int(d->k, 13, d->g[2]);
+  TRY(msocl__arg_mem(s, d->k, "cell_start", d->start));
+  TRY(msocl__arg_mem(s, d->k, "cell_tri", d->list));
+  TRY(msocl__arg(s, d->k, "origin", sizeof d->origin, &d->origin));
+  TRY(msocl__arg_int(s, d->k, "gx", d->g[0]));
+  TRY(msocl__arg_int(s, d->k, "gy", d->g[1]));
+  return msocl__arg_int(s, d->k, "gz", d->g[2]);
 }
 
 /* The cloth's free points' bounds now and move since, queued for the host
@@ -721,8 +714,8 @@ static int cloth_bounds(msocl__engine *s, struct msocl__mesh_dev *d)
     d->read = NULL;
   }
   const int set = s->pl_set;
-  TRY(msocl__arg_mem(d->bounds, 0, s->pl_p[set]));
-  TRY(msocl__arg_mem(d->bounds, 3, d->dbounds));
+  TRY(msocl__arg_mem(s, d->bounds, "p", s->pl_p[set]));
+  TRY(msocl__arg_mem(s, d->bounds, "out", d->dbounds));
   const size_t one[3] = {1, 1, 1};
   cl_command_queue q = s->dev->queue;
   MSOCL__CL(clEnqueueNDRangeKernel(q, d->bounds, 3, NULL, d->runs, one, 0,
@@ -817,10 +810,10 @@ int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n)
     TRY(build(s, d, 0.0f, NULL));
   }
   const cl_mem a = d->vert[d->a], b = d->vert[d->moving ? 1 - d->a : d->a];
-  TRY(msocl__arg_mem(d->place, 0, a));
-  TRY(msocl__arg_mem(d->place, 1, b));
-  TRY(msocl__arg_mem(d->k, 4, a));
-  return msocl__arg_mem(d->k, 5, b);
+  TRY(msocl__arg_mem(s, d->place, "va", a));
+  TRY(msocl__arg_mem(s, d->place, "vb", b));
+  TRY(msocl__arg_mem(s, d->k, "va", a));
+  return msocl__arg_mem(s, d->k, "vb", b);
 }
 
 int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
@@ -842,7 +835,7 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
     TRY(build(s, d, step, whole ? NULL : near));
   }
   if (d->moving || !d->placed) { /* a static mesh's, once */
-    TRY(msocl__arg_float(d->place, 4, f1));
+    TRY(msocl__arg_float(s, d->place, "f", f1));
     const int m = d->nlive >= 0 ? d->nlive : d->nt;
     const size_t tris = ((size_t)m + 63) / 64 * 64;
     if (m > 0)
@@ -851,14 +844,14 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
     d->placed = !d->moving;
   }
   const int set = s->pl_set;
-  TRY(msocl__arg_mem(d->k, 0, s->pl_p[set]));
-  TRY(msocl__arg_mem(d->k, 1, s->pl_v[set]));
-  TRY(msocl__arg_mem(d->k, 2, s->pl_p[1 - set]));
+  TRY(msocl__arg_mem(s, d->k, "p", s->pl_p[set]));
+  TRY(msocl__arg_mem(s, d->k, "v", s->pl_v[set]));
+  TRY(msocl__arg_mem(s, d->k, "pp", s->pl_p[1 - set]));
   const cl_float4 prm = {{f0, f1, d->thick, d->friction}};
-  MSOCL__CL(clSetKernelArg(d->k, 14, sizeof prm, &prm));
+  TRY(msocl__arg(s, d->k, "prm", sizeof prm, &prm));
   if (d->rows) {
     const cl_kernel cells = d->cells[d->culled];
-    TRY(msocl__arg_mem(cells, 0, s->pl_p[set]));
+    TRY(msocl__arg_mem(s, cells, "p", s->pl_p[set]));
     const size_t local[3] = {s->pl_group, 1, 1};
     MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, cells, 3, NULL,
                                      s->pl_global, local, 0, NULL, NULL));
@@ -899,15 +892,12 @@ void msocl__mesh_free(struct msocl__mesh_dev *d)
     clWaitForEvents(1, &d->read);
     clReleaseEvent(d->read);
   }
-  if (d->k)
-    clReleaseKernel(d->k);
-  if (d->place)
-    clReleaseKernel(d->place);
-  cl_kernel k[9] = {d->cells[0], d->cells[1], d->count, d->scan_sums,
-                    d->scan_top, d->scan_out, d->fill, d->sort, d->bounds};
-  for (int q = 0; q < 9; q++)
-    if (k[q])
-      clReleaseKernel(k[q]);
+  cl_kernel *k[11] = {&d->k,        &d->place,     &d->cells[0],
+                      &d->cells[1], &d->count,     &d->scan_sums,
+                      &d->scan_top, &d->scan_out,  &d->fill,
+                      &d->sort,     &d->bounds};
+  for (int q = 0; q < 11; q++)
+    msocl__kernel_free(d->dev, k[q]);
   cl_mem b[14] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start,
                   d->list, d->cur, d->cellof, d->dcount, d->sums, d->live,
                   d->dbounds, d->esc, d->prev};

@@ -16,6 +16,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define TRY MSOCL__TRY
+#define launch msocl__pl_launch
+
 _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_k /
                                sizeof(cl_kernel),
                "msocl__engine.pl_k holds every planes kernel");
@@ -180,29 +183,34 @@ static cl_kernel twin(const msocl__engine *s, cl_kernel k)
   return NULL;
 }
 
-int msocl__pl_arg(msocl__engine *s, cl_kernel k, cl_uint i, size_t size,
-                  const void *v)
+int msocl__pl_arg(msocl__engine *s, cl_kernel k, const char *name,
+                  size_t size, const void *v)
 {
-  MSOCL__CL(clSetKernelArg(k, i, size, v));
+  TRY(msocl__arg(s, k, name, size, v));
   cl_kernel t = twin(s, k);
-  if (t)
-    MSOCL__CL(clSetKernelArg(t, i, size, v));
-  return MSOCL_OK;
+  return t ? msocl__arg(s, t, name, size, v) : MSOCL_OK;
 }
 
-int msocl__pl_conn(msocl__engine *s, cl_kernel k, cl_uint *next)
+int msocl__pl_mem(msocl__engine *s, cl_kernel k, const char *name, cl_mem m)
+{
+  return msocl__pl_arg(s, k, name, sizeof m, &m);
+}
+
+int msocl__pl_named(msocl__engine *s, cl_kernel k,
+                    const struct msocl__named *vals, int n)
+{
+  TRY(msocl__args_named(s, k, vals, n));
+  cl_kernel t = twin(s, k);
+  return t ? msocl__args_named(s, t, vals, n) : MSOCL_OK;
+}
+
+int msocl__pl_conn(msocl__engine *s, cl_kernel k)
 {
   cl_kernel t = twin(s, k);
   if (t)
-    MSOCL__TRY(msocl__layout_set_args(&s->pl_lay, t, next));
-  return msocl__layout_set_args(&s->pl_lay, k, next);
+    TRY(msocl__layout_set_args(&s->pl_lay, s->dev, t));
+  return msocl__layout_set_args(&s->pl_lay, s->dev, k);
 }
-
-/* planes.h's helpers, by the short names this file has always used */
-#define arg(k, ...) msocl__pl_arg(s, k, __VA_ARGS__)
-#define shape msocl__pl_shape
-#define launch msocl__pl_launch
-#define TRY MSOCL__TRY
 
 /* Where point j sits in each plane (planes.cl's MSOCL_PLANES_AT). */
 int msocl__pl_address(const msocl__engine *s, int j)
@@ -215,109 +223,64 @@ int msocl__pl_address(const msocl__engine *s, int j)
   return s->lay.grid_nz > 0 ? a + (z + 2) * s->pl_slab : a;
 }
 
-int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx)
+int msocl__pl_shape(msocl__engine *s, cl_kernel k)
 {
   const int nx = s->lay.kind == MSOCL_LAYOUT_GRID ? s->lay.grid_nx : s->n;
-  if (with_nx)
-    TRY(arg(k, i++, sizeof(int), &nx));
-  TRY(arg(k, i, sizeof(int), &s->pl_pitch));
-  TRY(arg(k, i + 1, sizeof(int), &s->pl_slab));
-  return arg(k, i + 2, sizeof(int), &s->pl_plane);
+  const struct msocl__named shape[] = {{"nx", sizeof nx, &nx},
+                                       {"pitch", sizeof(int), &s->pl_pitch},
+                                       {"slab", sizeof(int), &s->pl_slab},
+                                       {"plane", sizeof(int), &s->pl_plane}};
+  return msocl__pl_named(s, k, shape, 4);
 }
 
-/* Gathering kernel k's gravity, viscous damping and air resistance, from
- * argument a on (again when msocl__pl_forces changes them). */
-static int forces(msocl__engine *s, cl_kernel k, cl_uint a)
+/* Planes kernel k's (and the sweep's) gravity, viscous damping and air
+ * resistance, where it has them. */
+static int forces(msocl__engine *s, cl_kernel k)
 {
-  TRY(arg(k, a, sizeof s->gravity, &s->gravity));
-  TRY(arg(k, a + 1, sizeof(float), &s->viscous));
-  return arg(k, a + 2, sizeof(float), &s->air);
+  const struct msocl__named f[] = {
+      {"gravity", sizeof s->gravity, &s->gravity},
+      {"viscous", sizeof(float), &s->viscous},
+      {"air", sizeof(float), &s->air}};
+  return msocl__pl_named(s, k, f, 3);
 }
 
 int msocl__pl_forces(msocl__engine *s)
 {
-  const int gathers[7] = {PL_VELOCITY, PL_FUSED,   PL_EULER,   PL_KICK,
-                          PL_RK4,      PL_RK4_MID, PL_RK4_LAST};
-  for (int q = 0; q < 7; q++) {
-    const cl_uint a = s->pl_conn + (q == 0 ? 3 : q < 4 ? 4 : 8);
-    TRY(forces(s, s->pl_k[gathers[q]], a + 4));
-  }
-  return msocl__pl_rows_forces(s);
+  for (int q = 0; q < PL_COUNT; q++)
+    TRY(forces(s, s->pl_k[q]));
+  return s->pl_rows ? forces(s, s->pl_rows) : MSOCL_OK;
 }
 
-/* The arguments that never change: all but the planes that ping-pong. */
+
+/* The arguments that hold one value for the engine's life, by name, in
+ * every planes kernel that has them: all but the planes that ping-pong
+ * (set at each launch) and RK4's stage constant. */
+int msocl__pl_fixed(msocl__engine *s, cl_kernel k)
+{
+  const struct msocl__named fixed[] = {
+      {"aux", sizeof s->pl_aux, &s->pl_aux},
+      {"dt", sizeof(float), &s->o.dt},
+      {"col", sizeof s->pl_col, &s->pl_col},
+      {"limit", sizeof(float), &s->o.strain_limit},
+      {"inv_mass", sizeof s->inv_mass, &s->inv_mass},
+      {"n", sizeof(int), &s->n},
+      {"sum_p", sizeof s->pl_sum[0], &s->pl_sum[0]},
+      {"sum_v", sizeof s->pl_sum[1], &s->pl_sum[1]},
+      {"acc", sizeof s->pl_a, &s->pl_a},
+      {"acc_out", sizeof s->pl_a, &s->pl_a}};
+  TRY(msocl__pl_named(s, k, fixed, (int)(sizeof fixed / sizeof fixed[0])));
+  TRY(msocl__pl_shape(s, k));
+  return forces(s, k);
+}
+
 static int fixed_args(msocl__engine *s)
 {
-  cl_kernel k = NULL;
-  /* velocity (connectivity, p, v, v_out, then these); fused, explicit
-   * Euler and Verlet's kick (one more ping-pong argument: p_out,
-   * acc_out); RK4's stages (p0, v0, sp, sv, sum_p, sum_v, np, nv, then
-   * these and c) */
-  const int gathers[7] = {PL_VELOCITY, PL_FUSED,   PL_EULER,   PL_KICK,
-                          PL_RK4,      PL_RK4_MID, PL_RK4_LAST};
-  for (int q = 0; q < 7; q++) {
-    k = s->pl_k[gathers[q]];
-    cl_uint a;
-    TRY(msocl__pl_conn(s, k, &a));
-    s->pl_conn = a;
-    a += q == 0 ? 3 : q < 4 ? 4 : 8;
-    TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
-    TRY(shape(s, k, a + 1, 0));
-    TRY(forces(s, k, a + 4));
-    TRY(arg(k, a + 7, sizeof(float), &s->o.dt));
-    TRY(arg(k, a + 8, sizeof s->pl_col, &s->pl_col));
+  for (int q = 0; q < PL_COUNT; q++) {
+    if (gathers(q))
+      TRY(msocl__pl_conn(s, s->pl_k[q]));
+    TRY(msocl__pl_fixed(s, s->pl_k[q]));
   }
-  k = s->pl_k[PL_POSITION];
-  TRY(arg(k, 3, sizeof s->pl_aux, &s->pl_aux));
-  TRY(shape(s, k, 4, 1));
-  TRY(arg(k, 8, sizeof(float), &s->o.dt));
-  /* pack (pos, vel, inv_mass, p, v, aux, shape, n); unpack (p, v, aux,
-   * pos, vel, shape, n) */
-  const cl_uint ints[2] = {6, 5}, aux_at[2] = {5, 2};
-  for (int q = 0; q < 2; q++) {
-    k = s->pl_k[PL_PACK + q];
-    TRY(shape(s, k, ints[q], 1));
-    TRY(arg(k, ints[q] + 4, sizeof(int), &s->n));
-    TRY(arg(k, aux_at[q], sizeof s->pl_aux, &s->pl_aux));
-  }
-  k = s->pl_k[PL_PACK];
-  TRY(arg(k, 2, sizeof s->inv_mass, &s->inv_mass));
-  if (s->o.integrator == MSOCL_RK4)
-    for (int q = PL_RK4; q <= PL_RK4_LAST; q++) {
-      const cl_mem sums[2] = {s->pl_sum[0], s->pl_sum[1]};
-      for (int u = 0; u < 2; u++)
-        TRY(arg(s->pl_k[q], s->pl_conn + 4 + (cl_uint)u, sizeof sums[u],
-                &sums[u]));
-    }
-  /* Provot: the sweep (connectivity, p, p_out, aux, shape, limit) and the
-   * commit (p, corrected, v, nx and shape, dt) */
-  k = s->pl_k[PL_STRAIN]; /* its connectivity ends at pl_conn too */
-  cl_uint c;
-  TRY(msocl__pl_conn(s, k, &c));
-  TRY(arg(k, c + 2, sizeof s->pl_aux, &s->pl_aux));
-  TRY(shape(s, k, c + 3, 0));
-  TRY(arg(k, c + 6, sizeof(float), &s->o.strain_limit));
-  k = s->pl_k[PL_COMMIT];
-  TRY(shape(s, k, 3, 1));
-  TRY(arg(k, 7, sizeof(float), &s->o.dt));
-  /* the velocity kind's sweep (connectivity, p, v, v_out, aux, shape,
-   * limit, dt, col) */
-  k = s->pl_k[PL_STRAIN_V];
-  TRY(msocl__pl_conn(s, k, &c));
-  TRY(arg(k, c + 3, sizeof s->pl_aux, &s->pl_aux));
-  TRY(shape(s, k, c + 4, 0));
-  TRY(arg(k, c + 7, sizeof(float), &s->o.strain_limit));
-  TRY(arg(k, c + 8, sizeof(float), &s->o.dt));
-  TRY(arg(k, c + 9, sizeof s->pl_col, &s->pl_col));
-  /* Verlet: drift (p, v, acc, p_out, aux, shape, dt, col) */
-  if (s->o.integrator != MSOCL_VERLET)
-    return MSOCL_OK;
-  k = s->pl_k[PL_DRIFT];
-  TRY(arg(k, 2, sizeof s->pl_a, &s->pl_a));
-  TRY(arg(k, 4, sizeof s->pl_aux, &s->pl_aux));
-  TRY(shape(s, k, 5, 1));
-  TRY(arg(k, 9, sizeof(float), &s->o.dt));
-  return arg(k, 10, sizeof s->pl_col, &s->pl_col);
+  return MSOCL_OK;
 }
 
 /* The colliders for the planes kernels: s->col's values (8 a collider),
@@ -483,30 +446,19 @@ static int wide(const msocl__engine *s)
 
 static int make_kernel(msocl__engine *s, cl_program prog, int q)
 {
-  cl_int e;
   const char *name = names[q];
   if (q == PL_VELOCITY)
     s->pl_wide = wide(s);
   if (s->pl_wide && (q == PL_VELOCITY || q == PL_FUSED))
     name = q == PL_VELOCITY ? "msocl_planes_wide_velocity"
                             : "msocl_planes_wide_fused";
-  s->pl_k[q] = clCreateKernel(prog, name, &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateKernel(%s): %s", name,
-                       msocl_err_name(e));
+  TRY(msocl__kernel_make(s->dev, prog, name, &s->pl_k[q]));
   if (s->pl_nspill == 0 || !gathers(q))
     return MSOCL_OK;
   char twin[64];
   snprintf(twin, sizeof twin, "%s_spill", names[q]);
-  s->pl_ks[q] = clCreateKernel(prog, twin, &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateKernel(%s): %s", twin, msocl_err_name(e));
-  cl_uint last = 0;
-  MSOCL__CL(clGetKernelInfo(s->pl_ks[q], CL_KERNEL_NUM_ARGS, sizeof last,
-                            &last, NULL));
-  MSOCL__CL(clSetKernelArg(s->pl_ks[q], last - 1, sizeof s->pl_list,
-                           &s->pl_list));
-  return MSOCL_OK;
+  TRY(msocl__kernel_make(s->dev, prog, twin, &s->pl_ks[q]));
+  return msocl__arg_mem(s, s->pl_ks[q], "spilled", s->pl_list);
 }
 
 /* Whether planes kernel q reads the collider table (its `col`). */
@@ -524,10 +476,8 @@ int msocl__planes_rebuild(msocl__engine *s, cl_program prog, int all)
   for (int q = 0; q < PL_COUNT; q++) {
     if (!all && !reads_colliders(q))
       continue;
-    clReleaseKernel(s->pl_k[q]);
-    if (s->pl_ks[q])
-      clReleaseKernel(s->pl_ks[q]);
-    s->pl_k[q] = s->pl_ks[q] = NULL;
+    msocl__kernel_free(s->dev, &s->pl_k[q]);
+    msocl__kernel_free(s->dev, &s->pl_ks[q]);
     TRY(make_kernel(s, prog, q));
   }
   /* every fixed argument again: those of the kernels kept are unchanged;
@@ -648,19 +598,21 @@ static int copy(msocl__engine *s, int set, int to_planes)
   cl_kernel k = s->pl_k[to_planes ? PL_PACK : PL_UNPACK];
   cl_mem f4[2] = {s->pos[s->r], s->vel[s->r]},
          pl[2] = {s->pl_p[set], s->pl_v[set]};
-  for (int q = 0; q < 2; q++) {
-    TRY(arg(k, (cl_uint)(to_planes ? q : 3 + q), sizeof f4[q], &f4[q]));
-    TRY(arg(k, (cl_uint)(to_planes ? 3 + q : q), sizeof pl[q], &pl[q]));
-  }
+  const struct msocl__named bufs[4] = {{"pos", sizeof f4[0], &f4[0]},
+                                       {"vel", sizeof f4[1], &f4[1]},
+                                       {"p", sizeof pl[0], &pl[0]},
+                                       {"v", sizeof pl[1], &pl[1]}};
+  for (int q = 0; q < 4; q++)
+    TRY(msocl__arg(s, k, bufs[q].name, bufs[q].size, bufs[q].v));
   return launch(s, to_planes ? PL_PACK : PL_UNPACK);
 }
 
-/* Sets the gathering kernel k's ping-pong arguments (after its
- * connectivity) to bufs[0..n). */
-static int gather_args(msocl__engine *s, int k, int n, const cl_mem *bufs)
+/* Sets planes kernel k's ping-pong arguments names[q] to bufs[q] (q < n). */
+static int buffers(msocl__engine *s, int k, int n, const char *const *names,
+                   const cl_mem *bufs)
 {
   for (int q = 0; q < n; q++)
-    TRY(arg(s->pl_k[k], s->pl_conn + (cl_uint)q, sizeof bufs[q], &bufs[q]));
+    TRY(msocl__pl_mem(s, s->pl_k[k], names[q], bufs[q]));
   return MSOCL_OK;
 }
 
@@ -676,11 +628,11 @@ static int rk4_stage(msocl__engine *s, int q, int r, int w)
                         q ? s->pl_sv[in] : s->pl_v[r]};
   const cl_mem next[2] = {q == 3 ? s->pl_p[w] : s->pl_sp[out],
                           q == 3 ? s->pl_v[w] : s->pl_sv[out]};
-  TRY(gather_args(s, k, 4, y0));
-  for (int u = 0; u < 2; u++)
-    TRY(arg(s->pl_k[k], s->pl_conn + 6 + (cl_uint)u, sizeof next[u],
-            &next[u]));
-  TRY(arg(s->pl_k[k], s->pl_conn + 17, sizeof(float), &cs[q]));
+  static const char *const in_names[4] = {"p0", "v0", "sp", "sv"},
+                           *const out_names[2] = {"np", "nv"};
+  TRY(buffers(s, k, 4, in_names, y0));
+  TRY(buffers(s, k, 2, out_names, next));
+  TRY(msocl__pl_arg(s, s->pl_k[k], "c", sizeof cs[q], &cs[q]));
   return launch(s, k);
 }
 
@@ -692,15 +644,15 @@ static int provot(msocl__engine *s, cl_mem p, cl_mem v)
   cl_kernel k = s->pl_k[PL_STRAIN];
   for (int it = 0; it < s->o.strain_iterations; it++) {
     const cl_mem to = s->pl_s[it & 1];
-    TRY(arg(k, s->pl_conn, sizeof from, &from));
-    TRY(arg(k, s->pl_conn + 1, sizeof to, &to));
+    TRY(msocl__pl_mem(s, k, "p", from));
+    TRY(msocl__pl_mem(s, k, "p_out", to));
     TRY(launch(s, PL_STRAIN));
     from = to;
   }
   k = s->pl_k[PL_COMMIT];
-  TRY(arg(k, 0, sizeof p, &p));
-  TRY(arg(k, 1, sizeof from, &from));
-  TRY(arg(k, 2, sizeof v, &v));
+  TRY(msocl__pl_mem(s, k, "p", p));
+  TRY(msocl__pl_mem(s, k, "corrected", from));
+  TRY(msocl__pl_mem(s, k, "v", v));
   return launch(s, PL_COMMIT);
 }
 
@@ -710,11 +662,11 @@ static int strain_velocity(msocl__engine *s, cl_mem p, cl_mem v)
 {
   cl_kernel k = s->pl_k[PL_STRAIN_V];
   cl_mem from = v;
-  TRY(arg(k, s->pl_conn, sizeof p, &p));
+  TRY(msocl__pl_mem(s, k, "p", p));
   for (int it = 0; it < s->o.strain_iterations; it++) {
     const cl_mem to = from == v ? s->pl_s[0] : v;
-    TRY(arg(k, s->pl_conn + 1, sizeof from, &from));
-    TRY(arg(k, s->pl_conn + 2, sizeof to, &to));
+    TRY(msocl__pl_mem(s, k, "v", from));
+    TRY(msocl__pl_mem(s, k, "v_out", to));
     TRY(launch(s, PL_STRAIN_V));
     from = to;
   }
@@ -730,6 +682,7 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
 {
   const int r = s->pl_set, w = 1 - r;
   const cl_mem *p = s->pl_p, *v = s->pl_v;
+  static const char *const step_names[4] = {"p", "v", "v_out", "p_out"};
   /* symplectic Euler's two passes, or fused, in one sweep (planes_rows.c) */
   if (s->pl_rows && (pass == MSOCL__P_VELOCITY || pass == MSOCL__P_FUSED))
     return msocl__pl_rows_step(s, r, w);
@@ -738,34 +691,32 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
   switch (pass) {
   case MSOCL__P_VELOCITY: {
     const cl_mem vel[3] = {p[r], v[r], v[w]};
-    TRY(gather_args(s, PL_VELOCITY, 3, vel));
+    TRY(buffers(s, PL_VELOCITY, 3, step_names, vel));
     return launch(s, PL_VELOCITY);
   }
   case MSOCL__P_STRAIN_VEL: return strain_velocity(s, p[r], v[w]);
   case MSOCL__P_POSITION: {
-    cl_kernel kp = s->pl_k[PL_POSITION];
-    TRY(arg(kp, 0, sizeof p[r], &p[r]));
-    TRY(arg(kp, 1, sizeof v[w], &v[w]));
-    TRY(arg(kp, 2, sizeof p[w], &p[w]));
+    const cl_mem pos[3] = {p[r], v[w], p[w]};
+    static const char *const pos_names[3] = {"p", "v", "p_out"};
+    TRY(buffers(s, PL_POSITION, 3, pos_names, pos));
     return launch(s, PL_POSITION);
   }
   case MSOCL__P_FUSED:
   case MSOCL__P_EULER: {
     const int k = pass == MSOCL__P_FUSED ? PL_FUSED : PL_EULER;
     const cl_mem both[4] = {p[r], v[r], v[w], p[w]};
-    TRY(gather_args(s, k, 4, both));
+    TRY(buffers(s, k, 4, step_names, both));
     return launch(s, k);
   }
   case MSOCL__P_DRIFT: {
-    cl_kernel kd = s->pl_k[PL_DRIFT];
-    TRY(arg(kd, 0, sizeof p[r], &p[r]));
-    TRY(arg(kd, 1, sizeof v[r], &v[r]));
-    TRY(arg(kd, 3, sizeof p[w], &p[w]));
+    const cl_mem drift[3] = {p[r], v[r], p[w]};
+    static const char *const drift_names[3] = {"p", "v", "p_out"};
+    TRY(buffers(s, PL_DRIFT, 3, drift_names, drift));
     return launch(s, PL_DRIFT);
   }
   case MSOCL__P_KICK: {
-    const cl_mem kick[4] = {p[w], v[r], v[w], s->pl_a};
-    TRY(gather_args(s, PL_KICK, 4, kick));
+    const cl_mem kick[3] = {p[w], v[r], v[w]};
+    TRY(buffers(s, PL_KICK, 3, step_names, kick));
     return launch(s, PL_KICK);
   }
   case MSOCL__P_RK4_0:
@@ -785,14 +736,14 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
  * writes before it reads. */
 static int first_acceleration(msocl__engine *s)
 {
-  const cl_uint dt = s->pl_conn + 11; /* after p, v, v_out, acc_out, aux,
-                                         shape (3), forces (3) */
   const float zero = 0.0f;
-  const cl_mem kick[4] = {s->pl_p[0], s->pl_v[0], s->pl_v[1], s->pl_a};
-  TRY(gather_args(s, PL_KICK, 4, kick));
-  TRY(arg(s->pl_k[PL_KICK], dt, sizeof zero, &zero));
+  cl_kernel k = s->pl_k[PL_KICK];
+  TRY(msocl__pl_mem(s, k, "p", s->pl_p[0]));
+  TRY(msocl__pl_mem(s, k, "v", s->pl_v[0]));
+  TRY(msocl__pl_mem(s, k, "v_out", s->pl_v[1]));
+  TRY(msocl__pl_arg(s, k, "dt", sizeof zero, &zero));
   TRY(launch(s, PL_KICK));
-  return arg(s->pl_k[PL_KICK], dt, sizeof(float), &s->o.dt);
+  return msocl__pl_arg(s, k, "dt", sizeof(float), &s->o.dt);
 }
 
 /* The state is copied into the planes at the first step after the float4
@@ -834,9 +785,10 @@ void msocl__planes_written(msocl__engine *s)
 
 void msocl__planes_release(msocl__engine *s)
 {
-  for (int q = 0; q < PL_COUNT; q++)
-    if (s->pl_k[q])
-      clReleaseKernel(s->pl_k[q]);
+  for (int q = 0; q < PL_COUNT; q++) {
+    msocl__kernel_free(s->dev, &s->pl_k[q]);
+    msocl__kernel_free(s->dev, &s->pl_ks[q]);
+  }
   cl_mem m[14] = {s->pl_p[0],  s->pl_p[1],  s->pl_v[0],   s->pl_v[1],
                   s->pl_aux,   s->pl_a,     s->pl_sp[0],  s->pl_sp[1],
                   s->pl_sv[0], s->pl_sv[1], s->pl_sum[0], s->pl_sum[1],
@@ -846,9 +798,6 @@ void msocl__planes_release(msocl__engine *s)
       clReleaseMemObject(m[q]);
   if (s->pl_col)
     clReleaseMemObject(s->pl_col);
-  for (int q = 0; q < PL_COUNT; q++)
-    if (s->pl_ks[q])
-      clReleaseKernel(s->pl_ks[q]);
   for (int q = 0; q < 4; q++)
     if (s->pl_table[q])
       clReleaseMemObject(s->pl_table[q]);

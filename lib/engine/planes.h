@@ -12,14 +12,20 @@ enum {
   PL_SUM, PL_EULER, PL_COUNT
 };
 
-/* Argument i of planes kernel k (and of its _spill twin, if any). */
-int msocl__pl_arg(msocl__engine *s, cl_kernel k, cl_uint i, size_t size,
-                  const void *v);
-/* Kernel k's connectivity arguments (and its twin's); *next: the first
- * after them. */
-int msocl__pl_conn(msocl__engine *s, cl_kernel k, cl_uint *next);
-/* The planes' shape from argument i: (nx if with_nx,) pitch, slab, plane. */
-int msocl__pl_shape(msocl__engine *s, cl_kernel k, cl_uint i, int with_nx);
+/* Planes kernel k's argument `name` (and its _spill twin's, if any):
+ * size bytes at v, or a buffer; named: each of vals[0..n) it has. */
+int msocl__pl_arg(msocl__engine *s, cl_kernel k, const char *name,
+                  size_t size, const void *v);
+int msocl__pl_mem(msocl__engine *s, cl_kernel k, const char *name, cl_mem m);
+int msocl__pl_named(msocl__engine *s, cl_kernel k,
+                    const struct msocl__named *vals, int n);
+/* Kernel k's connectivity arguments (and its twin's). */
+int msocl__pl_conn(msocl__engine *s, cl_kernel k);
+/* The planes' shape, where k has them: nx, pitch, slab, plane. */
+int msocl__pl_shape(msocl__engine *s, cl_kernel k);
+/* Every argument of k that holds one value for the engine's life (the
+ * shape, aux, dt, the colliders, the forces, ...), where k has it. */
+int msocl__pl_fixed(msocl__engine *s, cl_kernel k);
 /* Kernel k over the padded grid (then its twin over the points that
  * spill). */
 int msocl__pl_launch(msocl__engine *s, int k);
@@ -27,8 +33,8 @@ int msocl__pl_launch(msocl__engine *s, int k);
 /* planes_implicit.c: its kernels' fixed arguments (its CG operations:
  * schedule.h). */
 int msocl__pl_implicit_args(msocl__engine *s);
-/* The gathering kernels' gravity, viscous damping and air arguments again
- * (planes.c; msocl__planes_forces adds the implicit kernels'). */
+/* Every planes kernel's gravity, viscous damping and air arguments again
+ * (planes.c), the sweep's too. */
 int msocl__pl_forces(msocl__engine *s);
 
 
@@ -41,8 +47,6 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog);
  * where it no longer applies. */
 int msocl__pl_rows_rebuild(msocl__engine *s, cl_program prog);
 int msocl__pl_rows_step(msocl__engine *s, int r, int w);
-/* Its gravity, viscous damping and air arguments again (msocl__pl_forces). */
-int msocl__pl_rows_forces(msocl__engine *s);
 /* Wind on the cloth builder's triangles inside the sweep (air NULL:
  * none), kd and kl as msocl__wind_set's. */
 int msocl__pl_rows_wind(msocl__engine *s, const float air[3], float kd,

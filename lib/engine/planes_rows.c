@@ -14,13 +14,6 @@
  * more than its own, handed to the device's threads as they come free. */
 #define BLOCKS_PER_UNIT 2
 
-/* Argument i of the sweep's kernel, which has no _spill twin. */
-static int arg(cl_kernel k, cl_uint i, size_t size, const void *v)
-{
-  MSOCL__CL(clSetKernelArg(k, i, size, v));
-  return MSOCL_OK;
-}
-
 static int applies(const msocl__engine *s)
 {
   /* its blocks sweep the whole grid: a split's engine runs the two
@@ -42,27 +35,14 @@ static int ring_width(const msocl__engine *s)
 /* The sweep's kernel from prog, its arguments set, its wind off. */
 static int sweep_kernel(msocl__engine *s, cl_program prog)
 {
-  cl_int e;
-  s->pl_rows = clCreateKernel(prog, "msocl_planes_rows", &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateKernel(msocl_planes_rows): %s",
-                       msocl_err_name(e));
+  MSOCL__TRY(msocl__kernel_make(s->dev, prog, "msocl_planes_rows",
+                                &s->pl_rows));
   const int ring_w = ring_width(s);
-  /* connectivity, p, v, p_out, then these, then v_out and wind's */
   cl_kernel k = s->pl_rows;
-  cl_uint a;
-  MSOCL__TRY(msocl__layout_set_args(&s->lay, k, &a));
-  a += 3;
-  MSOCL__TRY(arg(k, a, sizeof s->pl_aux, &s->pl_aux));
-  MSOCL__TRY(arg(k, a + 1, sizeof(int), &s->pl_pitch));
-  MSOCL__TRY(arg(k, a + 2, sizeof(int), &s->pl_plane));
-  MSOCL__TRY(arg(k, a + 3, sizeof s->gravity, &s->gravity));
-  MSOCL__TRY(arg(k, a + 4, sizeof(float), &s->viscous));
-  MSOCL__TRY(arg(k, a + 5, sizeof(float), &s->air));
-  MSOCL__TRY(arg(k, a + 6, sizeof(float), &s->o.dt));
-  MSOCL__TRY(arg(k, a + 7, sizeof s->pl_col, &s->pl_col));
-  MSOCL__TRY(arg(k, a + 8, sizeof s->pl_ring, &s->pl_ring));
-  MSOCL__TRY(arg(k, a + 9, sizeof(int), &ring_w));
+  MSOCL__TRY(msocl__layout_set_args(&s->lay, s->dev, k));
+  MSOCL__TRY(msocl__pl_fixed(s, k));
+  MSOCL__TRY(msocl__arg_mem(s, k, "ring", s->pl_ring));
+  MSOCL__TRY(msocl__arg_int(s, k, "ring_w", ring_w));
   return msocl__pl_rows_wind(s, NULL, 0.0f, 0.0f);
 }
 
@@ -70,8 +50,7 @@ int msocl__pl_rows_rebuild(msocl__engine *s, cl_program prog)
 {
   if (!s->pl_rows)
     return MSOCL_OK;
-  clReleaseKernel(s->pl_rows);
-  s->pl_rows = NULL;
+  msocl__kernel_free(s->dev, &s->pl_rows);
   if (applies(s))
     return sweep_kernel(s, prog);
   /* a capsule or box: the other planes kernels from now on */
@@ -114,27 +93,15 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
 int msocl__pl_rows_wind(msocl__engine *s, const float air[3], float kd,
                         float kl)
 {
-  const cl_uint a = s->pl_conn + 3 + 11; /* after ring_w */
   const cl_float4 w = {{air ? air[0] : 0.0f, air ? air[1] : 0.0f,
                         air ? air[2] : 0.0f, 0.0f}},
                   c = {{kd, kl, 0.0f, 0.0f}};
   const int on = air != NULL;
-  MSOCL__TRY(arg(s->pl_rows, a, sizeof w, &w));
-  MSOCL__TRY(arg(s->pl_rows, a + 1, sizeof c, &c));
-  MSOCL__TRY(arg(s->pl_rows, a + 2, sizeof on, &on));
+  MSOCL__TRY(msocl__arg(s, s->pl_rows, "wind_air", sizeof w, &w));
+  MSOCL__TRY(msocl__arg(s, s->pl_rows, "wind_coef", sizeof c, &c));
+  MSOCL__TRY(msocl__arg_int(s, s->pl_rows, "wind", on));
   s->pl_rows_wind = on;
   return MSOCL_OK;
-}
-
-int msocl__pl_rows_forces(msocl__engine *s)
-{
-  if (!s->pl_rows)
-    return MSOCL_OK;
-  cl_kernel k = s->pl_rows;
-  const cl_uint a = s->pl_conn + 3; /* as msocl__pl_rows_create's */
-  MSOCL__TRY(arg(k, a + 3, sizeof s->gravity, &s->gravity));
-  MSOCL__TRY(arg(k, a + 4, sizeof(float), &s->viscous));
-  return arg(k, a + 5, sizeof(float), &s->air);
 }
 
 int msocl__pl_rows_step(msocl__engine *s, int r, int w)
@@ -142,12 +109,11 @@ int msocl__pl_rows_step(msocl__engine *s, int r, int w)
   /* without wind or dashpots the velocities move in place; with them,
    * into set w, as they read the neighbours' velocities before the step */
   const int out = s->pl_rows_wind || s->damped ? w : r;
-  const cl_mem bufs[3] = {s->pl_p[r], s->pl_v[r], s->pl_p[w]};
-  for (cl_uint q = 0; q < 3; q++)
-    MSOCL__TRY(arg(s->pl_rows, s->pl_conn + q, sizeof bufs[q],
-                             &bufs[q]));
-  MSOCL__TRY(arg(s->pl_rows, s->pl_conn + 3 + 10, sizeof(cl_mem),
-                 &s->pl_v[out]));
+  cl_kernel k = s->pl_rows;
+  MSOCL__TRY(msocl__arg_mem(s, k, "p", s->pl_p[r]));
+  MSOCL__TRY(msocl__arg_mem(s, k, "v", s->pl_v[r]));
+  MSOCL__TRY(msocl__arg_mem(s, k, "p_out", s->pl_p[w]));
+  MSOCL__TRY(msocl__arg_mem(s, k, "v_out", s->pl_v[out]));
   const size_t one = 1;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_rows, 1, NULL,
                                    &s->pl_blocks, &one, 0, NULL, NULL));
@@ -162,8 +128,7 @@ int msocl__pl_rows_step(msocl__engine *s, int r, int w)
 
 void msocl__pl_rows_release(msocl__engine *s)
 {
-  if (s->pl_rows)
-    clReleaseKernel(s->pl_rows);
+  msocl__kernel_free(s->dev, &s->pl_rows);
   if (s->pl_ring)
     clReleaseMemObject(s->pl_ring);
 }

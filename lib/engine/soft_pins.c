@@ -15,13 +15,9 @@ static int buffers(msocl__engine *s, int m)
 {
   if (!s->soft_k) {
     cl_program prog;
-    cl_int e;
     MSOCL__CL(clGetKernelInfo(s->pl_k[0], CL_KERNEL_PROGRAM, sizeof prog,
                               &prog, NULL));
-    s->soft_k = clCreateKernel(prog, "msocl_soft_pins", &e);
-    if (e != CL_SUCCESS)
-      return msocl__fail(e, "clCreateKernel(msocl_soft_pins): %s",
-                         msocl_err_name(e));
+    TRY(msocl__kernel_make(s->dev, prog, "msocl_soft_pins", &s->soft_k));
   }
   if (m <= s->soft_cap)
     return MSOCL_OK;
@@ -95,13 +91,13 @@ int msocl__soft_set(msocl__engine *s, int m, const int *k, const float *xyz,
   if (e != CL_SUCCESS)
     return msocl__fail(e, "writing soft pins: %s", msocl_err_name(e));
   cl_kernel kk = s->soft_k;
-  TRY(msocl__arg_mem(kk, 2, s->pl_aux));
-  TRY(msocl__arg_mem(kk, 3, s->soft_at));
-  TRY(msocl__arg_mem(kk, 4, s->soft_from));
-  TRY(msocl__arg_mem(kk, 5, s->soft_to));
-  TRY(msocl__arg_int(kk, 6, m));
-  TRY(msocl__arg_int(kk, 7, s->pl_plane));
-  TRY(msocl__arg_float(kk, 9, s->o.dt * stiffness));
+  TRY(msocl__arg_mem(s, kk, "aux", s->pl_aux));
+  TRY(msocl__arg_mem(s, kk, "at", s->soft_at));
+  TRY(msocl__arg_mem(s, kk, "from", s->soft_from));
+  TRY(msocl__arg_mem(s, kk, "to", s->soft_to));
+  TRY(msocl__arg_int(s, kk, "m", m));
+  TRY(msocl__arg_int(s, kk, "plane", s->pl_plane));
+  TRY(msocl__arg_float(s, kk, "dtk", s->o.dt * stiffness));
   s->soft_m = m;
   s->soft_f = move ? 0.0f : 1.0f;
   return MSOCL_OK;
@@ -117,9 +113,9 @@ int msocl__soft_pass(msocl__engine *s)
   if (s->soft_m == 0)
     return MSOCL_OK;
   cl_kernel k = s->soft_k;
-  TRY(msocl__arg_mem(k, 0, s->pl_p[s->pl_set]));
-  TRY(msocl__arg_mem(k, 1, s->pl_v[s->pl_set]));
-  TRY(msocl__arg_float(k, 8, s->soft_f));
+  TRY(msocl__arg_mem(s, k, "p", s->pl_p[s->pl_set]));
+  TRY(msocl__arg_mem(s, k, "v", s->pl_v[s->pl_set]));
+  TRY(msocl__arg_float(s, k, "f", s->soft_f));
   const size_t global = ((size_t)s->soft_m + 63) / 64 * 64;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &global, NULL,
                                    0, NULL, NULL));
@@ -128,8 +124,7 @@ int msocl__soft_pass(msocl__engine *s)
 
 void msocl__soft_release(msocl__engine *s)
 {
-  if (s->soft_k)
-    clReleaseKernel(s->soft_k);
+  msocl__kernel_free(s->dev, &s->soft_k);
   cl_mem b[3] = {s->soft_at, s->soft_from, s->soft_to};
   for (int q = 0; q < 3; q++)
     if (b[q])

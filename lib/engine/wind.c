@@ -44,13 +44,8 @@ int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog)
                           "msocl_wind_spill", "msocl_wind_quads",
                           "msocl_wind_quad_points"};
   s->wind_quads = quads(s, m);
-  for (int q = s->wind_quads ? 3 : 0; q < (s->wind_quads ? 5 : 3); q++) {
-    cl_int e;
-    s->wind_k[q] = clCreateKernel(prog, names[q], &e);
-    if (e != CL_SUCCESS)
-      return msocl__fail(e, "clCreateKernel(%s): %s", names[q],
-                         msocl_err_name(e));
-  }
+  for (int q = s->wind_quads ? 3 : 0; q < (s->wind_quads ? 5 : 3); q++)
+    TRY(msocl__kernel_make(s->dev, prog, names[q], &s->wind_k[q]));
   return MSOCL_OK;
 }
 
@@ -65,6 +60,35 @@ static cl_mem upload(msocl__engine *s, size_t bytes, void *host, int *rc)
     *rc = msocl__fail(e, "clCreateBuffer(%zu bytes for wind): %s", bytes,
                       msocl_err_name(e));
   return b;
+}
+
+/* The wind kernels' arguments that stay (by name, where each has them):
+ * the planes' shape, the tables, nt triangles (whole 64s) of which
+ * wind_ntri are the model's, nspill points listed for the spill kernel. */
+static int fixed_args(msocl__engine *s, int nt, int nspill)
+{
+  const struct msocl__named fixed[] = {
+      {"aux", sizeof s->pl_aux, &s->pl_aux},
+      {"dt", sizeof(float), &s->o.dt},
+      {"n", sizeof(int), &s->n},
+      {"ny", sizeof(int), &s->lay.grid_ny},
+      {"third", sizeof s->wind_third, &s->wind_third},
+      {"cell", sizeof s->wind_third, &s->wind_third},
+      {"tri", sizeof s->wind_tri, &s->wind_tri},
+      {"slot", sizeof s->wind_slot, &s->wind_slot},
+      {"tri_off", sizeof s->tri_off, &s->tri_off},
+      {"corner", sizeof s->wind_corner, &s->wind_corner},
+      {"list", sizeof s->wind_list, &s->wind_list},
+      {"ntri", sizeof nt, &nt},
+      {"nreal", sizeof(int), &s->wind_ntri},
+      {"nspill", sizeof nspill, &nspill}};
+  for (int q = 0; q < 5; q++)
+    if (s->wind_k[q]) {
+      TRY(msocl__args_named(s, s->wind_k[q], fixed,
+                            (int)(sizeof fixed / sizeof fixed[0])));
+      TRY(msocl__pl_shape(s, s->wind_k[q]));
+    }
+  return MSOCL_OK;
 }
 
 /* The corners as addresses (a zero-force triangle, all corners at 0, at
@@ -83,17 +107,7 @@ static int quad_buffers(msocl__engine *s)
   const float zero = 0.0f;
   MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->wind_third, &zero,
                                 sizeof zero, 0, bytes, 0, NULL, NULL));
-  cl_kernel k = s->wind_k[3];
-  TRY(msocl__arg_mem(k, 2, s->wind_third));
-  TRY(msocl__arg_int(k, 5, s->lay.grid_nx));
-  TRY(msocl__arg_int(k, 6, s->lay.grid_ny));
-  TRY(msocl__pl_shape(s, k, 7, 0));
-  k = s->wind_k[4];
-  TRY(msocl__arg_mem(k, 1, s->pl_aux));
-  TRY(msocl__arg_mem(k, 2, s->wind_third));
-  TRY(msocl__arg_float(k, 3, s->o.dt));
-  TRY(msocl__pl_shape(s, k, 4, 1));
-  return msocl__arg_int(k, 8, s->n);
+  return fixed_args(s, 0, 0);
 }
 
 enum { SLOTS = 8 };
@@ -154,32 +168,7 @@ static int buffers(msocl__engine *s)
   free(slot);
   free(list);
   TRY(rc);
-  cl_kernel k = s->wind_k[0];
-  TRY(msocl__arg_mem(k, 2, s->wind_tri));
-  TRY(msocl__arg_mem(k, 3, s->wind_third));
-  TRY(msocl__arg_int(k, 6, s->pl_plane));
-  TRY(msocl__arg_int(k, 7, nt));
-  TRY(msocl__arg_int(k, 8, s->wind_ntri));
-  k = s->wind_k[1];
-  TRY(msocl__arg_mem(k, 1, s->pl_aux));
-  TRY(msocl__arg_mem(k, 2, s->wind_slot));
-  TRY(msocl__arg_mem(k, 3, s->wind_third));
-  TRY(msocl__arg_float(k, 4, s->o.dt));
-  TRY(msocl__arg_int(k, 5, nt));
-  TRY(msocl__pl_shape(s, k, 6, 1));
-  TRY(msocl__arg_int(k, 10, s->n));
-  if (nspill == 0)
-    return MSOCL_OK;
-  k = s->wind_k[2];
-  TRY(msocl__arg_mem(k, 1, s->pl_aux));
-  TRY(msocl__arg_mem(k, 2, s->tri_off));
-  TRY(msocl__arg_mem(k, 3, s->wind_corner));
-  TRY(msocl__arg_mem(k, 4, s->wind_third));
-  TRY(msocl__arg_mem(k, 5, s->wind_list));
-  TRY(msocl__arg_float(k, 6, s->o.dt));
-  TRY(msocl__arg_int(k, 7, nt));
-  TRY(msocl__arg_int(k, 8, s->pl_plane));
-  return msocl__arg_int(k, 9, nspill);
+  return fixed_args(s, nt, nspill);
 }
 
 int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
@@ -209,9 +198,8 @@ int msocl__wind_set(msocl__engine *s, const float air[3], float kd, float kl)
   const cl_float4 a = {{air[0], air[1], air[2], 0.0f}},
                   c = {{kd, kl, 0.0f, 0.0f}};
   cl_kernel k = s->wind_k[s->wind_quads ? 3 : 0];
-  const cl_uint at = s->wind_quads ? 3 : 4;
-  MSOCL__CL(clSetKernelArg(k, at, sizeof a, &a));
-  MSOCL__CL(clSetKernelArg(k, at + 1, sizeof c, &c));
+  TRY(msocl__arg(s, k, "air", sizeof a, &a));
+  TRY(msocl__arg(s, k, "coef", sizeof c, &c));
   s->wind_on = 1;
   return MSOCL_OK;
 }
@@ -225,31 +213,31 @@ int msocl__wind_pass(msocl__engine *s)
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
   if (s->wind_quads) {
     cl_kernel q = s->wind_k[3];
-    TRY(msocl__arg_mem(q, 0, s->pl_p[set]));
-    TRY(msocl__arg_mem(q, 1, s->pl_v[set]));
+    TRY(msocl__arg_mem(s, q, "p", s->pl_p[set]));
+    TRY(msocl__arg_mem(s, q, "v", s->pl_v[set]));
     const size_t two[3] = {s->pl_global[0], s->pl_global[1], 2}; /* A, B */
     MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, q, 3, NULL, two, group,
                                      0, NULL, NULL));
     q = s->wind_k[4];
-    TRY(msocl__arg_mem(q, 0, s->pl_v[set]));
+    TRY(msocl__arg_mem(s, q, "v", s->pl_v[set]));
     MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, q, 3, NULL, s->pl_global,
                                      group, 0, NULL, NULL));
     return MSOCL_OK;
   }
   cl_kernel k = s->wind_k[0];
-  TRY(msocl__arg_mem(k, 0, s->pl_p[set]));
-  TRY(msocl__arg_mem(k, 1, s->pl_v[set]));
+  TRY(msocl__arg_mem(s, k, "p", s->pl_p[set]));
+  TRY(msocl__arg_mem(s, k, "v", s->pl_v[set]));
   const size_t tris = ((size_t)s->wind_ntri / 64 + 1) * 64; /* buffers' */
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &tris, NULL, 0,
                                    NULL, NULL));
   k = s->wind_k[1];
-  TRY(msocl__arg_mem(k, 0, s->pl_v[set]));
+  TRY(msocl__arg_mem(s, k, "v", s->pl_v[set]));
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 3, NULL, s->pl_global,
                                    group, 0, NULL, NULL));
   if (s->wind_nspill == 0)
     return MSOCL_OK;
   k = s->wind_k[2];
-  TRY(msocl__arg_mem(k, 0, s->pl_v[set]));
+  TRY(msocl__arg_mem(s, k, "v", s->pl_v[set]));
   const size_t spill = ((size_t)s->wind_nspill + 63) / 64 * 64;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &spill, NULL, 0,
                                    NULL, NULL));
@@ -259,8 +247,7 @@ int msocl__wind_pass(msocl__engine *s)
 void msocl__wind_release(msocl__engine *s)
 {
   for (int q = 0; q < 5; q++)
-    if (s->wind_k[q])
-      clReleaseKernel(s->wind_k[q]);
+    msocl__kernel_free(s->dev, &s->wind_k[q]);
   cl_mem b[5] = {s->wind_tri, s->wind_corner, s->wind_third, s->wind_slot,
                  s->wind_list};
   for (int q = 0; q < 5; q++)

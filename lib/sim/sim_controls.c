@@ -19,6 +19,7 @@ struct msocl__controls {
   int *at_host; /* their model indices, to refuse unpinning them */
   cl_kernel pins;
   cl_mem at, start, target;
+  struct msocl__device *dev; /* the pins kernel's */
   int cap;      /* pins the buffers hold */
 };
 
@@ -28,7 +29,7 @@ void msocl__controls_free(msocl_sim *s)
   if (!c)
     return;
   if (c->pins)
-    clReleaseKernel(c->pins);
+    msocl__kernel_free(c->dev, &c->pins);
   cl_mem b[3] = {c->at, c->start, c->target};
   for (int q = 0; q < 3; q++)
     if (b[q])
@@ -217,13 +218,11 @@ static int pin_buffers(msocl__engine *e, struct msocl__controls *c, int m)
 {
   if (!c->pins) {
     cl_program prog;
-    cl_int err;
     MSOCL__CL(clGetKernelInfo(e->pl_k[0], CL_KERNEL_PROGRAM, sizeof prog,
                               &prog, NULL));
-    c->pins = clCreateKernel(prog, "msocl_planes_pins", &err);
-    if (err != CL_SUCCESS)
-      return msocl__fail(err, "clCreateKernel(msocl_planes_pins): %s",
-                         msocl_err_name(err));
+    MSOCL__TRY(msocl__kernel_make(e->dev, prog, "msocl_planes_pins",
+                                  &c->pins));
+    c->dev = e->dev;
   }
   if (m <= c->cap)
     return MSOCL_OK;
@@ -362,18 +361,16 @@ static int place(msocl__engine *e, struct msocl__controls *c, float fp,
 {
   cl_kernel k = c->pins;
   const cl_mem p = e->pl_p[e->pl_set], v = e->pl_v[e->pl_set];
-  MSOCL__TRY(msocl__arg_mem(k, 0, p));
-  MSOCL__TRY(msocl__arg_mem(k, 1, v));
-  MSOCL__TRY(msocl__arg_mem(k, 2, c->at));
-  MSOCL__TRY(msocl__arg_mem(k, 3, c->start));
-  MSOCL__TRY(msocl__arg_mem(k, 4, c->target));
-  MSOCL__TRY(msocl__arg_int(k, 5, c->m));
-  MSOCL__TRY(msocl__arg_int(k, 6, e->pl_plane));
-  MSOCL__TRY(msocl__arg_float(k, 7, fp));
-  MSOCL__TRY(msocl__arg_float(k, 8, f0));
-  MSOCL__TRY(msocl__arg_float(k, 9, f1));
-  MSOCL__TRY(msocl__arg_float(k, 10, e->o.dt));
-  MSOCL__TRY(msocl__arg_int(k, 11, capture));
+  const struct msocl__named args[] = {
+      {"p", sizeof p, &p},          {"v", sizeof v, &v},
+      {"at", sizeof c->at, &c->at}, {"start", sizeof c->start, &c->start},
+      {"target", sizeof c->target, &c->target},
+      {"m", sizeof c->m, &c->m},    {"plane", sizeof(int), &e->pl_plane},
+      {"fp", sizeof fp, &fp},       {"f0", sizeof f0, &f0},
+      {"f1", sizeof f1, &f1},       {"dt", sizeof(float), &e->o.dt},
+      {"capture", sizeof capture, &capture}};
+  for (size_t q = 0; q < sizeof args / sizeof args[0]; q++)
+    MSOCL__TRY(msocl__arg(e, k, args[q].name, args[q].size, args[q].v));
   const size_t global = (size_t)c->m;
   MSOCL__CL(clEnqueueNDRangeKernel(e->dev->queue, k, 1, NULL, &global, NULL,
                                    0, NULL, NULL));

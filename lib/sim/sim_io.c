@@ -114,7 +114,7 @@ int msocl_sim_read_normals(msocl_sim *s, float *xyz)
                                    4 * (size_t)s->n * sizeof(float),
                                    s->stage, 0, NULL, NULL));
   }
-  int rc = msocl__arg_mem(e->k[MSOCL__K_NORMALS], 0, e->pos[e->r]);
+  int rc = msocl__arg_mem(e, e->k[MSOCL__K_NORMALS], "pos", e->pos[e->r]);
   if (rc == MSOCL_OK)
     rc = msocl__launch_all(e, MSOCL__K_NORMALS);
   if (rc != MSOCL_OK)
