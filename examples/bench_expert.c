@@ -59,7 +59,7 @@ struct bench_expert {
 enum { FWD = 6, RING = 3 };
 static const int fwd_slot[FWD] = {2, 3, 6, 7, 10, 11};
 
-/* The 12 slots of kernels/common.cl's cloth grid, in its order: stretch
+/* The 12 slots of kernels/common.h's cloth grid, in its order: stretch
  * below, left, right, above; shear below-left, below-right, above-left,
  * above-right; bend two below, left, right, above. */
 static const int slot_dx[12] = {0, -1, 1, 0, -1, 1, -1, 1, 0, -2, 2, 0};

@@ -3,7 +3,7 @@
  * then a loop over the points adds gravity and viscous damping, updates the
  * velocity, answers the table by changing the velocity, and moves the
  * point. Same scene, springs, arithmetic order per point and collision
- * response as the library's kernels (kernels/common.cl), single precision. */
+ * response as the library's kernels (kernels/planes.h), single precision. */
 #include "bench.h"
 
 #include <math.h>

@@ -1,7 +1,8 @@
 /* A user's field of external accelerations (lib/engine/field.c): before
  * each step, each point's velocity gains dt times its acceleration, a
  * pinned point nothing. acc holds three planes laid out as the state's,
- * their padding zero. Needs planes.cl before it (MSOCL_PLANES_AT). */
+ * their padding zero. */
+#include "planes.h"
 #if defined(MSOCL_PLANES)
 
 __kernel void msocl_field_kick(__global float *v, __global const float *aux,

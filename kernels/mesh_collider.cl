@@ -5,8 +5,8 @@
  * motion. A uniform grid over the call's swept bounds lists, per cell, the
  * triangles whose swept bounds (grown by the reach) touch it, so a point
  * looks only at its own cell (a grid culled to where the cloth will be
- * leaves a point outside it, within the mesh's bounds, all triangles).
- * Needs planes.cl before it (MSOCL_PLANES_AT). */
+ * leaves a point outside it, within the mesh's bounds, all triangles). */
+#include "planes.h"
 #if defined(MSOCL_PLANES)
 
 /* The closest point to p on triangle abc as barycentric weights (wa, wb,

@@ -1,6 +1,7 @@
 /* Vertex normals on the device: each point sums the area-weighted normals
  * of the triangles around it (a CSR list of the two other corners of each)
  * and normalises. Points on no triangle get (0, 0, 0). */
+#include "common.h"
 
 __kernel void msocl_normals(__global const float4 *pos,
                             __global const int *tri_off,

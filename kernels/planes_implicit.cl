@@ -13,7 +13,8 @@
  * consecutive points, so each kernel writes its point's term of a dot
  * product to dots[i] (i its index) and msocl_sum_points adds them in
  * work-groups of 64 in index order: the same partials, host sums, alphas
- * and betas on every layout and split. Needs planes.cl before it. */
+ * and betas on every layout and split. */
+#include "planes.h"
 
 #define MSOCL_CG_GROUP 64
 

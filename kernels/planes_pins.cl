@@ -3,7 +3,8 @@
  * the velocity that moves it from the path's point f0 to f1 in a step
  * (the springs' dashpots feel it), the path running from start (copied
  * from p first when `capture`) to target as (1 - f) start + f target,
- * which is start at f = 0 and target at f = 1 exactly. Needs common.cl. */
+ * which is start at f = 0 and target at f = 1 exactly. */
+#include "common.h"
 #if defined(MSOCL_PLANES)
 __kernel void msocl_planes_pins(__global float *p, __global float *v,
                                 __global const int *at,

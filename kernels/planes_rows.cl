@@ -1,8 +1,7 @@
 /* Symplectic Euler on a cloth grid in planes, one sweep a step, each
  * spring computed once (lib/engine/planes_rows.c takes it where it applies: a
  * CPU device, no strain limit, rows at least MSOCL_ROWS_W
- * points wide). Needs common.cl and planes.cl before it (MSOCL_DOT3,
- * MSOCL_PLANES_COL), and keeps planes.cl's layout: point (x, y) at
+ * points wide). It keeps planes.h's layout: point (x, y) at
  * (y + 2) * pitch + x + 2 of each plane, aux the inverse masses then
  * pos.w, col a float4 a collider value.
  *
@@ -25,101 +24,8 @@
  * msocl_planes_force adds for it, with no edge test a slot. Same slot
  * order and arithmetic as msocl_planes_kick, so the result is bitwise
  * GRID's (tests/check_planes.c). */
-/* The vector of points this sweep works in, and planes_wide.cl's kernels
- * (BUFFER's table) too. */
-#if defined(MSOCL_PLANES) &&                                                 \
-    ((defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_GRID_3D)) ||               \
-     (!defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_LAYOUT_IMAGE2D)))
-#ifndef MSOCL_ROWS_W
-#define MSOCL_ROWS_W 16
-#endif
-#if MSOCL_ROWS_W == 16
-typedef float16 msocl_rows_f;
-typedef int16 msocl_rows_m;
-#define MSOCL_ROWS_LANES                                                      \
-  ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
-#define MSOCL_ROWS_LOAD(q) vload16(0, (q))
-#define MSOCL_ROWS_STORE(v, q) vstore16((v), 0, (q))
-#else
-typedef float8 msocl_rows_f;
-typedef int8 msocl_rows_m;
-#define MSOCL_ROWS_LANES ((int8)(0, 1, 2, 3, 4, 5, 6, 7))
-#define MSOCL_ROWS_LOAD(q) vload8(0, (q))
-#define MSOCL_ROWS_STORE(v, q) vstore8((v), 0, (q))
-#endif
-
-/* c ? a : b per lane */
-#define MSOCL_ROWS_SEL(c, a, b)                                               \
-  select((msocl_rows_f)(b), (msocl_rows_f)(a), (msocl_rows_m)(c))
-
-/* msocl_planes_gap and msocl_planes_collide's response for collider c,
- * lane by lane. */
-static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
-                               msocl_rows_f pz, msocl_rows_f *vx_io,
-                               msocl_rows_f *vy_io, msocl_rows_f *vz_io,
-                               float dt, __constant const float *cf, int c)
-{
-#define cv(k) MSOCL_PLANES_COL(cf, c, k)
-  const int kind = (int)cv(0);
-  msocl_rows_f g = INFINITY, nx = 0.0f, ny = 1.0f, nz = 0.0f;
-#ifdef MSOCL_PLANE
-  if (kind == MSOCL_PLANE_KIND) {
-    nx = cv(4);
-    ny = cv(5);
-    nz = cv(6);
-    g = MSOCL_DOT3(cv(4), cv(5), cv(6), px, py, pz) - cv(7);
-  }
-#endif
-#ifdef MSOCL_SPHERE
-  if (kind == MSOCL_SPHERE_KIND) {
-    const msocl_rows_f dx = px - cv(4), dy = py - cv(5), dz = pz - cv(6);
-    const msocl_rows_f len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
-    const msocl_rows_m out = len > 0.0f;
-    nx = MSOCL_ROWS_SEL(out, MSOCL_DIV(dx, len), 0.0f);
-    ny = MSOCL_ROWS_SEL(out, MSOCL_DIV(dy, len), 1.0f);
-    nz = MSOCL_ROWS_SEL(out, MSOCL_DIV(dz, len), 0.0f);
-    g = len - cv(7);
-  }
-#endif
-#ifdef MSOCL_TABLE
-  if (kind == MSOCL_TABLE_KIND) {
-    const msocl_rows_f dx = px - cv(4), dz = pz - cv(6);
-    const msocl_rows_f rr = MSOCL_SQRT(dx * dx + dz * dz);
-    const msocl_rows_f gside = rr - cv(7), gtop = py - cv(5);
-    const msocl_rows_m top = (gtop >= gside) | !(rr > 0.0f);
-    nx = MSOCL_ROWS_SEL(top, 0.0f, MSOCL_DIV(dx, rr));
-    ny = MSOCL_ROWS_SEL(top, 1.0f, 0.0f);
-    nz = MSOCL_ROWS_SEL(top, 0.0f, MSOCL_DIV(dz, rr));
-    g = MSOCL_ROWS_SEL(top, gtop, gside);
-  }
-#endif
-  (void)kind;
-  const float fr = 1.0f * cv(1);
-  /* on the velocity relative to a moving collider's surface */
-  MSOCL_PLANES_SURFACE(msocl_rows_f, cv, px, py, pz);
-  const bool moving = cv(2) != 0.0f;
-#undef cv
-  const msocl_rows_f vx = *vx_io, vy = *vy_io, vz = *vz_io;
-  const msocl_rows_f ox = moving ? vx - ux : vx, oy = moving ? vy - uy : vy,
-                     oz = moving ? vz - uz : vz;
-  const msocl_rows_f vn = MSOCL_DOT3(ox, oy, oz, nx, ny, nz);
-  const msocl_rows_f lim = MSOCL_DIV(-g, dt);
-  msocl_rows_f hx = ox + (lim - vn) * nx, hy = oy + (lim - vn) * ny,
-               hz = oz + (lim - vn) * nz;
-  hx = hx - fr * (hx - lim * nx);
-  hy = hy - fr * (hy - lim * ny);
-  hz = hz - fr * (hz - lim * nz);
-  if (moving) {
-    hx = hx + ux;
-    hy = hy + uy;
-    hz = hz + uz;
-  }
-  const msocl_rows_m hit = vn < lim;
-  *vx_io = MSOCL_ROWS_SEL(hit, hx, vx);
-  *vy_io = MSOCL_ROWS_SEL(hit, hy, vy);
-  *vz_io = MSOCL_ROWS_SEL(hit, hz, vz);
-}
-#endif
+#include "rows.h"
+#include "wind.h"
 
 #if defined(MSOCL_PLANES) && defined(MSOCL_LAYOUT_GRID) && \
     !defined(MSOCL_GRID_3D)
@@ -139,7 +45,7 @@ static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
 #endif
 
 /* The forward springs: offset in a plane, kind and rest index (as
- * common.cl's slots 2, 3, 6, 7, 10, 11). */
+ * common.h's slots 2, 3, 6, 7, 10, 11). */
 #define MSOCL_ROWS_OFF(f, pitch)                                              \
   ((f) == 0 ? 1 : (f) == 1 ? (pitch) : (f) == 2 ? (pitch) - 1                \
    : (f) == 3 ? (pitch) + 1 : (f) == 4 ? 2 : 2 * (pitch))
@@ -276,7 +182,7 @@ static void msocl_rows_wind(MSOCL_CONN, __global const float *p,
 #define MSOCL_ROWS_ADD(sg, r, f, c) g += sg MSOCL_ROWS_T(r, f, q, c)
 #endif
 
-/* One component of a point's force: its twelve slots in common.cl's order
+/* One component of a point's force: its twelve slots in common.h's order
  * from ring rows r0, r1, r2 (rows y - 2, y - 1, y) at column c; kinds the
  * model leaves out add nothing, as in msocl_planes_force. */
 static inline __attribute__((always_inline)) msocl_rows_f
@@ -363,29 +269,12 @@ static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
       uy += s * wy;
       uz += s * wz;
     }
-    msocl_rows_f fx = fx0, fy = fy0, fz = fz0;
-#ifdef MSOCL_VISCOUS
-    fx = fx - viscous * ux;
-    fy = fy - viscous * uy;
-    fz = fz - viscous * uz;
-#endif
-    (void)viscous;
-    msocl_rows_f vx = ux + dt * (fx * im + gravity.x);
-    msocl_rows_f vy = uy + dt * (fy * im + gravity.y);
-    msocl_rows_f vz = uz + dt * (fz * im + gravity.z);
-#ifdef MSOCL_AIR
-    vx = air * vx;
-    vy = air * vy;
-    vz = air * vz;
-#endif
-    (void)air;
     const msocl_rows_f px = MSOCL_ROWS_LOAD(p + a),
                        py = MSOCL_ROWS_LOAD(p + plane + a),
                        pz = MSOCL_ROWS_LOAD(p + 2 * plane + a);
-#pragma unroll
-    for (int k = 0; k < MSOCL_NCOL; k++)
-      msocl_rows_collide(px, py, pz, &vx, &vy, &vz, dt, cf, k);
-    (void)cf;
+    msocl_rows_f vx, vy, vz;
+    msocl_rows_kick(fx0, fy0, fz0, ux, uy, uz, im, px, py, pz, gravity,
+                    viscous, air, dt, cf, &vx, &vy, &vz);
     msocl_rows_f qx = px + dt * vx, qy = py + dt * vy, qz = pz + dt * vz;
 #ifdef MSOCL_PINS
     const msocl_rows_m pinned = MSOCL_ROWS_LOAD(aux + plane + a) != 0.0f;

@@ -1,7 +1,7 @@
 /* Symplectic Euler's velocity pass (and both passes fused) on BUFFER's
  * table, MSOCL_ROWS_W points a work-item in explicit vectors
  * (lib/engine/planes.c takes them on a CPU device, one engine, no capsule
- * or box, precise math). Needs planes.cl and planes_rows.cl before it.
+ * or box, precise math).
  *
  * Why: PoCL vectorises a kernel across work-items only when its
  * per-work-item code is all scalar; for AVX2 (PoCL's target on this
@@ -14,6 +14,7 @@
  * with springs past the table gets a partial sum here, which the kernel's
  * _spill twin (msocl_planes_velocity_spill / _fused_spill, launched after)
  * overwrites. */
+#include "rows.h"
 #if defined(MSOCL_PLANES) && !defined(MSOCL_LAYOUT_GRID) && \
     !defined(MSOCL_LAYOUT_IMAGE2D)
 
@@ -102,26 +103,9 @@ static inline void msocl_wide_kick(MSOCL_CONN, __global const float *p,
     fz += MSOCL_ROWS_SEL(onh, h * dz, 0.0f);
 #endif
   }
-#ifdef MSOCL_VISCOUS
-  fx = fx - viscous * ux;
-  fy = fy - viscous * uy;
-  fz = fz - viscous * uz;
-#endif
-  (void)viscous;
-  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + x0);
-  msocl_rows_f vx = ux + dt * (fx * im + gravity.x);
-  msocl_rows_f vy = uy + dt * (fy * im + gravity.y);
-  msocl_rows_f vz = uz + dt * (fz * im + gravity.z);
-#ifdef MSOCL_AIR
-  vx = air * vx;
-  vy = air * vy;
-  vz = air * vz;
-#endif
-  (void)air;
-#pragma unroll
-  for (int c = 0; c < MSOCL_NCOL; c++)
-    msocl_rows_collide(qx, qy, qz, &vx, &vy, &vz, dt, cf, c);
-  (void)cf;
+  msocl_rows_f vx, vy, vz;
+  msocl_rows_kick(fx, fy, fz, ux, uy, uz, MSOCL_ROWS_LOAD(aux + x0), qx, qy,
+                  qz, gravity, viscous, air, dt, cf, &vx, &vy, &vz);
 #ifdef MSOCL_PINS
   *held = MSOCL_ROWS_LOAD(aux + plane + x0) != 0.0f;
 #else

@@ -1,10 +1,11 @@
 #!/bin/sh
-# The kernels as an NVIDIA GPU's compiler would take them: the .cl files
+# The kernels as an NVIDIA GPU's compiler would take them: the files
 # joined in the library's order (Makefile.am's KERNEL_FILES), compiled by
 # clang for NVPTX with sets of -D options like those engine.c passes,
-# must give no warning and no double (.f64) instruction. A GPU is lent
-# rarely and briefly; this catches the class of fault that would waste
-# it. Skips (77) where no clang here targets NVPTX.
+# must give no warning and no double (.f64) instruction; and each .cl file
+# alone, with the headers it includes, must compile without a warning. A
+# GPU is lent rarely and briefly; this catches the class of fault that
+# would waste it. Skips (77) where no clang here targets NVPTX.
 set -u
 srcdir=${srcdir:-.}
 cc=
@@ -50,8 +51,8 @@ while read -r set; do
   n=$((n + 1))
   # shellcheck disable=SC2086 # the set is a list of options
   if ! "$cc" -x cl -cl-std=CL1.2 -target nvptx64-nvidia-nvcl \
-      -Xclang -finclude-default-header -Wall -O2 $set -S \
-      -o "$tmp/k$n.s" "$tmp/all.cl" 2> "$tmp/err$n"; then
+      -Xclang -finclude-default-header -Wall -O2 -I "$srcdir/kernels" $set \
+      -S -o "$tmp/k$n.s" "$tmp/all.cl" 2> "$tmp/err$n"; then
     echo "FAIL: set $n does not compile: $set"
     cat "$tmp/err$n"
     status=1
@@ -73,6 +74,23 @@ while read -r set; do
   [ "$bad" -eq 0 ] &&
     echo "set $n: $entries kernels, no warning, no double: $set"
   [ "$bad" -eq 0 ] || status=1
+  # each .cl file on its own (an include missing, a helper used before
+  # the header that has it), front end only
+  for f in $files; do
+    case $f in *.cl) ;; *) continue ;; esac
+    # shellcheck disable=SC2086
+    if ! "$cc" -x cl -cl-std=CL1.2 -target nvptx64-nvidia-nvcl \
+        -Xclang -finclude-default-header -Wall -I "$srcdir/kernels" $set \
+        -fsyntax-only "$srcdir/$f" 2> "$tmp/alone$n"; then
+      echo "FAIL: $f does not compile alone with set $n: $set"
+      cat "$tmp/alone$n"
+      status=1
+    elif [ -s "$tmp/alone$n" ]; then
+      echo "FAIL: $f warns alone with set $n: $set"
+      cat "$tmp/alone$n"
+      status=1
+    fi
+  done
 done < "$tmp/sets"
 [ "$status" -eq 0 ] && echo "ptx.sh: $n builds clean with $cc"
 exit $status

@@ -53,6 +53,20 @@ static int read_kernel_file(const char *dir, const char *name, char **text)
   return MSOCL_OK;
 }
 
+/* Blanks a file's own #include "..." lines, as kernels/embed.sed does for
+ * the embedded copies: the program holds every header already. */
+static void drop_includes(char *text)
+{
+  for (char *line = text; line && *line;) {
+    if (strncmp(line, "#include \"", 10) == 0)
+      for (char *c = line; *c && *c != '\n'; c++)
+        *c = ' ';
+    line = strchr(line, '\n');
+    if (line)
+      line++;
+  }
+}
+
 static int build(struct msocl__device *dev, const char *options,
                  cl_program *out)
 {
@@ -67,6 +81,8 @@ static int build(struct msocl__device *dev, const char *options,
     texts[i] = msocl__kernel_sources[i].text;
     if (dir && *dir) {
       rc = read_kernel_file(dir, msocl__kernel_sources[i].name, &owned[i]);
+      if (rc == MSOCL_OK)
+        drop_includes(owned[i]);
       texts[i] = owned[i];
     }
   }

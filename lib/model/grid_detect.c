@@ -11,7 +11,7 @@
 
 #include "internal.h"
 
-/* GRID's neighbour tables (kernels/common.cl): offsets in slot order, each
+/* GRID's neighbour tables (kernels/common.h): offsets in slot order, each
  * slot's kind (one stiffness) and rest-length index. */
 struct stencil {
   int slots, kinds, rests, dims;

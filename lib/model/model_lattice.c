@@ -131,7 +131,7 @@ static void kind_rests(const msocl_lattice_desc *d, float *rest) {
 }
 
 /* Each set loops k, then j, then i (the index order), so a set's springs
- * run through the lattice in point order (kernels/common.cl's 3-D GRID
+ * run through the lattice in point order (kernels/common.h's 3-D GRID
  * tables list a point's neighbours in the order this gives them). */
 static void push_springs(struct springs *s, const msocl_lattice_desc *d) {
   int i, j, k, nx = d->nx, ny = d->ny, nz = d->nz;

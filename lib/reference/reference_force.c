@@ -1,6 +1,6 @@
 /* The host reference's per-point physics, shared by its explicit and
  * implicit steps: spring and dashpot forces, collision response and
- * projection, formula for formula as kernels/common.cl. */
+ * projection, formula for formula as kernels/planes.h. */
 #include "config.h"
 #include "reference_state.h"
 
