@@ -273,8 +273,8 @@ static void msocl_rows_kick(MSOCL_CONN, __global const float *p,
                        py = MSOCL_ROWS_LOAD(p + plane + a),
                        pz = MSOCL_ROWS_LOAD(p + 2 * plane + a);
     msocl_rows_f vx, vy, vz;
-    msocl_rows_kick(fx0, fy0, fz0, ux, uy, uz, im, px, py, pz, gravity,
-                    viscous, air, dt, cf, &vx, &vy, &vz);
+    msocl_rows_velocity(fx0, fy0, fz0, ux, uy, uz, im, px, py, pz, gravity,
+                        viscous, air, dt, cf, &vx, &vy, &vz);
     msocl_rows_f qx = px + dt * vx, qy = py + dt * vy, qz = pz + dt * vz;
 #ifdef MSOCL_PINS
     const msocl_rows_m pinned = MSOCL_ROWS_LOAD(aux + plane + a) != 0.0f;

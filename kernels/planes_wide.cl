@@ -104,8 +104,8 @@ static inline void msocl_wide_kick(MSOCL_CONN, __global const float *p,
 #endif
   }
   msocl_rows_f vx, vy, vz;
-  msocl_rows_kick(fx, fy, fz, ux, uy, uz, MSOCL_ROWS_LOAD(aux + x0), qx, qy,
-                  qz, gravity, viscous, air, dt, cf, &vx, &vy, &vz);
+  msocl_rows_velocity(fx, fy, fz, ux, uy, uz, MSOCL_ROWS_LOAD(aux + x0), qx,
+                      qy, qz, gravity, viscous, air, dt, cf, &vx, &vy, &vz);
 #ifdef MSOCL_PINS
   *held = MSOCL_ROWS_LOAD(aux + plane + x0) != 0.0f;
 #else

@@ -104,11 +104,11 @@ static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
  * u and inverse masses im: viscous damping, gravity, air resistance and
  * the colliders at their positions q - msocl_planes_kick's arithmetic,
  * so the bits are its. */
-static inline void msocl_rows_kick(
+static inline void msocl_rows_velocity(
     msocl_rows_f fx, msocl_rows_f fy, msocl_rows_f fz, msocl_rows_f ux,
     msocl_rows_f uy, msocl_rows_f uz, msocl_rows_f im, msocl_rows_f qx,
     msocl_rows_f qy, msocl_rows_f qz, float4 gravity, float viscous,
-    float air, float dt, __constant float4 *cf, msocl_rows_f *vx_out,
+    float air, float dt, __constant const float *cf, msocl_rows_f *vx_out,
     msocl_rows_f *vy_out, msocl_rows_f *vz_out)
 {
 #ifdef MSOCL_VISCOUS
