@@ -52,7 +52,9 @@ static inline void msocl_wide_kick(MSOCL_CONN, __global const float *p,
                      uz = MSOCL_ROWS_LOAD(vz_ + x0);
   const msocl_rows_m self = MSOCL_ROWS_LANES + x0;
   msocl_rows_f fx = 0.0f, fy = 0.0f, fz = 0.0f;
-#pragma unroll
+  /* one slot at a time: unrolled, every slot's 16 lanes stayed live and
+   * were spilled to a stack frame of kilobytes */
+#pragma unroll 1
   for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
     const int at = s * slab + x0;
     int j[MSOCL_ROWS_W];
