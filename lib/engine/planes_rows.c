@@ -39,10 +39,20 @@ static int sweep_kernel(msocl__engine *s, cl_program prog)
                                 &s->pl_rows));
   const int ring_w = ring_width(s);
   cl_kernel k = s->pl_rows;
+  const struct msocl__named fixed[] = {
+      {"aux", sizeof s->pl_aux, &s->pl_aux},
+      {"pitch", sizeof(int), &s->pl_pitch},
+      {"plane", sizeof(int), &s->pl_plane},
+      {"gravity", sizeof s->gravity, &s->gravity},
+      {"viscous", sizeof(float), &s->viscous},
+      {"air", sizeof(float), &s->air},
+      {"dt", sizeof(float), &s->o.dt},
+      {"col", sizeof s->pl_col, &s->pl_col},
+      {"ring", sizeof s->pl_ring, &s->pl_ring},
+      {"ring_w", sizeof ring_w, &ring_w}};
   MSOCL__TRY(msocl__layout_set_args(&s->lay, s->dev, k));
-  MSOCL__TRY(msocl__pl_fixed(s, k));
-  MSOCL__TRY(msocl__arg_mem(s, k, "ring", s->pl_ring));
-  MSOCL__TRY(msocl__arg_int(s, k, "ring_w", ring_w));
+  for (size_t q = 0; q < sizeof fixed / sizeof fixed[0]; q++)
+    MSOCL__TRY(msocl__arg(s, k, fixed[q].name, fixed[q].size, fixed[q].v));
   return msocl__pl_rows_wind(s, NULL, 0.0f, 0.0f);
 }
 
