@@ -264,7 +264,7 @@ __kernel void msocl_mesh_place(__global const float *va,
       __global const int *cell_tri, float4 origin, int gx, int gy, int gz,    \
       float4 prm, float orient, float dt, int nv, int nt, int nx, int pitch,  \
       int slab, int plane, __global const float4 *cur, float reach2,          \
-      __global const int *cellof, float4 lo, float4 hi, __global int *esc
+      int culled, float4 lo, float4 hi, __global int *esc
 #define MSOCL_MESH_ARGS(c, a)                                                 \
   p, v, pp, aux, va, vb, tri, rim, cell_start, cell_tri, origin, gx, gy, gz,  \
       prm, orient, dt, nv, nt, plane, cur, reach2, esc, c, a
@@ -274,80 +274,82 @@ __kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
 {
   MSOCL_PLANES_XYZ;
   const int a = MSOCL_PLANES_AT(x, y, z);
-  (void)slab; (void)cellof;
+  (void)slab; (void)culled;
   if (x < nx)
     msocl_mesh_point(MSOCL_MESH_ARGS(
         msocl_mesh_cell(p, aux, origin, gx, gy, gz, lo, hi, plane, a), a));
 }
 
-/* CPU devices, first: each point's cell in cellof, -1 where it has no
- * triangles (or is pinned, or outside the grid and the mesh's bounds box
- * [lo, hi], or padding), -2 outside the grid inside that box; written
- * without a branch, each coordinate in its own shape, so that PoCL
- * vectorises it. */
-static inline __attribute__((always_inline)) void msocl_mesh_cells_of(
-    __global const float *p, __global const float *aux,
-    __global const int *cell_start, __global int *cellof, float4 origin,
-    int gx, int gy, int gz, int nx, int pitch, int slab, int plane,
-    float4 lo, float4 hi, const bool culled)
+/* CPU devices: point a's cell, -1 where it has no triangles (or is
+ * pinned, or outside the grid and, where the grid is culled, outside the
+ * mesh's bounds box [lo, hi]), -2 outside a culled grid inside that box;
+ * each coordinate in its own shape (these roundings are the grid's). */
+static inline int msocl_mesh_cell_of(__global const float *p,
+                                     __global const float *aux,
+                                     __global const int *cell_start,
+                                     float4 origin, int gx, int gy, int gz,
+                                     int plane, float4 lo, float4 hi,
+                                     int culled, int a)
 {
-  MSOCL_PLANES_XYZ;
-  const int a = MSOCL_PLANES_AT(x, y, z);
-  (void)slab;
   const float w = origin.w;
   const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
   const float fx = floor((px - origin.x) * w),
               fy = floor(fma(py, w, -(origin.y * w))),
               fz = floor(pz * w - origin.z * w);
-  const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]) && x < nx;
+  const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]);
   const bool in = fx >= 0.0f && fy >= 0.0f && fz >= 0.0f && fx < (float)gx &&
                   fy < (float)gy && fz < (float)gz && free;
   const bool box = culled && px >= lo.x && py >= lo.y && pz >= lo.z &&
                    px <= hi.x && py <= hi.y && pz <= hi.z && free;
   const int c = in ? ((int)fz * gy + (int)fy) * gx + (int)fx : 0;
   const bool any = cell_start[c + 1] > cell_start[c];
-  cellof[a] = in && any ? c : box && !in ? -2 : -1;
+  return in && any ? c : box && !in ? -2 : -1;
 }
 
-/* A grid over every triangle: no point outside it is near one. */
-__kernel void msocl_mesh_cells(__global const float *p,
-                               __global const float *aux,
-                               __global const int *cell_start,
-                               __global int *cellof, float4 origin, int gx,
-                               int gy, int gz, int nx, int pitch, int slab,
-                               int plane, float4 lo, float4 hi)
+/* Whether any of the 8 points from a is in the grid or, culled, in the
+ * box: msocl_mesh_cell_of's tests in float8, the same roundings, so a
+ * chunk it passes over holds no point that would search. */
+static inline bool msocl_mesh_near8(__global const float *p, float4 origin,
+                                    int gx, int gy, int gz, int plane,
+                                    float4 lo, float4 hi, int culled, int a)
 {
-  msocl_mesh_cells_of(p, aux, cell_start, cellof, origin, gx, gy, gz, nx,
-                      pitch, slab, plane, lo, hi, false);
+  const float w = origin.w;
+  const float8 px = vload8(0, p + a), py = vload8(0, p + plane + a),
+               pz = vload8(0, p + 2 * plane + a);
+  const float8 fx = floor((px - origin.x) * w),
+               fy = floor(fma(py, (float8)w, (float8)(-(origin.y * w)))),
+               fz = floor(pz * w - origin.z * w);
+  const int8 in = fx >= 0.0f & fy >= 0.0f & fz >= 0.0f & fx < (float)gx &
+                  fy < (float)gy & fz < (float)gz;
+  const int8 box = px >= lo.x & py >= lo.y & pz >= lo.z & px <= hi.x &
+                   py <= hi.y & pz <= hi.z & (int8)(culled ? -1 : 0);
+  return any(in | box);
 }
 
-/* A grid culled to the cloth: -2 outside it inside [lo, hi]. */
-__kernel void msocl_mesh_cells_culled(__global const float *p,
-                                      __global const float *aux,
-                                      __global const int *cell_start,
-                                      __global int *cellof, float4 origin,
-                                      int gx, int gy, int gz, int nx,
-                                      int pitch, int slab, int plane,
-                                      float4 lo, float4 hi)
-{
-  msocl_mesh_cells_of(p, aux, cell_start, cellof, origin, gx, gy, gz, nx,
-                      pitch, slab, plane, lo, hi, true);
-}
-
-/* CPU devices, then: a work-item a run of MSOCL_MESH_RUN points of a row,
- * (run, y, z) = its ids, the points msocl_mesh_cells found in a cell with
- * triangles (the search cannot be vectorised, and a work-item a point
- * costs more to schedule than most points take). */
+/* CPU devices: a work-item a run of MSOCL_MESH_RUN points of a row,
+ * (run, y, z) = its ids; 8 points at a time are tested in vectors, and
+ * only the points of a chunk near the grid find their cells and search
+ * (the search cannot be vectorised, and a work-item a point costs more to
+ * schedule than most points take). A row's padding holds the 8 floats
+ * past its last chunk's start. */
 #define MSOCL_MESH_RUN 256
 __kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
 {
   const int y = get_global_id(1), z = get_global_id(2);
   const int x0 = get_global_id(0) * MSOCL_MESH_RUN;
   const int x1 = min(nx, x0 + MSOCL_MESH_RUN);
-  (void)y; (void)z; (void)slab; (void)lo; (void)hi;
-  for (int x = x0; x < x1; x++) {
-    const int a = MSOCL_PLANES_AT(x, y, z);
-    msocl_mesh_point(MSOCL_MESH_ARGS(cellof[a], a));
+  (void)y; (void)z; (void)slab;
+  for (int x8 = x0; x8 < x1; x8 += 8) {
+    if (!msocl_mesh_near8(p, origin, gx, gy, gz, plane, lo, hi, culled,
+                          MSOCL_PLANES_AT(x8, y, z)))
+      continue;
+    for (int x = x8; x < min(x1, x8 + 8); x++) {
+      const int a = MSOCL_PLANES_AT(x, y, z);
+      msocl_mesh_point(MSOCL_MESH_ARGS(
+          msocl_mesh_cell_of(p, aux, cell_start, origin, gx, gy, gz, plane,
+                             lo, hi, culled, a),
+          a));
+    }
   }
 }
 

@@ -66,13 +66,10 @@ struct msocl__mesh_dev {
   size_t hstart_cap, hlist_cap, hlive_cap;
   struct msocl__device *dev; /* its kernels' */
   cl_kernel k, place;    /* the pass; the triangles at a step's end */
-  cl_kernel cells[2];    /* CPUs: each point's cell first, into cellof
-                            (the whole grid; one culled to the cloth) */
   cl_kernel count, scan_sums, scan_top, scan_out, fill, sort; /* the grid */
   cl_mem dcount, sums;   /* per cell; per chunk of cells */
   size_t count_cap, sums_cap;
   int host;              /* tests: msocl__mesh_host_grid's mode */
-  cl_mem cellof;
   cl_mem cur;            /* ... there: 4 float4s a triangle */
   int placed;            /* cur holds a static mesh */
   cl_float4 origin;      /* the grid: origin, 1 / cell size */
@@ -259,23 +256,10 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   TRY(msocl__arg_int(s, d->place, "nlive", -1));
   d->nlive = -1;
   TRY(msocl__arg_mem(s, d->k, "cur", d->cur));
-  d->cellof = buffer(s, (size_t)s->pl_plane * sizeof(int), NULL, &rc2);
-  TRY(rc2);
-  TRY(msocl__arg_mem(s, d->k, "cellof", d->cellof));
   const cl_int zero = 0;
   d->esc = buffer(s, sizeof zero, (void *)&zero, &rc2);
   TRY(rc2);
   TRY(msocl__arg_mem(s, d->k, "esc", d->esc));
-  if (d->rows) {
-    static const char *const cname[2] = {"msocl_mesh_cells",
-                                         "msocl_mesh_cells_culled"};
-    for (int q = 0; q < 2; q++) {
-      TRY(msocl__kernel_make(s->dev, s->prog, cname[q], &d->cells[q]));
-      TRY(msocl__arg_mem(s, d->cells[q], "aux", s->pl_aux));
-      TRY(msocl__arg_mem(s, d->cells[q], "cellof", d->cellof));
-      TRY(msocl__pl_shape(s, d->cells[q]));
-    }
-  }
   TRY(msocl__kernel_make(s->dev, s->prog, "msocl_mesh_bounds", &d->bounds));
   TRY(msocl__arg_mem(s, d->bounds, "aux", s->pl_aux));
   TRY(msocl__pl_shape(s, d->bounds));
@@ -686,16 +670,7 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step,
   TRY(msocl__arg_float(s, d->k, "reach2", reach * reach));
   TRY(msocl__arg(s, d->k, "lo", sizeof d->lo, &d->lo));
   TRY(msocl__arg(s, d->k, "hi", sizeof d->hi, &d->hi));
-  for (int q = 0; q < 2 && d->cells[q]; q++) {
-    const cl_kernel k = d->cells[q];
-    TRY(msocl__arg_mem(s, k, "cell_start", d->start));
-    TRY(msocl__arg(s, k, "origin", sizeof d->origin, &d->origin));
-    TRY(msocl__arg_int(s, k, "gx", d->g[0]));
-    TRY(msocl__arg_int(s, k, "gy", d->g[1]));
-    TRY(msocl__arg_int(s, k, "gz", d->g[2]));
-    TRY(msocl__arg(s, k, "lo", sizeof d->lo, &d->lo));
-    TRY(msocl__arg(s, k, "hi", sizeof d->hi, &d->hi));
-  }
+  TRY(msocl__arg_int(s, d->k, "culled", d->culled));
   TRY(msocl__arg_mem(s, d->k, "cell_start", d->start));
   TRY(msocl__arg_mem(s, d->k, "cell_tri", d->list));
   TRY(msocl__arg(s, d->k, "origin", sizeof d->origin, &d->origin));
@@ -850,11 +825,6 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
   const cl_float4 prm = {{f0, f1, d->thick, d->friction}};
   TRY(msocl__arg(s, d->k, "prm", sizeof prm, &prm));
   if (d->rows) {
-    const cl_kernel cells = d->cells[d->culled];
-    TRY(msocl__arg_mem(s, cells, "p", s->pl_p[set]));
-    const size_t local[3] = {s->pl_group, 1, 1};
-    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, cells, 3, NULL,
-                                     s->pl_global, local, 0, NULL, NULL));
     const size_t rows[3] = {(s->pl_global[0] + 255) / 256, s->pl_global[1],
                             s->pl_global[2]}; /* the kernel's runs */
     const size_t one[3] = {1, 1, 1}; /* a group a run, spread over cores */
@@ -892,16 +862,15 @@ void msocl__mesh_free(struct msocl__mesh_dev *d)
     clWaitForEvents(1, &d->read);
     clReleaseEvent(d->read);
   }
-  cl_kernel *k[11] = {&d->k,        &d->place,     &d->cells[0],
-                      &d->cells[1], &d->count,     &d->scan_sums,
-                      &d->scan_top, &d->scan_out,  &d->fill,
-                      &d->sort,     &d->bounds};
-  for (int q = 0; q < 11; q++)
+  cl_kernel *k[9] = {&d->k,        &d->place,    &d->count,
+                     &d->scan_sums, &d->scan_top, &d->scan_out,
+                     &d->fill,      &d->sort,     &d->bounds};
+  for (int q = 0; q < 9; q++)
     msocl__kernel_free(d->dev, k[q]);
-  cl_mem b[14] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start,
-                  d->list, d->cur, d->cellof, d->dcount, d->sums, d->live,
+  cl_mem b[13] = {d->vert[0], d->vert[1], d->dtri, d->drim, d->start,
+                  d->list, d->cur, d->dcount, d->sums, d->live,
                   d->dbounds, d->esc, d->prev};
-  for (int q = 0; q < 14; q++)
+  for (int q = 0; q < 13; q++)
     if (b[q])
       clReleaseMemObject(b[q]);
   free(d->at[0]);
