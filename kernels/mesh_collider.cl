@@ -71,28 +71,6 @@ static inline float3 msocl_mesh_vertex(__global const float *m, int k, int nv)
  * friction); orient: +1 or -1 for a closed mesh (the side its normals
  * point to is outside), 0 for an open one (a point stays on the side of
  * the triangle it was on at the step's start). */
-/* The grid cell of the point at a; -2 outside the grid but inside the
- * mesh's whole bounds box [lo, hi] (a grid culled to the cloth's reach:
- * the point searches every triangle); else -1 (pinned, outside both, or
- * NaN: every comparison false), without a branch. */
-static inline int msocl_mesh_cell(__global const float *p,
-                                  __global const float *aux, float4 origin,
-                                  int gx, int gy, int gz, float4 lo,
-                                  float4 hi, int plane, int a)
-{
-  const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
-  const float fx = floor((px - origin.x) * origin.w),
-              fy = floor((py - origin.y) * origin.w),
-              fz = floor((pz - origin.z) * origin.w);
-  const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]);
-  const bool in = fx >= 0.0f && fy >= 0.0f && fz >= 0.0f && fx < (float)gx &&
-                  fy < (float)gy && fz < (float)gz && free;
-  const bool box = px >= lo.x && py >= lo.y && pz >= lo.z && px <= hi.x &&
-                   py <= hi.y && pz <= hi.z && free;
-  const int c = ((int)fz * gy + (int)fy) * gx + (int)fx;
-  return in ? c : box ? -2 : -1;
-}
-
 /* Triangle t at fraction f of its motion, as msocl_mesh_place writes it
  * into cur (q[0 .. 3]). */
 static inline void msocl_mesh_at(__global const float *va,
@@ -256,34 +234,11 @@ __kernel void msocl_mesh_place(__global const float *va,
   cur[4 * t + 3] = q[3];
 }
 
-#define MSOCL_MESH_PARAMS                                                     \
-  __global float *p, __global float *v, __global const float *pp,             \
-      __global const float *aux, __global const float *va,                    \
-      __global const float *vb, __global const int *tri,                      \
-      __global const int *rim, __global const int *cell_start,                \
-      __global const int *cell_tri, float4 origin, int gx, int gy, int gz,    \
-      float4 prm, float orient, float dt, int nv, int nt, int nx, int pitch,  \
-      int slab, int plane, __global const float4 *cur, float reach2,          \
-      int culled, float4 lo, float4 hi, __global int *esc
-#define MSOCL_MESH_ARGS(c, a)                                                 \
-  p, v, pp, aux, va, vb, tri, rim, cell_start, cell_tri, origin, gx, gy, gz,  \
-      prm, orient, dt, nv, nt, plane, cur, reach2, esc, c, a
-
-/* A work-item a point (GPUs). */
-__kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
-{
-  MSOCL_PLANES_XYZ;
-  const int a = MSOCL_PLANES_AT(x, y, z);
-  (void)slab; (void)culled;
-  if (x < nx)
-    msocl_mesh_point(MSOCL_MESH_ARGS(
-        msocl_mesh_cell(p, aux, origin, gx, gy, gz, lo, hi, plane, a), a));
-}
-
-/* CPU devices: point a's cell, -1 where it has no triangles (or is
- * pinned, or outside the grid and, where the grid is culled, outside the
- * mesh's bounds box [lo, hi]), -2 outside a culled grid inside that box;
- * each coordinate in its own shape (these roundings are the grid's). */
+/* Point a's cell, -1 where it has no triangles (or is pinned, or outside
+ * the grid and, where the grid is culled, outside the mesh's bounds box
+ * [lo, hi], or NaN: every comparison false), -2 outside a culled grid
+ * inside that box (the point searches every triangle); the roundings of
+ * the grid's build (msocl_mesh_span), without a branch. */
 static inline int msocl_mesh_cell_of(__global const float *p,
                                      __global const float *aux,
                                      __global const int *cell_start,
@@ -294,8 +249,8 @@ static inline int msocl_mesh_cell_of(__global const float *p,
   const float w = origin.w;
   const float px = p[a], py = p[plane + a], pz = p[2 * plane + a];
   const float fx = floor((px - origin.x) * w),
-              fy = floor(fma(py, w, -(origin.y * w))),
-              fz = floor(pz * w - origin.z * w);
+              fy = floor((py - origin.y) * w),
+              fz = floor((pz - origin.z) * w);
   const bool free = !MSOCL_PLANES_PINNED(aux[plane + a]);
   const bool in = fx >= 0.0f && fy >= 0.0f && fz >= 0.0f && fx < (float)gx &&
                   fy < (float)gy && fz < (float)gz && free;
@@ -317,8 +272,8 @@ static inline bool msocl_mesh_near8(__global const float *p, float4 origin,
   const float8 px = vload8(0, p + a), py = vload8(0, p + plane + a),
                pz = vload8(0, p + 2 * plane + a);
   const float8 fx = floor((px - origin.x) * w),
-               fy = floor(fma(py, (float8)w, (float8)(-(origin.y * w)))),
-               fz = floor(pz * w - origin.z * w);
+               fy = floor((py - origin.y) * w),
+               fz = floor((pz - origin.z) * w);
   const int8 in = fx >= 0.0f & fy >= 0.0f & fz >= 0.0f & fx < (float)gx &
                   fy < (float)gy & fz < (float)gz;
   const int8 box = px >= lo.x & py >= lo.y & pz >= lo.z & px <= hi.x &
@@ -326,29 +281,61 @@ static inline bool msocl_mesh_near8(__global const float *p, float4 origin,
   return any(in | box);
 }
 
-/* CPU devices: a work-item a run of MSOCL_MESH_RUN points of a row,
- * (run, y, z) = its ids; 8 points at a time are tested in vectors, and
- * only the points of a chunk near the grid find their cells and search
- * (the search cannot be vectorised, and a work-item a point costs more to
- * schedule than most points take). A row's padding holds the 8 floats
- * past its last chunk's start. */
+#define MSOCL_MESH_PARAMS                                                     \
+  __global float *p, __global float *v, __global const float *pp,             \
+      __global const float *aux, __global const float *va,                    \
+      __global const float *vb, __global const int *tri,                      \
+      __global const int *rim, __global const int *cell_start,                \
+      __global const int *cell_tri, float4 origin, int gx, int gy, int gz,    \
+      float4 prm, float orient, float dt, int nv, int nt, int nx, int pitch,  \
+      int slab, int plane, __global const float4 *cur, float reach2,          \
+      int culled, float4 lo, float4 hi, __global int *esc, int rows_y,        \
+      int runs
+#define MSOCL_MESH_ARGS(c, a)                                                 \
+  p, v, pp, aux, va, vb, tri, rim, cell_start, cell_tri, origin, gx, gy, gz,  \
+      prm, orient, dt, nv, nt, plane, cur, reach2, esc, c, a
+
+/* A work-item a point (GPUs). */
+__kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
+{
+  MSOCL_PLANES_XYZ;
+  const int a = MSOCL_PLANES_AT(x, y, z);
+  (void)slab; (void)rows_y; (void)runs;
+  if (x < nx)
+    msocl_mesh_point(MSOCL_MESH_ARGS(
+        msocl_mesh_cell_of(p, aux, cell_start, origin, gx, gy, gz, plane, lo,
+                           hi, culled, a),
+        a));
+}
+
+/* CPU devices: the runs of MSOCL_MESH_RUN points of each row (`runs` in
+ * all, row by row), work-item b of B taking runs b, b + B, ... (a contact
+ * spans few rows: interleaved, the cores share it); 8 points at a time
+ * are tested in vectors, and only the points of a chunk near the grid
+ * find their cells and search (the search cannot be vectorised, and a
+ * work-item costs more to schedule than most runs take). A row's padding
+ * holds the 8 floats past its last chunk's start. */
 #define MSOCL_MESH_RUN 256
 __kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
 {
-  const int y = get_global_id(1), z = get_global_id(2);
-  const int x0 = get_global_id(0) * MSOCL_MESH_RUN;
-  const int x1 = min(nx, x0 + MSOCL_MESH_RUN);
-  (void)y; (void)z; (void)slab;
-  for (int x8 = x0; x8 < x1; x8 += 8) {
-    if (!msocl_mesh_near8(p, origin, gx, gy, gz, plane, lo, hi, culled,
-                          MSOCL_PLANES_AT(x8, y, z)))
-      continue;
-    for (int x = x8; x < min(x1, x8 + 8); x++) {
-      const int a = MSOCL_PLANES_AT(x, y, z);
-      msocl_mesh_point(MSOCL_MESH_ARGS(
-          msocl_mesh_cell_of(p, aux, cell_start, origin, gx, gy, gz, plane,
-                             lo, hi, culled, a),
-          a));
+  const int row_runs = (nx + MSOCL_MESH_RUN - 1) / MSOCL_MESH_RUN;
+  (void)slab;
+  for (int r = get_global_id(0); r < runs; r += get_global_size(0)) {
+    const int row = r / row_runs, y = row % rows_y, z = row / rows_y;
+    const int x0 = (r - row * row_runs) * MSOCL_MESH_RUN;
+    const int x1 = min(nx, x0 + MSOCL_MESH_RUN);
+    (void)y; (void)z;
+    for (int x8 = x0; x8 < x1; x8 += 8) {
+      if (!msocl_mesh_near8(p, origin, gx, gy, gz, plane, lo, hi, culled,
+                            MSOCL_PLANES_AT(x8, y, z)))
+        continue;
+      for (int x = x8; x < min(x1, x8 + 8); x++) {
+        const int a = MSOCL_PLANES_AT(x, y, z);
+        msocl_mesh_point(MSOCL_MESH_ARGS(
+            msocl_mesh_cell_of(p, aux, cell_start, origin, gx, gy, gz,
+                               plane, lo, hi, culled, a),
+            a));
+      }
     }
   }
 }

@@ -431,6 +431,57 @@ START_TEST(static_in_buffer)
 }
 END_TEST
 
+/* A jello cube (8^3 points, layers and rows: the CPU search's runs over
+ * z and y) dropped onto the floor mesh bounces on it, held a thickness
+ * above it after every call, GRID as BUFFER, bitwise. */
+static void lattice_drop(msocl_layout layout, float *p)
+{
+  const float v[4 * 3] = {-1, -0.6f, -1, 1, -0.6f, -1, 1, -0.6f, 1, -1, -0.6f, 1};
+  const int t[2 * 3] = {0, 2, 1, 0, 3, 2}; /* normal +y */
+  msocl_lattice_desc d;
+  msocl_lattice_desc_init(&d);
+  d.origin[0] = d.origin[2] = -0.07f;
+  d.origin[1] = -0.55f;
+  msocl_model *m = NULL;
+  ck_assert_int_eq(msocl_model_lattice(&m, &d), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_mesh_collider(m, v, 4, t, 2, (float)THICK,
+                                                 1.0f),
+                   MSOCL_OK);
+  ck_assert_int_eq(msocl_model_set_gravity(m, 0, -9.81f, 0), MSOCL_OK);
+  float dt;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = dt;
+  o.tuning.layout = layout;
+  msocl_sim *s = NULL;
+  ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK, "%s",
+                msocl_last_error());
+  int touched = 0;
+  for (int c = 0; c < 30; c++) {
+    ck_assert_int_eq(msocl_sim_step(s, (int)(0.01 / dt) + 1), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_read_positions(s, p), MSOCL_OK);
+    for (int i = 0; i < 512; i++) {
+      const double y = p[3 * i + 1], floor = -0.6 + THICK;
+      ck_assert_msg(y >= floor - TOL * THICK, "call %d: point %d at y %g",
+                    c, i, y);
+      touched += y < floor + TOL * THICK;
+    }
+  }
+  ck_assert_int_gt(touched, 64); /* the bottom layer, more than once */
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+
+START_TEST(lattice_on_floor)
+{
+  float g[3 * 512], b[3 * 512];
+  lattice_drop(MSOCL_LAYOUT_GRID, g);
+  lattice_drop(MSOCL_LAYOUT_BUFFER, b);
+  ck_assert_msg(memcmp(g, b, sizeof g) == 0, "GRID and BUFFER differ");
+}
+END_TEST
+
 /* The icosphere of `level` swept through the hanging cloth at `speed`
  * for `calls` calls, every call's positions into out (calls * 3 N N). */
 static void swept_run(int level, double speed, int calls, float *out)
@@ -493,6 +544,38 @@ START_TEST(device_grid_is_host_grid)
     free(host);
     free(dev);
   }
+}
+END_TEST
+
+/* The GPUs' search, a work-item a point finding its own cell, gives
+ * bitwise the CPUs' (runs of points tested 8 at a time), on a moving
+ * culled grid and on a static one. */
+START_TEST(per_point_is_rows)
+{
+  const int calls = 60;
+  const size_t n = (size_t)calls * 3 * N * N;
+  float *rows = malloc(n * sizeof *rows), *each = malloc(n * sizeof *each);
+  swept_run(3, 5.0, calls, rows);
+  msocl__mesh_per_point(1);
+  swept_run(3, 5.0, calls, each);
+  msocl__mesh_per_point(0);
+  size_t moved = 0;
+  for (size_t q = 0; q < n; q++) {
+    ck_assert_msg(memcmp(rows + q, each + q, sizeof *rows) == 0,
+                  "call %zu, point %zu, axis %zu: runs %.9g, per point %.9g",
+                  q / (3 * N * N) + 1, q % (3 * N * N) / 3, q % 3, rows[q],
+                  each[q]);
+    moved += q >= n - 3 * N * N && q % 3 == 2 && fabsf(rows[q]) > 1e-3f;
+  }
+  ck_assert_msg(moved > 20, "only %zu points pushed", moved);
+  float g[3 * 512], b[3 * 512];
+  lattice_drop(MSOCL_LAYOUT_GRID, g);
+  msocl__mesh_per_point(1);
+  lattice_drop(MSOCL_LAYOUT_GRID, b);
+  msocl__mesh_per_point(0);
+  ck_assert_msg(memcmp(g, b, sizeof g) == 0, "the lattice differs");
+  free(rows);
+  free(each);
 }
 END_TEST
 
@@ -650,6 +733,8 @@ int main(void)
   tcase_add_test(tc, open_sheet_keeps_side);
   tcase_add_test(tc, static_and_disabled);
   tcase_add_test(tc, static_in_buffer);
+  tcase_add_test(tc, lattice_on_floor);
+  tcase_add_test(tc, per_point_is_rows);
   tcase_add_test(tc, device_grid_is_host_grid);
   tcase_add_test(tc, culled_grid_misses_nothing);
   suite_add_tcase(su, tc);

@@ -240,6 +240,9 @@ void msocl__mesh_host_grid(int mode);
  * it stands (1: the search outside the grid does the rest), or (-1) as
  * the library chooses. */
 void msocl__mesh_cull(int mode);
+/* Tests only: mesh colliders created from now on search with the GPUs'
+ * kernel, a work-item a point, on CPU devices too (1), or not (0). */
+void msocl__mesh_per_point(int on);
 /* Energy of the engine's points (waits for the device). */
 int msocl__energy(msocl__engine *s, msocl_energy *e);
 /* Kernel k's argument that kernels/ names `name` (kernel_args.c; k made

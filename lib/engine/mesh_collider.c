@@ -20,9 +20,12 @@
 #include <string.h>
 
 #define TRY MSOCL__TRY
+/* CPUs: the search's work-items a compute unit (runs interleaved) */
+#define ITEMS_PER_UNIT 8
 
 static int host_grid = -1; /* tests: msocl__mesh_host_grid */
 static int cull_mode = -1;  /* tests: msocl__mesh_cull */
+static int per_point = 0;   /* tests: msocl__mesh_per_point */
 
 void msocl__mesh_host_grid(int mode)
 {
@@ -32,6 +35,11 @@ void msocl__mesh_host_grid(int mode)
 void msocl__mesh_cull(int mode)
 {
   cull_mode = mode;
+}
+
+void msocl__mesh_per_point(int on)
+{
+  per_point = on;
 }
 
 struct msocl__mesh_dev {
@@ -57,6 +65,7 @@ struct msocl__mesh_dev {
   int pending, n;        /* a grid to build at the first pass; steps */
   cl_event read;         /* ... once the cloth's bounds are read */
   size_t runs[3];        /* msocl_mesh_bounds' work-items */
+  size_t items;          /* CPUs: the search's work-items */
   int culled;            /* the grid is culled to a call's cloth */
   cl_float4 lo, hi;      /* every triangle's swept bounds, with the reach */
   /* host staging for the writes, kept until the next call's (a call
@@ -241,7 +250,7 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   if (rc == MSOCL_OK && clFinish(s->dev->queue) != CL_SUCCESS)
     rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "mesh collider's vertices");
   TRY(rc);
-  d->rows = s->dev->info.type == MSOCL_DEVICE_CPU;
+  d->rows = s->dev->info.type == MSOCL_DEVICE_CPU && !per_point;
   const char *name = d->rows ? "msocl_mesh_collide_rows" : "msocl_mesh_collide";
   TRY(msocl__kernel_make(s->dev, s->prog, name, &d->k));
   TRY(msocl__kernel_make(s->dev, s->prog, "msocl_mesh_place", &d->place));
@@ -260,6 +269,16 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   d->esc = buffer(s, sizeof zero, (void *)&zero, &rc2);
   TRY(rc2);
   TRY(msocl__arg_mem(s, d->k, "esc", d->esc));
+  { /* CPUs: work-items a compute unit, each taking every B-th run */
+    const cl_uint units = s->dev->info.compute_units;
+    const int runs = (int)(((s->pl_global[0] + 255) / 256) *
+                           s->pl_global[1] * s->pl_global[2]);
+    d->items = ITEMS_PER_UNIT * (size_t)(units ? units : 1);
+    if (d->items > (size_t)runs)
+      d->items = (size_t)runs;
+    TRY(msocl__arg_int(s, d->k, "rows_y", (int)s->pl_global[1]));
+    TRY(msocl__arg_int(s, d->k, "runs", runs));
+  }
   TRY(msocl__kernel_make(s->dev, s->prog, "msocl_mesh_bounds", &d->bounds));
   TRY(msocl__arg_mem(s, d->bounds, "aux", s->pl_aux));
   TRY(msocl__pl_shape(s, d->bounds));
@@ -824,12 +843,10 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
   TRY(msocl__arg_mem(s, d->k, "pp", s->pl_p[1 - set]));
   const cl_float4 prm = {{f0, f1, d->thick, d->friction}};
   TRY(msocl__arg(s, d->k, "prm", sizeof prm, &prm));
-  if (d->rows) {
-    const size_t rows[3] = {(s->pl_global[0] + 255) / 256, s->pl_global[1],
-                            s->pl_global[2]}; /* the kernel's runs */
-    const size_t one[3] = {1, 1, 1}; /* a group a run, spread over cores */
-    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->k, 3, NULL, rows, one,
-                                     0, NULL, NULL));
+  if (d->rows) { /* a group a work-item, spread over cores */
+    const size_t one = 1;
+    MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->k, 1, NULL,
+                                     &d->items, &one, 0, NULL, NULL));
     return MSOCL_OK;
   }
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->k, 3, NULL, s->pl_global,
