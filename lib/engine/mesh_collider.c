@@ -356,16 +356,24 @@ static int grow(int **a, size_t *cap, size_t need)
   return MSOCL_OK;
 }
 
+/* floor(x) clamped to [-1, g] (g a cell count, far below 2^23): x
+ * clamped first so that the int conversion is exact (floorf is a libm
+ * call without SSE4.1). */
+static inline int floor_in(float x, float g)
+{
+  x = x < -2.0f ? -2.0f : x > g + 1.0f ? g + 1.0f : x;
+  const int i = (int)x; /* toward zero */
+  const int f = i - (x < (float)i);
+  return f < -1 ? -1 : f > (int)g ? (int)g : f;
+}
+
 /* The cells a bound [lo, hi] covers along axis c, clamped to the grid,
  * and whether it misses the grid (msocl_mesh_span's float operations). */
 static inline int span(const struct msocl__mesh_dev *d, int c, float lo,
                        float hi, int *a, int *b)
 {
   const float o = d->origin.s[c], w = d->origin.s[3], g = (float)d->g[c];
-  float fa = floorf((lo - o) * w), fb = floorf((hi - o) * w);
-  fa = fa < -1.0f ? -1.0f : fa > g ? g : fa;
-  fb = fb < -1.0f ? -1.0f : fb > g ? g : fb;
-  const int ia = (int)fa, ib = (int)fb;
+  const int ia = floor_in((lo - o) * w, g), ib = floor_in((hi - o) * w, g);
   *a = ia < 0 ? 0 : ia >= d->g[c] ? d->g[c] - 1 : ia;
   *b = ib < 0 ? 0 : ib >= d->g[c] ? d->g[c] - 1 : ib;
   return ia >= d->g[c] || ib < 0;
@@ -637,11 +645,12 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step,
       const float l = x[0] < y[0] ? x[0] : y[0], h = x[1] > y[1] ? x[1] : y[1];
       b[c] = l < z[0] ? l : z[0];
       b[3 + c] = h > z[1] ? h : z[1];
-      size += (double)(b[3 + c] - b[c]) / 3.0;
+      size += (double)(b[3 + c] - b[c]);
       b[c] -= reach;
       b[3 + c] += reach;
-      lo[c] = fminf(lo[c], b[c]);
-      hi[c] = fmaxf(hi[c], b[3 + c]);
+      /* (not fminf: a libm call a bound here; the bounds are finite) */
+      lo[c] = b[c] < lo[c] ? b[c] : lo[c];
+      hi[c] = b[3 + c] > hi[c] ? b[3 + c] : hi[c];
     }
     if (box)
       memcpy(box + 6 * t, b, sizeof b);
@@ -659,7 +668,7 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step,
    * that is more: a point near the surface then looks at the triangles
    * within about reach plus two cells of it; at most 16 cells a triangle
    * (or 2^16), 2^22 in all */
-  double h = 1.5 * fmax(size / d->nt, (double)reach);
+  double h = 1.5 * fmax(size / 3.0 / d->nt, (double)reach);
   double most = fmax(16.0 * d->nt, 65536.0);
   most = fmin(most, 4194304.0);
   for (;;) {
@@ -820,11 +829,12 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
     float near[6];
     int escaped = 0;
     TRY(cloth_reach(s, d, d->n, step, near, &escaped));
-    /* the first call, and a few after a point left the grid (a slow
-     * search), build the whole grid */
-    if ((escaped || !d->built) && d->cull < 0)
+    /* the first call (no move since a call before it to grow the box
+     * by), and a few after a point left the grid (a slow search), build
+     * the whole grid */
+    if (escaped && d->cull < 0)
       d->full = 8;
-    const int whole = d->full > 0 || d->cull == 0;
+    const int whole = !d->built || d->full > 0 || d->cull == 0;
     d->full -= d->full > 0;
     TRY(build(s, d, step, whole ? NULL : near));
   }
