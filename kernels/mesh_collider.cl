@@ -211,27 +211,31 @@ static inline void msocl_mesh_point(
   v[2 * plane + a] = Vn.z;
 }
 
-/* The triangles at fraction f of the motion from va to vb, each as four
- * float4s: its corners, in their w its unit normal, and its bounding
- * sphere (centroid, radius) (a work-item a triangle: live[i] where
- * nlive >= 0, the grid's triangles, else i; those past the count do
- * nothing). */
+/* The triangles at the ends of the next `steps` steps (fraction f.sk of
+ * the motion from va to vb for step k, at most 8), step k's into slot k
+ * of cur (4 nt float4s a slot), each triangle as four float4s: its
+ * corners, in their w its unit normal, and its bounding sphere (centroid,
+ * radius); work-item (i, k): live[i] where nlive >= 0, the grid's
+ * triangles, else i; those past the counts do nothing. One launch for
+ * several steps: on a CPU device a launch costs more than the work. */
 __kernel void msocl_mesh_place(__global const float *va,
                                __global const float *vb,
                                __global const int *tri, __global float4 *cur,
-                               float f, int nv, int nt,
+                               float8 f, int steps, int nv, int nt,
                                __global const int *live, int nlive)
 {
-  const int i = get_global_id(0);
-  if (i >= (nlive >= 0 ? nlive : nt))
+  const int i = get_global_id(0), k = get_global_id(1);
+  if (i >= (nlive >= 0 ? nlive : nt) || k >= steps)
     return;
   const int t = nlive >= 0 ? live[i] : i;
+  const float fk[8] = {f.s0, f.s1, f.s2, f.s3, f.s4, f.s5, f.s6, f.s7};
   float4 q[4];
-  msocl_mesh_at(va, vb, tri, t, f, nv, nt, q);
-  cur[4 * t] = q[0];
-  cur[4 * t + 1] = q[1];
-  cur[4 * t + 2] = q[2];
-  cur[4 * t + 3] = q[3];
+  msocl_mesh_at(va, vb, tri, t, fk[k], nv, nt, q);
+  __global float4 *c = cur + (size_t)4 * ((size_t)k * nt + t);
+  c[0] = q[0];
+  c[1] = q[1];
+  c[2] = q[2];
+  c[3] = q[3];
 }
 
 /* Point a's cell, -1 where it has no triangles (or is pinned, or outside
@@ -290,7 +294,7 @@ static inline bool msocl_mesh_near8(__global const float *p, float4 origin,
       float4 prm, float orient, float dt, int nv, int nt, int nx, int pitch,  \
       int slab, int plane, __global const float4 *cur, float reach2,          \
       int culled, float4 lo, float4 hi, __global int *esc, int rows_y,        \
-      int runs
+      int runs, int slot
 #define MSOCL_MESH_ARGS(c, a)                                                 \
   p, v, pp, aux, va, vb, tri, rim, cell_start, cell_tri, origin, gx, gy, gz,  \
       prm, orient, dt, nv, nt, plane, cur, reach2, esc, c, a
@@ -298,6 +302,7 @@ static inline bool msocl_mesh_near8(__global const float *p, float4 origin,
 /* A work-item a point (GPUs). */
 __kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
 {
+  cur += (size_t)4 * slot * nt; /* this step's triangles */
   MSOCL_PLANES_XYZ;
   const int a = MSOCL_PLANES_AT(x, y, z);
   (void)slab; (void)rows_y; (void)runs;
@@ -318,6 +323,7 @@ __kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
 #define MSOCL_MESH_RUN 256
 __kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
 {
+  cur += (size_t)4 * slot * nt; /* this step's triangles */
   const int row_runs = (nx + MSOCL_MESH_RUN - 1) / MSOCL_MESH_RUN;
   (void)slab;
   for (int r = get_global_id(0); r < runs; r += get_global_size(0)) {
