@@ -1,15 +1,17 @@
 /* msocl-bench meshcollider: an n x n cloth (1 m a side, hanging from its
  * pinned top edge) alone, against a static 10 000-triangle sphere mesh
- * pressed into it, and against that mesh moving (new vertices every call
- * of 10 steps, so its grid is rebuilt each call), side by side in each
- * repeat, on the default engine (AUTO: GRID); the
- * ratios are the mesh collider's cost a step. */
+ * pressed into it, and against that mesh moving (new vertices every call,
+ * so its grid is rebuilt each call): calls of 10 steps (1 kHz updates at
+ * dt 1e-4) and calls of a 60 Hz frame's steps, side by side in each
+ * repeat, on the default engine (AUTO: GRID); the ratios are the mesh
+ * collider's cost a step. */
 #include "bench.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-enum { CALL = 10, LAT = 51, LON = 100 }; /* 2 LON (LAT - 1) = 10 000 */
+/* 2 LON (LAT - 1) = 10 000 triangles; FRAME: 1/60 s at dt 1e-4 */
+enum { CALL = 10, FRAME = 167, LAT = 51, LON = 100, RUNS = 4 };
 
 static msocl_model *cloth(int n)
 {
@@ -70,14 +72,15 @@ static int sphere_mesh(float r, float z, float **verts, int **tris)
   return nv;
 }
 
-/* steps in calls of CALL; the moving sim (mover >= 0) gets its mesh
- * shifted along z before each call, at about 1 m/s. */
-static int run(msocl_sim *s, int steps, int mover, const float *v0, int nv,
-               float *now, float dt, int *calls)
+/* steps in calls of `call`; the moving sim (mover >= 0) gets its mesh
+ * shifted along z before each call, at about 1 m/s (*t: its time). */
+static int run(msocl_sim *s, int steps, int call, int mover, const float *v0,
+               int nv, float *now, float dt, double *t)
 {
-  for (int done = 0; done < steps; done += CALL) {
+  for (int done = 0; done < steps; done += call) {
     if (mover >= 0) {
-      const float dz = 0.02f * sinf((float)(*calls)++ * CALL * dt * 50.0f);
+      const float dz = 0.02f * sinf((float)*t * 50.0f);
+      *t += call * (double)dt;
       for (int i = 0; i < nv; i++) {
         now[3 * i] = v0[3 * i];
         now[3 * i + 1] = v0[3 * i + 1];
@@ -87,7 +90,7 @@ static int run(msocl_sim *s, int steps, int mover, const float *v0, int nv,
       if (rc != MSOCL_OK)
         return rc;
     }
-    const int rc = msocl_sim_step(s, CALL);
+    const int rc = msocl_sim_step(s, call);
     if (rc != MSOCL_OK)
       return rc;
   }
@@ -100,13 +103,19 @@ int bench_mesh_collider(const struct bench_opts *o, FILE *csv)
   msocl_device_info info;
   if (bench_open(o, &rt, &info))
     return 1;
-  const int steps = (o->steps + CALL - 1) / CALL * CALL;
-  printf("msocl-bench meshcollider on %s [%s]: %d steps in calls of %d, "
-         "best of %d; a %d-triangle sphere mesh\n", info.name,
-         info.platform_name, steps, CALL, o->repeat, 2 * LON * (LAT - 1));
+  /* none, static, moving in calls of CALL, moving in calls of FRAME */
+  static const char *const names[RUNS] = {"none", "static", "moving",
+                                          "frame"};
+  const int call[RUNS] = {CALL, CALL, CALL, FRAME};
+  int steps[RUNS];
+  for (int w = 0; w < RUNS; w++)
+    steps[w] = (o->steps + call[w] - 1) / call[w] * call[w];
+  printf("msocl-bench meshcollider on %s [%s]: %d steps in calls of %d "
+         "(frame: %d in calls of %d), best of %d; a %d-triangle sphere "
+         "mesh\n", info.name, info.platform_name, steps[0], CALL,
+         steps[3], FRAME, o->repeat, 2 * LON * (LAT - 1));
   printf("%5s %-8s %8s %9s %8s\n", "grid", "mesh", "seconds", "steps/s",
          "/none");
-  static const char *const names[3] = {"none", "static", "moving"};
   float *v0 = NULL;
   int *t = NULL;
   const int nv = sphere_mesh(0.25f, 0.22f, &v0, &t);
@@ -123,24 +132,28 @@ int bench_mesh_collider(const struct bench_opts *o, FILE *csv)
     msocl_sim_options_init(&so);
     so.dt = 1e-4f;
     so.check_every = 0;
-    msocl_sim *s[3] = {NULL, NULL, NULL};
-    for (int w = 0; rc == MSOCL_OK && w < 3; w++)
+    msocl_sim *s[RUNS] = {NULL};
+    for (int w = 0; rc == MSOCL_OK && w < RUNS; w++)
       rc = msocl_sim_create(&s[w], rt, m[w > 0], &so);
-    int calls = 0;
-    for (int w = 0; rc == MSOCL_OK && w < 3; w++) /* warm-up */
-      rc = run(s[w], CALL, w == 2 ? 0 : -1, v0, nv, now, so.dt, &calls);
-    double best[3] = {INFINITY, INFINITY, INFINITY};
+    double time[RUNS] = {0};
+    for (int w = 0; rc == MSOCL_OK && w < RUNS; w++) /* warm-up */
+      rc = run(s[w], call[w], call[w], w >= 2 ? 0 : -1, v0, nv, now, so.dt,
+               &time[w]);
+    double best[RUNS];
+    for (int w = 0; w < RUNS; w++)
+      best[w] = INFINITY;
     for (int rep = 0; rc == MSOCL_OK && rep < o->repeat; rep++)
-      for (int w = 0; rc == MSOCL_OK && w < 3; w++) {
+      for (int w = 0; rc == MSOCL_OK && w < RUNS; w++) {
         const double t0 = bench_now();
-        rc = run(s[w], steps, w == 2 ? 0 : -1, v0, nv, now, so.dt, &calls);
+        rc = run(s[w], steps[w], call[w], w >= 2 ? 0 : -1, v0, nv, now,
+                 so.dt, &time[w]);
         const double dt = bench_now() - t0;
         best[w] = dt < best[w] ? dt : best[w];
       }
     if (rc != MSOCL_OK) {
       failed = bench_fail("meshcollider", rc);
     } else {
-      for (int w = 0; w < 3; w++) {
+      for (int w = 0; w < RUNS; w++) {
         struct bench_row r;
         bench_row_init(&r);
         bench_row_device(&r, rt);
@@ -149,17 +162,18 @@ int bench_mesh_collider(const struct bench_opts *o, FILE *csv)
         r.math = "precise";
         r.grid = n;
         r.dt = so.dt;
-        r.steps = steps;
+        r.steps = steps[w];
         r.seconds = best[w];
         r.status = "ok";
         bench_row_rates(&r);
         printf("%5d %-8s %8.3f %9.1f %7.2fx\n", n, r.layout, r.seconds,
-               r.steps_per_s, best[w] / best[0]);
+               r.steps_per_s,
+               best[w] / steps[w] / (best[0] / steps[0]));
         bench_csv_row(csv, &r);
       }
       fflush(stdout);
     }
-    for (int w = 0; w < 3; w++)
+    for (int w = 0; w < RUNS; w++)
       msocl_sim_destroy(s[w]);
     msocl_model_destroy(m[0]);
     msocl_model_destroy(m[1]);
