@@ -29,15 +29,23 @@
 #              soft tablecloth at 64^2 and 256^2 draped for 1 s,
 #              unlimited and each limit at 1..20 sweeps, symplectic
 #              Euler, Verlet, RK4 and implicit Euler       (a few minutes)
+#   live       live scenes' costs on the GPU: the 10 000-triangle mesh
+#              collider at 128^2 and 512^2 (static, moving every 10
+#              steps and every 60 Hz frame; the GPUs' device-built grid
+#              and per-point search), wind on a flag at 128..512^2,
+#              the analytic colliders at rest and moving   (a few minutes)
 # Each stage writes STAGE.txt (and .csv) under OUTDIR with the command at
 # the top. Back on the build machine: bench/plot.sh OUTDIR/precision.csv
 # OUTDIR/precision.png and bench/plot_strain.sh OUTDIR/strain.csv
 # OUTDIR/strain.png, then commit OUTDIR as bench/results/<gpu>/.
+# MSOCL_BENCH_DEVICE=cpu runs the single-device stages on PoCL's CPU
+# instead (a rehearsal; the split stage's specs stay gpu and cpu).
 set -eu
 [ $# -ge 1 ] || { awk 'NR > 1 && !/^#/ { exit } NR > 1' "$0"; exit 2; }
 out=$1
 shift
-stages=${*:-devices verify table1 precision split lattice strain}
+stages=${*:-devices verify table1 precision split lattice strain live}
+dev=${MSOCL_BENCH_DEVICE:-gpu}
 mkdir -p "$out"
 bench=./examples/msocl-bench
 [ -x "$bench" ] || { echo "$0: build first ($bench missing)" >&2; exit 1; }
@@ -74,9 +82,9 @@ for stage in $stages; do
       set -- $run
       tag=$1
       shift
-      echo "# MSOCL_DEVICE=gpu ./examples/msocl-tablecloth -n 128 -s 500 $*" \
+      echo "# MSOCL_DEVICE=$dev ./examples/msocl-tablecloth -n 128 -s 500 $*" \
         >> "$out/verify.txt"
-      MSOCL_DEVICE=gpu ./examples/msocl-tablecloth -n 128 -s 500 "$@" \
+      MSOCL_DEVICE=$dev ./examples/msocl-tablecloth -n 128 -s 500 "$@" \
         -o "$out/verify_$tag.obj" >> "$out/verify.txt" 2>&1 ||
         echo "# exit status $?" >> "$out/verify.txt"
     done
@@ -93,11 +101,11 @@ for stage in $stages; do
     rm -f "$out"/verify_*.obj
     ;;
   table1)
-    record table1 env MSOCL_DEVICE=gpu $bench table1 --big-steps 200 \
+    record table1 env MSOCL_DEVICE=$dev $bench table1 --big-steps 200 \
       --repeat 3 --fused --values --csv "$out/table1.csv"
     ;;
   precision)
-    record precision env MSOCL_DEVICE=gpu $bench precision \
+    record precision env MSOCL_DEVICE=$dev $bench precision \
       --csv "$out/precision.csv"
     ;;
   split)
@@ -135,13 +143,21 @@ for stage in $stages; do
     rm -f "$out"/split_*.obj
     ;;
   lattice)
-    record lattice env MSOCL_DEVICE=gpu $bench lattice -g 32,64,128 \
+    record lattice env MSOCL_DEVICE=$dev $bench lattice -g 32,64,128 \
       -i symplectic,verlet,rk4,implicit -s 200 --repeat 3 \
       --csv "$out/lattice.csv"
     ;;
   strain)
-    record strain env MSOCL_DEVICE=gpu $bench strain -g 64,256 -T 1 \
+    record strain env MSOCL_DEVICE=$dev $bench strain -g 64,256 -T 1 \
       -i symplectic,verlet,rk4,implicit --csv "$out/strain.csv"
+    ;;
+  live)
+    record meshcollider env MSOCL_DEVICE=$dev $bench meshcollider \
+      -g 128,512 -s 1000 --repeat 3 --csv "$out/meshcollider.csv"
+    record wind env MSOCL_DEVICE=$dev $bench wind -s 1000 --repeat 3 \
+      --csv "$out/wind.csv"
+    record colliders env MSOCL_DEVICE=$dev $bench colliders -g 256,1024 \
+      -s 500 --repeat 3 --csv "$out/colliders.csv"
     ;;
   *)
     echo "$0: unknown stage '$stage'" >&2

@@ -386,23 +386,32 @@ END_TEST
 
 /* A static mesh acts on every step too; disabled, it does not; in
  * BUFFER (points in index order) as in GRID. */
-static void floor_run(msocl_layout layout)
+/* m under gravity over a floor mesh at y = -0.6 (2 m a side, normal +y,
+ * friction 1) `thick` thick, simulated in `layout` at the stable dt. */
+static msocl_sim *over_floor(msocl_model *m, float thick,
+                             msocl_layout layout, float *dt)
 {
   const float v[4 * 3] = {-1, -0.6f, -1, 1, -0.6f, -1, 1, -0.6f, 1, -1, -0.6f, 1};
-  const int t[2 * 3] = {0, 2, 1, 0, 3, 2}; /* normal +y */
-  msocl_model *m = sheet();
-  ck_assert_int_eq(msocl_model_add_mesh_collider(m, v, 4, t, 2, 0.02f, 1.0f),
+  const int t[2 * 3] = {0, 2, 1, 0, 3, 2};
+  ck_assert_int_eq(msocl_model_add_mesh_collider(m, v, 4, t, 2, thick, 1.0f),
                    MSOCL_OK);
   ck_assert_int_eq(msocl_model_set_gravity(m, 0, -9.81f, 0), MSOCL_OK);
-  float dt;
-  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, dt), MSOCL_OK);
   msocl_sim_options o;
   msocl_sim_options_init(&o);
-  o.dt = dt;
+  o.dt = *dt;
   o.tuning.layout = layout;
   msocl_sim *s = NULL;
   ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK, "%s",
                 msocl_last_error());
+  return s;
+}
+
+static void floor_run(msocl_layout layout)
+{
+  msocl_model *m = sheet();
+  float dt;
+  msocl_sim *s = over_floor(m, 0.02f, layout, &dt);
   /* the sheet falls 0.92 m onto the floor mesh at y = -0.6 */
   float p[3 * 256];
   for (int c = 0; c < 60; c++)
@@ -436,27 +445,14 @@ END_TEST
  * above it after every call, GRID as BUFFER, bitwise. */
 static void lattice_drop(msocl_layout layout, float *p)
 {
-  const float v[4 * 3] = {-1, -0.6f, -1, 1, -0.6f, -1, 1, -0.6f, 1, -1, -0.6f, 1};
-  const int t[2 * 3] = {0, 2, 1, 0, 3, 2}; /* normal +y */
   msocl_lattice_desc d;
   msocl_lattice_desc_init(&d);
   d.origin[0] = d.origin[2] = -0.07f;
   d.origin[1] = -0.55f;
   msocl_model *m = NULL;
   ck_assert_int_eq(msocl_model_lattice(&m, &d), MSOCL_OK);
-  ck_assert_int_eq(msocl_model_add_mesh_collider(m, v, 4, t, 2, (float)THICK,
-                                                 1.0f),
-                   MSOCL_OK);
-  ck_assert_int_eq(msocl_model_set_gravity(m, 0, -9.81f, 0), MSOCL_OK);
   float dt;
-  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
-  msocl_sim_options o;
-  msocl_sim_options_init(&o);
-  o.dt = dt;
-  o.tuning.layout = layout;
-  msocl_sim *s = NULL;
-  ck_assert_msg(msocl_sim_create(&s, rt, m, &o) == MSOCL_OK, "%s",
-                msocl_last_error());
+  msocl_sim *s = over_floor(m, (float)THICK, layout, &dt);
   int touched = 0;
   for (int c = 0; c < 30; c++) {
     ck_assert_int_eq(msocl_sim_step(s, (int)(0.01 / dt) + 1), MSOCL_OK);
