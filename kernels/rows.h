@@ -73,6 +73,71 @@ static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
     g = MSOCL_ROWS_SEL(top, gtop, gside);
   }
 #endif
+#ifdef MSOCL_CAPSULE
+  /* msocl_planes_gap's capsule, lane by lane */
+  if (kind == MSOCL_CAPSULE_KIND) {
+    const float ex = cv(8) - cv(4), ey = cv(9) - cv(5), ez = cv(10) - cv(6);
+    const msocl_rows_f ax = px - cv(4), ay = py - cv(5), az = pz - cv(6);
+    const float ee = MSOCL_DOT3(ex, ey, ez, ex, ey, ez);
+    msocl_rows_f t = ee > 0.0f ? MSOCL_DIV(MSOCL_DOT3(ax, ay, az, ex, ey, ez),
+                                           (msocl_rows_f)ee)
+                               : (msocl_rows_f)0.0f;
+    t = fmin(fmax(t, 0.0f), 1.0f);
+    const msocl_rows_f dx = ax - t * ex, dy = ay - t * ey, dz = az - t * ez;
+    const msocl_rows_f len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+    const msocl_rows_m out = len > 0.0f;
+    nx = MSOCL_ROWS_SEL(out, dx / len, 0.0f);
+    ny = MSOCL_ROWS_SEL(out, dy / len, 1.0f);
+    nz = MSOCL_ROWS_SEL(out, dz / len, 0.0f);
+    g = len - cv(7);
+  }
+#endif
+#ifdef MSOCL_BOX
+  /* msocl_planes_gap's box, lane by lane (the same operations: no SLP
+   * pairing to avoid in vectors, but the bits must be the scalar's) */
+  if (kind == MSOCL_BOX_KIND) {
+    const float qx = cv(8), qy = cv(9), qz = cv(10), qw = cv(11);
+    const float r00 = 1.0f - 2.0f * (qy * qy + qz * qz),
+                r01 = 2.0f * (qx * qy - qz * qw),
+                r02 = 2.0f * (qx * qz + qy * qw);
+    const float r10 = 2.0f * (qx * qy + qz * qw),
+                r11 = 1.0f - 2.0f * (qx * qx + qz * qz),
+                r12 = 2.0f * (qy * qz - qx * qw);
+    const float r20 = 2.0f * (qx * qz - qy * qw),
+                r21 = 2.0f * (qy * qz + qx * qw),
+                r22 = 1.0f - 2.0f * (qx * qx + qy * qy);
+    const msocl_rows_f ex = px - cv(4), ey = py - cv(5), ez = pz - cv(6);
+    const msocl_rows_f lx = r00 * ex + r10 * ey + r20 * ez;
+    const msocl_rows_f ly = fma((msocl_rows_f)r01, ex,
+                                fma((msocl_rows_f)r11, ey, r21 * ez));
+    const msocl_rows_f lz = fma((msocl_rows_f)r22, ez, r02 * ex) + r12 * ey;
+    const float hx = cv(12), hy = cv(13), hz = cv(14);
+    const msocl_rows_f dx = fabs(lx) - hx, dy = fmax(ly, -ly) - hy,
+                       dz = fabs(lz) - hz;
+    const msocl_rows_f ox = fmax(dx, 0.0f),
+                       oy = MSOCL_ROWS_SEL(dy > 0.0f, dy, 0.0f),
+                       oz = 0.5f * (dz + fabs(dz));
+    const msocl_rows_f olen = MSOCL_SQRT(MSOCL_DOT3(ox, oy, oz, ox, oy, oz));
+    const msocl_rows_m outside = olen > 0.0f;
+    const msocl_rows_m xm = (dx >= dy) & (dx >= dz),
+                       ym = ~xm & (dy >= dz);
+    const msocl_rows_f sx = MSOCL_ROWS_SEL(lx < 0.0f, -1.0f, 1.0f),
+                       sy = copysign((msocl_rows_f)1.0f, ly),
+                       sz = MSOCL_ROWS_SEL(lz < 0.0f, -1.0f, 1.0f);
+    const msocl_rows_f inv = MSOCL_ROWS_SEL(outside, 1.0f / olen, 0.0f);
+    const msocl_rows_f mx = MSOCL_ROWS_SEL(
+        outside, sx * ox * inv, MSOCL_ROWS_SEL(xm, sx, 0.0f));
+    const msocl_rows_f my = MSOCL_ROWS_SEL(
+        outside, fma(sy * oy, inv, 0.0f), MSOCL_ROWS_SEL(ym, sy, 0.0f));
+    const msocl_rows_f mz = MSOCL_ROWS_SEL(
+        outside, sz * oz / olen, MSOCL_ROWS_SEL(~xm & ~ym, sz, 0.0f));
+    g = MSOCL_ROWS_SEL(outside, olen,
+                       MSOCL_ROWS_SEL(xm, dx, MSOCL_ROWS_SEL(ym, dy, dz)));
+    nx = r00 * mx + r01 * my + r02 * mz;
+    ny = fma((msocl_rows_f)r10, mx, fma((msocl_rows_f)r11, my, r12 * mz));
+    nz = fma((msocl_rows_f)r22, mz, r20 * mx) + r21 * my;
+  }
+#endif
   (void)kind;
   const float fr = 1.0f * cv(1);
   /* on the velocity relative to a moving collider's surface */

@@ -984,12 +984,14 @@ END_TEST
  * corners and along the edges; dashpots on every other case; and a grid
  * narrower than a vector, which the planes passes run. colliders: 1
  * table, 2 sphere, 4 plane; pins: 1 two corners, 2 also edge
- * midpoints. */
+ * midpoints; 8 a capsule, 16 a turned box (the sweep's vector gaps,
+ * bitwise the passes' scalar ones). */
 static const struct {
   int nx, ny, colliders, pins;
-} rows_cases[] = {{16, 16, 1, 0}, {17, 9, 7, 2}, {47, 3, 4, 1},
-                  {33, 2, 2, 1},  {40, 23, 0, 2}, {70, 37, 1, 1},
-                  {12, 20, 7, 1}};
+} rows_cases[] = {{16, 16, 1, 0}, {17, 9, 7, 2},   {47, 3, 4, 1},
+                  {33, 2, 2, 1},  {40, 23, 0, 2},  {70, 37, 1, 1},
+                  {12, 20, 7, 1}, {32, 24, 8, 0},  {21, 29, 16, 1},
+                  {48, 17, 26, 2}};
 
 static msocl_model *rows_cloth(int q)
 {
@@ -1019,6 +1021,15 @@ static msocl_model *rows_cloth(int q)
     ck_assert_int_eq(msocl_model_add_sphere(m, ball, 0.15f, 0.5f), MSOCL_OK);
   if (c & 4)
     ck_assert_int_eq(msocl_model_add_plane(m, up, -0.2f, 0.2f), MSOCL_OK);
+  const float ca[3] = {-0.35f, -0.06f, -0.2f}, cb[3] = {0.3f, -0.08f, 0.25f};
+  if (c & 8)
+    ck_assert_int_eq(msocl_model_add_capsule(m, ca, cb, 0.06f, 0.4f),
+                     MSOCL_OK);
+  /* 0.6 rad about y, then tilted: a unit quaternion (x, y, z, w) */
+  const float turn[4] = {0.1f, 0.29f, -0.05f, 0.9513f},
+              at[3] = {-0.1f, -0.12f, -0.2f}, half[3] = {0.15f, 0.05f, 0.1f};
+  if (c & 16)
+    ck_assert_int_eq(msocl_model_add_box(m, at, turn, half, 0.3f), MSOCL_OK);
   if (rows_cases[q].pins) {
     ck_assert_int_eq(msocl_model_pin(m, 0, 1), MSOCL_OK);
     ck_assert_int_eq(msocl_model_pin(m, nx * ny - 1, 1), MSOCL_OK);

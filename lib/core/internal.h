@@ -53,9 +53,6 @@ int msocl__wind_check(const msocl_wind *w, double *kd, double *kl);
 
 enum { MSOCL__PLANE = 1, MSOCL__SPHERE = 2, MSOCL__TABLE = 3,
        MSOCL__CAPSULE = 4, MSOCL__BOX = 5 };
-/* Shapes (model/collider_shapes.c) the rows' sweep leaves to the planes
- * passes (planes_rows.c). */
-#define MSOCL__SHAPE_KIND(k) ((k) >= MSOCL__CAPSULE)
 
 /* One collider: kind, then p = (normal xyz, offset) for a plane,
  * (centre xyz, radius) for a sphere, (top centre xyz, radius) for a table. */

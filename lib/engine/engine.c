@@ -120,7 +120,6 @@ static int make_buffers(msocl__engine *s, const msocl_model *m)
     col[8 * c + 1] = m->col[c].friction;
     memcpy(col + 8 * c + 4, m->col[c].p, 4 * sizeof(float));
     memcpy(s->pl_colx + 8 * c, m->col[c].x, sizeof m->col[c].x);
-    s->pl_shapes |= MSOCL__SHAPE_KIND(m->col[c].kind);
   }
   /* Each triangle (a, b, c) lists (b, c) at a, (c, a) at b, (a, b) at c:
    * the same winding at every corner. */
@@ -335,7 +334,6 @@ int msocl__engine_colliders(msocl__engine *s, int ncol, unsigned kinds)
   MSOCL__TRY(msocl__program_get(s->dev, opt, &prog));
   s->ncol = ncol;
   s->pl_kinds = kinds;
-  s->pl_shapes = (kinds & (1u << MSOCL__CAPSULE | 1u << MSOCL__BOX)) != 0;
   MSOCL__TRY(msocl__planes_rebuild(s, prog, 0));
   return rebound(s);
 }

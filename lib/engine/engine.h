@@ -58,7 +58,6 @@ struct msocl__engine {
   cl_mem pl_s[2];         /* strain sweeps (velocity: pl_s[0]) */
   cl_mem pl_col;          /* the colliders, a float4 a value (planes.c) */
   float pl_colx[8 * MSOCL__MAX_COLLIDERS]; /* their msocl__collider.x */
-  int pl_shapes;          /* a capsule or box: not the rows' sweep */
   unsigned pl_kinds;      /* the collider kinds compiled in, 1 << kind */
   unsigned opt_model;     /* the model's -D options beside its colliders
                              (engine.c), kept for a rebuild */

@@ -432,15 +432,14 @@ static int padded_table(msocl__engine *s)
 /* Whether symplectic Euler's velocity and fused passes take
  * planes_wide.cl's kernels: BUFFER's gather (EDGES's too) on a CPU
  * device, where PoCL may leave the scalar ones unvectorised; one engine
- * (they launch over every point), no capsule or box (their vector
- * collision has no gap for them), precise math (bitwise the scalar
+ * (they launch over every point), precise math (bitwise the scalar
  * kernels'). */
 static int wide(const msocl__engine *s)
 {
   return s->dev->info.type == MSOCL_DEVICE_CPU &&
          (s->lay.kind == MSOCL_LAYOUT_BUFFER ||
           s->lay.kind == MSOCL_LAYOUT_EDGES) &&
-         s->lo == 0 && s->hi == s->n && !s->pl_shapes &&
+         s->lo == 0 && s->hi == s->n &&
          s->o.math == MSOCL_MATH_PRECISE;
 }
 

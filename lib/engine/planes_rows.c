@@ -17,9 +17,8 @@
 static int applies(const msocl__engine *s)
 {
   /* its blocks sweep the whole grid: a split's engine runs the two
-   * passes over its own rows instead; capsules and boxes: the other planes
-   * kernels (rows has no gap for them) */
-  return !s->pl_shapes && s->dev->info.type == MSOCL_DEVICE_CPU &&
+   * passes over its own rows instead */
+  return s->dev->info.type == MSOCL_DEVICE_CPU &&
          s->lo == 0 && s->hi == s->n &&
          s->lay.grid_nz == 0 && s->lay.grid_nx >= ROWS_W &&
          s->o.integrator == MSOCL_SYMPLECTIC_EULER &&
