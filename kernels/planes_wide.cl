@@ -130,8 +130,7 @@ static inline void msocl_wide_store(msocl_rows_f v, __global float *q,
     MSOCL_ROWS_STORE(v, q + x0);
     return;
   }
-  float t[MSOCL_ROWS_W];
-  MSOCL_ROWS_STORE(v, t);
+  const float *t = (const float *)&v;
   for (int u = 0; x0 + u < n && u < MSOCL_ROWS_W; u++)
     q[x0 + u] = t[u];
 }

@@ -19,14 +19,17 @@ typedef int16 msocl_rows_m;
 #define MSOCL_ROWS_LANES                                                      \
   ((int16)(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15))
 #define MSOCL_ROWS_LOAD(q) vload16(0, (q))
-#define MSOCL_ROWS_STORE(v, q) vstore16((v), 0, (q))
 #else
 typedef float8 msocl_rows_f;
 typedef int8 msocl_rows_m;
 #define MSOCL_ROWS_LANES ((int8)(0, 1, 2, 3, 4, 5, 6, 7))
 #define MSOCL_ROWS_LOAD(q) vload8(0, (q))
-#define MSOCL_ROWS_STORE(v, q) vstore8((v), 0, (q))
 #endif
+
+/* A store of a vector at any float's address: one unaligned vector store,
+ * where PoCL writes vstore16 as three (16, 16 and 32 bytes, two extracts) */
+typedef msocl_rows_f msocl_rows_any __attribute__((aligned(4)));
+#define MSOCL_ROWS_STORE(v, q) (*(__global msocl_rows_any *)(q) = (v))
 
 /* c ? a : b per lane */
 #define MSOCL_ROWS_SEL(c, a, b)                                               \
