@@ -307,25 +307,33 @@ __kernel void msocl_planes_rows(MSOCL_CONN, __global const float *p,
                                 __global float *v_out, float4 wind_air,
                                 float4 wind_coef, int wind)
 {
+#ifdef MSOCL_ROWS_RING_W
+  /* a constant: the ring's term rows at fixed offsets from three
+   * pointers, not a pointer each that spills (the host's ring_w) */
+  const int rw = MSOCL_ROWS_RING_W;
+  (void)ring_w;
+#else
+  const int rw = ring_w;
+#endif
   const int b = get_global_id(0), nb = get_global_size(0);
   const int y0 = (int)((long)grid_ny * b / nb),
             y1 = (int)((long)grid_ny * (b + 1) / nb);
-  const size_t one = (size_t)MSOCL_ROWS_TERMS * ring_w;
+  const size_t one = (size_t)MSOCL_ROWS_TERMS * rw;
   __global float *mine = ring + (size_t)b * 3 * one;
   __constant const float *cf = (__constant const float *)col;
   for (int y = y0 - 2; y < y1; y++) {
     msocl_rows_springs(MSOCL_CONN_ARGS, p, v, pitch, plane, y,
-                       mine + (size_t)((y + 3) % 3) * one, ring_w);
+                       mine + (size_t)((y + 3) % 3) * one, rw);
     if (wind && y >= y0 - 1)
       msocl_rows_wind(MSOCL_CONN_ARGS, p, v, pitch, plane, y, wind_air,
                       wind_coef,
-                      mine + (size_t)((y + 3) % 3) * one, ring_w);
+                      mine + (size_t)((y + 3) % 3) * one, rw);
     if (y >= y0)
       msocl_rows_kick(MSOCL_CONN_ARGS, p, v, v_out, p_out, aux, pitch, plane,
                       gravity, viscous, air, dt, cf,
                       mine + (size_t)((y + 1) % 3) * one,
                       mine + (size_t)((y + 2) % 3) * one,
-                      mine + (size_t)((y + 3) % 3) * one, y, ring_w, wind);
+                      mine + (size_t)((y + 3) % 3) * one, y, rw, wind);
   }
 }
 

@@ -42,10 +42,14 @@ static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
   clGetDeviceInfo(s->dev->id, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp,
                   NULL);
   /* the planes' kernels, with the colliders' loop unrolled */
-  char planes[80];
-  snprintf(planes, sizeof planes,
-           " -DMSOCL_PLANES -DMSOCL_NCOL=%d -DMSOCL_GRID_KINDS=%d", ncol,
-           s->opt_grid_kinds);
+  char planes[112];
+  const int ring_w = msocl__pl_rows_ring_w(s);
+  int at = snprintf(planes, sizeof planes,
+                    " -DMSOCL_PLANES -DMSOCL_NCOL=%d -DMSOCL_GRID_KINDS=%d",
+                    ncol, s->opt_grid_kinds);
+  if (ring_w > 0)
+    snprintf(planes + at, sizeof planes - (size_t)at,
+             " -DMSOCL_ROWS_RING_W=%d", ring_w);
 #define KIND(k) (kinds & (1u << (k)))
   /* EDGES holds BUFFER's table (layout.c) */
   int len = snprintf(

@@ -52,5 +52,8 @@ int msocl__pl_rows_step(msocl__engine *s, int r, int w);
 int msocl__pl_rows_wind(msocl__engine *s, const float air[3], float kd,
                         float kl);
 void msocl__pl_rows_release(msocl__engine *s);
+/* The columns of the sweep's ring rows on a CPU cloth grid (a build
+ * option there, -DMSOCL_ROWS_RING_W), 0 where it does not run. */
+int msocl__pl_rows_ring_w(const msocl__engine *s);
 
 #endif

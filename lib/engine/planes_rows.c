@@ -25,10 +25,21 @@ static int applies(const msocl__engine *s)
          s->o.strain == MSOCL_STRAIN_NONE;
 }
 
-/* a ring row's width: a padded row's columns -2..nx, whole vectors */
+/* A ring row's width: a padded row's columns -2..nx in whole vectors,
+ * 64 k + 16 floats, so that widths share programs (the kernel takes it as
+ * a constant) and term rows, 64 bytes off a multiple of 256, fall in every
+ * L1 set. */
 static int ring_width(const msocl__engine *s)
 {
-  return (s->lay.grid_nx + 3 + ROWS_W - 1) / ROWS_W * ROWS_W;
+  return (s->lay.grid_nx + 3 + 47) / 64 * 64 + ROWS_W;
+}
+
+int msocl__pl_rows_ring_w(const msocl__engine *s)
+{
+  return s->dev->info.type == MSOCL_DEVICE_CPU &&
+                 s->lay.kind == MSOCL_LAYOUT_GRID && s->lay.grid_nz == 0
+             ? ring_width(s)
+             : 0;
 }
 
 /* The sweep's kernel from prog, its arguments set, its wind off. */
