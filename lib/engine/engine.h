@@ -59,6 +59,8 @@ struct msocl__engine {
   cl_mem pl_col;          /* the colliders, a float4 a value (planes.c) */
   float pl_colx[8 * MSOCL__MAX_COLLIDERS]; /* their msocl__collider.x */
   unsigned pl_kinds;      /* the collider kinds compiled in, 1 << kind */
+  int pl_rebuilds;        /* programs taken after creation: what a test
+                             asks (a freed kernel's address comes back) */
   unsigned opt_model;     /* the model's -D options beside its colliders
                              (engine.c), kept for a rebuild */
   int opt_grid_kinds;

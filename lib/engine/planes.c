@@ -472,6 +472,7 @@ int msocl__planes_rebuild(msocl__engine *s, cl_program prog, int all)
 {
   /* nothing queued may still need a kernel released here */
   MSOCL__CL(clFinish(s->dev->queue));
+  s->pl_rebuilds++;
   for (int q = 0; q < PL_COUNT; q++) {
     if (!all && !reads_colliders(q))
       continue;
