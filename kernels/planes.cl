@@ -260,11 +260,6 @@ static MSOCL_PLANES_INLINE void msocl_planes_rk4(MSOCL_CONN, const int pass, con
   }
 }
 
-#define MSOCL_PLANES_RK4_ARGS                                                 \
-  (MSOCL_CONN, __global const float *p0, __global const float *v0,           \
-   __global const float *sp, __global const float *sv,                       \
-   __global float *sum_p, __global float *sum_v, __global float *np,         \
-   __global float *nv, MSOCL_PLANES_ARGS, float c)
 #define MSOCL_PLANES_RK4_NAMES                                                \
   (MSOCL_CONN_ARGS, p0, v0, sp, sv, sum_p, sum_v, np, nv,                    \
    MSOCL_PLANES_ARG_NAMES, c)

@@ -540,6 +540,14 @@ static MSOCL_PLANES_INLINE void msocl_planes_kick(MSOCL_CONN, const int pass,
 #define MSOCL_PLANES_ARG_NAMES                                                \
   aux, pitch, slab, plane, gravity, viscous, air, dt, col
 
+/* An RK4 stage kernel's parameters (planes.cl's and planes_wide.cl's):
+ * the step's start, the stage state read, the sums, the next state. */
+#define MSOCL_PLANES_RK4_ARGS                                                 \
+  (MSOCL_CONN, __global const float *p0, __global const float *v0,           \
+   __global const float *sp, __global const float *sv,                       \
+   __global float *sum_p, __global float *sum_v, __global float *np,         \
+   __global float *nv, MSOCL_PLANES_ARGS, float c)
+
 /* Both kernels' point (x, y, z), at a, and its new velocity; then the
  * store of that velocity. */
 #define MSOCL_PLANES_KICK                                                     \

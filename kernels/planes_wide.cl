@@ -1,19 +1,22 @@
-/* Symplectic Euler's velocity pass (and both passes fused) on BUFFER's
- * table, MSOCL_ROWS_W points a work-item in explicit vectors
- * (lib/engine/planes.c takes them on a CPU device, one engine, no capsule
- * or box, precise math).
+/* The gathering step kernels on BUFFER's table - symplectic Euler's
+ * velocity pass (and both passes fused), Verlet's kick, RK4's three
+ * stage kernels and forward Euler - MSOCL_ROWS_W points a work-item in
+ * explicit vectors (lib/engine/planes.c takes them on a CPU device, one
+ * engine, precise math).
  *
  * Why: PoCL vectorises a kernel across work-items only when its
- * per-work-item code is all scalar; for AVX2 (PoCL's target on this
- * project's AMD machines) LLVM's SLP vectorizer pairs the gather's x and
- * z differences into <2 x float> first, so msocl_planes_velocity ran one
- * point at a time, below serial C. Here every value is a vector of points
- * and the neighbours' coordinates are gathered lane by lane, so nothing is
- * left for SLP to pair. Same per-point arithmetic and slot order as
- * msocl_planes_kick: bitwise its result (tests/check_planes.c). A point
- * with springs past the table gets a partial sum here, which the kernel's
- * _spill twin (msocl_planes_velocity_spill / _fused_spill, launched after)
- * overwrites. */
+ * per-work-item code is all scalar and its cost model agrees; for AVX2
+ * (PoCL's target on this project's AMD machines) LLVM's SLP vectorizer
+ * pairs the slots' or the x and z components' arithmetic into short
+ * vectors first, and the gathers are dear, so the planes.cl kernels ran
+ * one point at a time, below serial C (docs/PERFORMANCE.md). Here every
+ * value is a vector of points and the neighbours' coordinates are
+ * gathered lane by lane, so nothing is left for SLP to pair. Same
+ * per-point arithmetic and slot order as planes.cl's kernels: bitwise
+ * their results (tests/check_planes.c). A point with springs past the
+ * table gets a partial sum here, which the kernel's _spill twin (launched
+ * after) overwrites; RK4's sums, which the twin reads, are left alone for
+ * it. */
 #include "rows.h"
 #if defined(MSOCL_PLANES) && !defined(MSOCL_LAYOUT_GRID) && \
     !defined(MSOCL_LAYOUT_IMAGE2D)
@@ -29,18 +32,18 @@ static inline msocl_rows_f msocl_wide_gather(__global const float *q,
   return MSOCL_ROWS_LOAD(t);
 }
 
-/* The new velocities of points x0 .. x0 + W - 1 (msocl_planes_kick's),
- * their positions in *px.., and whether each is pinned. */
-static inline void msocl_wide_kick(MSOCL_CONN, __global const float *p,
-                                   __global const float *v,
-                                   __global const float *aux, int slab,
-                                   int plane, float4 gravity, float viscous,
-                                   float air, float dt,
-                                   __constant const float *cf, int x0,
-                                   msocl_rows_f *px, msocl_rows_f *py,
-                                   msocl_rows_f *pz, msocl_rows_f *vx_out,
-                                   msocl_rows_f *vy_out,
-                                   msocl_rows_f *vz_out, msocl_rows_m *held)
+/* The spring and dashpot force on points x0 .. x0 + W - 1 at positions
+ * p and velocities v, slot by slot (msocl_planes_force's sums, before
+ * viscous damping), and the points' own positions and velocities. */
+static inline void msocl_wide_force(MSOCL_CONN, __global const float *p,
+                                    __global const float *v, int slab,
+                                    int plane, int x0, msocl_rows_f *qx_out,
+                                    msocl_rows_f *qy_out,
+                                    msocl_rows_f *qz_out,
+                                    msocl_rows_f *ux_out,
+                                    msocl_rows_f *uy_out,
+                                    msocl_rows_f *uz_out, msocl_rows_f *fx_out,
+                                    msocl_rows_f *fy_out, msocl_rows_f *fz_out)
 {
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
   __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
@@ -105,20 +108,64 @@ static inline void msocl_wide_kick(MSOCL_CONN, __global const float *p,
     fz += MSOCL_ROWS_SEL(onh, h * dz, 0.0f);
 #endif
   }
-  msocl_rows_f vx, vy, vz;
-  msocl_rows_velocity(fx, fy, fz, ux, uy, uz, MSOCL_ROWS_LOAD(aux + x0), qx,
-                      qy, qz, gravity, viscous, air, dt, cf, &vx, &vy, &vz);
+  *qx_out = qx;
+  *qy_out = qy;
+  *qz_out = qz;
+  *ux_out = ux;
+  *uy_out = uy;
+  *uz_out = uz;
+  *fx_out = fx;
+  *fy_out = fy;
+  *fz_out = fz;
+}
+
+/* Whether each of the points x0 .. x0 + W - 1 is pinned */
+static inline msocl_rows_m msocl_wide_pinned(__global const float *aux,
+                                             int plane, int x0)
+{
 #ifdef MSOCL_PINS
-  *held = MSOCL_ROWS_LOAD(aux + plane + x0) != 0.0f;
+  return MSOCL_ROWS_LOAD(aux + plane + x0) != 0.0f;
 #else
-  *held = (msocl_rows_m)(0);
+  (void)aux; (void)plane; (void)x0;
+  return (msocl_rows_m)(0);
 #endif
+}
+
+/* The new velocities of points x0 .. x0 + W - 1 (msocl_planes_kick's),
+ * their positions in *px.., and whether each is pinned. */
+static inline void msocl_wide_kick(MSOCL_CONN, __global const float *p,
+                                   __global const float *v,
+                                   __global const float *aux, int slab,
+                                   int plane, float4 gravity, float viscous,
+                                   float air, float dt,
+                                   __constant const float *cf, int x0,
+                                   msocl_rows_f *px, msocl_rows_f *py,
+                                   msocl_rows_f *pz, msocl_rows_f *vx_out,
+                                   msocl_rows_f *vy_out,
+                                   msocl_rows_f *vz_out, msocl_rows_m *held)
+{
+  msocl_rows_f ux, uy, uz, fx, fy, fz;
+  msocl_wide_force(MSOCL_CONN_ARGS, p, v, slab, plane, x0, px, py, pz, &ux,
+                   &uy, &uz, &fx, &fy, &fz);
+  msocl_rows_f vx, vy, vz;
+  msocl_rows_velocity(fx, fy, fz, ux, uy, uz, MSOCL_ROWS_LOAD(aux + x0), *px,
+                      *py, *pz, gravity, viscous, air, dt, cf, &vx, &vy, &vz);
+  *held = msocl_wide_pinned(aux, plane, x0);
   *vx_out = MSOCL_ROWS_SEL(*held, 0.0f, vx);
   *vy_out = MSOCL_ROWS_SEL(*held, 0.0f, vy);
   *vz_out = MSOCL_ROWS_SEL(*held, 0.0f, vz);
-  *px = qx;
-  *py = qy;
-  *pz = qz;
+}
+
+/* msocl_planes_force's viscous damping on a spring force */
+static inline msocl_rows_f msocl_wide_viscous(msocl_rows_f f, msocl_rows_f u,
+                                              float viscous)
+{
+#ifdef MSOCL_VISCOUS
+  return f - viscous * u;
+#else
+  (void)u; (void)viscous;
+  return f;
+#endif
 }
 
 /* v's W values at q, or those of them below n (the row's padding keeps
@@ -166,6 +213,248 @@ __kernel void msocl_planes_wide_fused(MSOCL_CONN, __global const float *p,
                    pitch);
   msocl_wide_store(MSOCL_ROWS_SEL(held, pz, pz + dt * vz), p_out + 2 * plane,
                    x0, pitch);
+}
+
+/* Velocity Verlet's kick on BUFFER's table (msocl_planes_vkick's
+ * arithmetic): a' = a(p', v+), v' = v+ + dt/2 a', a' kept. */
+__kernel void msocl_planes_wide_vkick(MSOCL_CONN, __global const float *p,
+                                      __global const float *v,
+                                      __global float *v_out,
+                                      __global float *acc_out,
+                                      MSOCL_PLANES_ARGS)
+{
+  const int x0 = get_global_id(0) * MSOCL_ROWS_W;
+  msocl_rows_f qx, qy, qz, ux, uy, uz, fx, fy, fz;
+  msocl_wide_force(MSOCL_CONN_ARGS, p, v, slab, plane, x0, &qx, &qy, &qz,
+                   &ux, &uy, &uz, &fx, &fy, &fz);
+  fx = msocl_wide_viscous(fx, ux, viscous);
+  fy = msocl_wide_viscous(fy, uy, viscous);
+  fz = msocl_wide_viscous(fz, uz, viscous);
+  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + x0);
+  const float h = 0.5f * dt;
+  const msocl_rows_f ax = fx * im + gravity.x, ay = fy * im + gravity.y,
+                     az = fz * im + gravity.z;
+  msocl_rows_f vx = ux + h * ax, vy = uy + h * ay, vz = uz + h * az;
+#ifdef MSOCL_AIR
+  vx = air * vx;
+  vy = air * vy;
+  vz = air * vz;
+#endif
+  (void)air; (void)col; (void)qx; (void)qy; (void)qz;
+  const msocl_rows_m held = msocl_wide_pinned(aux, plane, x0);
+  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, vx), v_out, x0, pitch);
+  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, vy), v_out + plane, x0, pitch);
+  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, vz), v_out + 2 * plane, x0,
+                   pitch);
+  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, ax), acc_out, x0, pitch);
+  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, ay), acc_out + plane, x0,
+                   pitch);
+  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, az), acc_out + 2 * plane, x0,
+                   pitch);
+}
+
+/* Which of the points x0 .. x0 + W - 1 have all their springs in the
+ * table: a point that spills is finished by the _spill twin, which reads
+ * the RK4 sums this kernel would otherwise have updated already. */
+static inline msocl_rows_m msocl_wide_whole(MSOCL_CONN, int x0, int n)
+{
+#ifdef MSOCL_SPILL
+  int w[MSOCL_ROWS_W];
+#pragma unroll
+  for (int u = 0; u < MSOCL_ROWS_W; u++) {
+    const int x = min(x0 + u, n - 1);
+    w[u] = -(int)(spill[x + 1] == spill[x]);
+  }
+  return MSOCL_ROWS_LOAD(w);
+#else
+  (void)x0; (void)n;
+  return (msocl_rows_m)(-1);
+#endif
+}
+
+/* RK4's first (mode 0) and middle (1) stages on BUFFER's table
+ * (msocl_planes_rk4's arithmetic): the stage's derivative at (sp, sv)
+ * added to the sums, and the next stage state p0 + c dt k. */
+static inline void msocl_wide_rk4(
+    MSOCL_CONN, __global const float *p0, __global const float *v0,
+    __global const float *sp, __global const float *sv,
+    __global float *sum_p, __global float *sum_v, __global float *np,
+    __global float *nv, __global const float *aux, int pitch, int slab,
+    int plane, float4 gravity, float viscous, float dt, float c,
+    const int mode)
+{
+  const int x0 = get_global_id(0) * MSOCL_ROWS_W;
+  msocl_rows_f q[3], k[3], f[3];
+  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, slab, plane, x0, &q[0], &q[1],
+                   &q[2], &k[0], &k[1], &k[2], &f[0], &f[1], &f[2]);
+  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + x0);
+  const float g[3] = {gravity.x, gravity.y, gravity.z};
+  const msocl_rows_m held = msocl_wide_pinned(aux, plane, x0);
+  const msocl_rows_m whole = msocl_wide_whole(MSOCL_CONN_ARGS, x0, pitch);
+  const float h = c * dt;
+#pragma unroll
+  for (int d = 0; d < 3; d++) {
+    const int o = d * plane + x0;
+    const msocl_rows_f kv = msocl_wide_viscous(f[d], k[d], viscous) * im + g[d];
+    const msocl_rows_f kp = k[d];
+    msocl_rows_f s_p = kp, s_v = kv;
+    if (mode != 0) {
+      const msocl_rows_f old_p = MSOCL_ROWS_LOAD(sum_p + o),
+                         old_v = MSOCL_ROWS_LOAD(sum_v + o);
+      s_p = MSOCL_ROWS_SEL(whole, old_p + 2.0f * kp, old_p);
+      s_v = MSOCL_ROWS_SEL(whole, old_v + 2.0f * kv, old_v);
+    }
+    msocl_wide_store(s_p, sum_p + d * plane, x0, pitch);
+    msocl_wide_store(s_v, sum_v + d * plane, x0, pitch);
+    const msocl_rows_f start = MSOCL_ROWS_LOAD(p0 + o);
+    msocl_wide_store(MSOCL_ROWS_SEL(held, start, start + h * kp),
+                     np + d * plane, x0, pitch);
+    msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, MSOCL_ROWS_LOAD(v0 + o) + h * kv),
+                     nv + d * plane, x0, pitch);
+  }
+  (void)q;
+}
+
+#define MSOCL_WIDE_RK4(mode)                                                  \
+  msocl_wide_rk4(MSOCL_CONN_ARGS, p0, v0, sp, sv, sum_p, sum_v, np, nv, aux, \
+                 pitch, slab, plane, gravity, viscous, dt, c, mode);         \
+  (void)air; (void)col
+
+/* the parameter list without its parentheses (expanded first) */
+#define MSOCL_WIDE_PARAMS(list) MSOCL_PLANES_UNPAREN list
+
+__kernel void msocl_planes_wide_rk4_first(
+    MSOCL_WIDE_PARAMS(MSOCL_PLANES_RK4_ARGS))
+{
+  MSOCL_WIDE_RK4(0);
+}
+
+__kernel void msocl_planes_wide_rk4_middle(
+    MSOCL_WIDE_PARAMS(MSOCL_PLANES_RK4_ARGS))
+{
+  MSOCL_WIDE_RK4(1);
+}
+
+/* msocl_planes_project for every collider, lane by lane: a point found
+ * inside goes back to the surface and loses its inward speed. */
+static inline void msocl_wide_project(msocl_rows_f *px, msocl_rows_f *py,
+                                      msocl_rows_f *pz, msocl_rows_f *vx,
+                                      msocl_rows_f *vy, msocl_rows_f *vz,
+                                      float dt, __constant const float *cf)
+{
+#pragma unroll
+  for (int c = 0; c < MSOCL_NCOL; c++) {
+#define cv(k) MSOCL_PLANES_COL(cf, c, k)
+    MSOCL_PLANES_SURFACE(msocl_rows_f, cv, *px, *py, *pz);
+    const bool moving = cv(2) != 0.0f;
+    const float fr = cv(1);
+#undef cv
+    const msocl_rows_f ex = moving ? *px - dt * ux : *px,
+                       ey = moving ? *py - dt * uy : *py,
+                       ez = moving ? *pz - dt * uz : *pz;
+    msocl_rows_f nx, ny, nz;
+    const msocl_rows_f g = msocl_rows_gap(ex, ey, ez, cf, c, &nx, &ny, &nz);
+    const msocl_rows_m in = g < 0.0f;
+    const msocl_rows_f qx = *px - g * nx, qy = *py - g * ny,
+                       qz = *pz - g * nz;
+    const msocl_rows_f ox = moving ? *vx - ux : *vx,
+                       oy = moving ? *vy - uy : *vy,
+                       oz = moving ? *vz - uz : *vz;
+    const msocl_rows_f vn = MSOCL_DOT3(ox, oy, oz, nx, ny, nz);
+    const msocl_rows_m back = in & (vn < 0.0f);
+    msocl_rows_f wx = ox - vn * nx, wy = oy - vn * ny, wz = oz - vn * nz;
+    wx = wx - fr * wx;
+    wy = wy - fr * wy;
+    wz = wz - fr * wz;
+    if (moving) {
+      wx = wx + ux;
+      wy = wy + uy;
+      wz = wz + uz;
+    }
+    *px = MSOCL_ROWS_SEL(in, qx, *px);
+    *py = MSOCL_ROWS_SEL(in, qy, *py);
+    *pz = MSOCL_ROWS_SEL(in, qz, *pz);
+    *vx = MSOCL_ROWS_SEL(back, wx, *vx);
+    *vy = MSOCL_ROWS_SEL(back, wy, *vy);
+    *vz = MSOCL_ROWS_SEL(back, wz, *vz);
+  }
+  (void)cf;
+}
+
+/* RK4's last stage (msocl_planes_rk4's mode 2): the step's end from the
+ * sums and this stage's derivative, air resistance, and the projection
+ * out of the colliders. */
+__kernel void msocl_planes_wide_rk4_last(
+    MSOCL_WIDE_PARAMS(MSOCL_PLANES_RK4_ARGS))
+{
+  const int x0 = get_global_id(0) * MSOCL_ROWS_W;
+  msocl_rows_f q[3], k[3], f[3], e[3], w[3];
+  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, slab, plane, x0, &q[0], &q[1],
+                   &q[2], &k[0], &k[1], &k[2], &f[0], &f[1], &f[2]);
+  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + x0);
+  const float g[3] = {gravity.x, gravity.y, gravity.z};
+  const float h = dt / 6.0f;
+#pragma unroll
+  for (int d = 0; d < 3; d++) {
+    const int o = d * plane + x0;
+    const msocl_rows_f kv =
+        msocl_wide_viscous(f[d], k[d], viscous) * im + g[d];
+    e[d] = MSOCL_ROWS_LOAD(p0 + o) +
+           h * (MSOCL_ROWS_LOAD(sum_p + o) + k[d]);
+    w[d] = MSOCL_ROWS_LOAD(v0 + o) + h * (MSOCL_ROWS_LOAD(sum_v + o) + kv);
+#ifdef MSOCL_AIR
+    w[d] = air * w[d];
+#endif
+  }
+  (void)air; (void)c; (void)q;
+  msocl_wide_project(&e[0], &e[1], &e[2], &w[0], &w[1], &w[2], dt,
+                     (__constant const float *)col);
+  const msocl_rows_m held = msocl_wide_pinned(aux, plane, x0);
+#pragma unroll
+  for (int d = 0; d < 3; d++) {
+    msocl_wide_store(MSOCL_ROWS_SEL(held, MSOCL_ROWS_LOAD(p0 + d * plane + x0),
+                                    e[d]),
+                     np + d * plane, x0, pitch);
+    msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, w[d]), nv + d * plane, x0,
+                     pitch);
+  }
+}
+
+/* Forward Euler (msocl_planes_euler's arithmetic): p' = p + dt v,
+ * v' = v + dt a(p, v), air resistance, the projection out of the
+ * colliders; pinned points stay. */
+__kernel void msocl_planes_wide_euler(MSOCL_CONN, __global const float *p,
+                                      __global const float *v,
+                                      __global float *v_out,
+                                      __global float *p_out,
+                                      MSOCL_PLANES_ARGS)
+{
+  const int x0 = get_global_id(0) * MSOCL_ROWS_W;
+  msocl_rows_f q[3], u[3], f[3];
+  msocl_wide_force(MSOCL_CONN_ARGS, p, v, slab, plane, x0, &q[0], &q[1],
+                   &q[2], &u[0], &u[1], &u[2], &f[0], &f[1], &f[2]);
+  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + x0);
+  const float g[3] = {gravity.x, gravity.y, gravity.z};
+  msocl_rows_f e[3], w[3];
+#pragma unroll
+  for (int d = 0; d < 3; d++) {
+    e[d] = q[d] + dt * u[d];
+    w[d] = u[d] + dt * (msocl_wide_viscous(f[d], u[d], viscous) * im + g[d]);
+#ifdef MSOCL_AIR
+    w[d] = air * w[d];
+#endif
+  }
+  (void)air;
+  msocl_wide_project(&e[0], &e[1], &e[2], &w[0], &w[1], &w[2], dt,
+                     (__constant const float *)col);
+  const msocl_rows_m held = msocl_wide_pinned(aux, plane, x0);
+#pragma unroll
+  for (int d = 0; d < 3; d++) {
+    msocl_wide_store(MSOCL_ROWS_SEL(held, q[d], e[d]), p_out + d * plane, x0,
+                     pitch);
+    msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, w[d]), v_out + d * plane, x0,
+                     pitch);
+  }
 }
 
 #endif

@@ -35,12 +35,14 @@ typedef msocl_rows_f msocl_rows_any __attribute__((aligned(4)));
 #define MSOCL_ROWS_SEL(c, a, b)                                               \
   select((msocl_rows_f)(b), (msocl_rows_f)(a), (msocl_rows_m)(c))
 
-/* msocl_planes_gap and msocl_planes_collide's response for collider c,
- * lane by lane. */
-static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
-                               msocl_rows_f pz, msocl_rows_f *vx_io,
-                               msocl_rows_f *vy_io, msocl_rows_f *vz_io,
-                               float dt, __constant const float *cf, int c)
+/* msocl_planes_gap for collider c, lane by lane: the gap, and the unit
+ * gradient in *nx_out.. */
+static inline msocl_rows_f msocl_rows_gap(msocl_rows_f px, msocl_rows_f py,
+                                          msocl_rows_f pz,
+                                          __constant const float *cf, int c,
+                                          msocl_rows_f *nx_out,
+                                          msocl_rows_f *ny_out,
+                                          msocl_rows_f *nz_out)
 {
 #define cv(k) MSOCL_PLANES_COL(cf, c, k)
   const int kind = (int)cv(0);
@@ -142,6 +144,22 @@ static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
   }
 #endif
   (void)kind;
+#undef cv
+  *nx_out = nx;
+  *ny_out = ny;
+  *nz_out = nz;
+  return g;
+}
+
+/* msocl_planes_collide's response for collider c, lane by lane. */
+static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
+                               msocl_rows_f pz, msocl_rows_f *vx_io,
+                               msocl_rows_f *vy_io, msocl_rows_f *vz_io,
+                               float dt, __constant const float *cf, int c)
+{
+  msocl_rows_f nx, ny, nz;
+  const msocl_rows_f g = msocl_rows_gap(px, py, pz, cf, c, &nx, &ny, &nz);
+#define cv(k) MSOCL_PLANES_COL(cf, c, k)
   const float fr = 1.0f * cv(1);
   /* on the velocity relative to a moving collider's surface */
   MSOCL_PLANES_SURFACE(msocl_rows_f, cv, px, py, pz);

@@ -427,13 +427,10 @@ static int padded_table(msocl__engine *s)
   return MSOCL_OK;
 }
 
-/* Planes kernel q from prog, and its _spill twin where it has one (the
- * twin's last argument, the list of the points that spill, set). */
-/* Whether symplectic Euler's velocity and fused passes take
- * planes_wide.cl's kernels: BUFFER's gather (EDGES's too) on a CPU
- * device, where PoCL may leave the scalar ones unvectorised; one engine
- * (they launch over every point), precise math (bitwise the scalar
- * kernels'). */
+/* Whether the gathering passes wide_name() lists take planes_wide.cl's
+ * kernels: BUFFER's gather (EDGES's too) on a CPU device, where PoCL may
+ * leave the scalar ones unvectorised; one engine (they launch over every
+ * point), precise math (bitwise the scalar kernels'). */
 static int wide(const msocl__engine *s)
 {
   return s->dev->info.type == MSOCL_DEVICE_CPU &&
@@ -443,14 +440,39 @@ static int wide(const msocl__engine *s)
          s->o.math == MSOCL_MATH_PRECISE;
 }
 
+/* Planes kernel q's twin in planes_wide.cl, or NULL: every gathering
+ * step kernel but implicit Euler's and the strain limits'. */
+static const char *wide_name(int q)
+{
+  switch (q) {
+  case PL_VELOCITY:
+    return "msocl_planes_wide_velocity";
+  case PL_FUSED:
+    return "msocl_planes_wide_fused";
+  case PL_KICK:
+    return "msocl_planes_wide_vkick";
+  case PL_RK4:
+    return "msocl_planes_wide_rk4_first";
+  case PL_RK4_MID:
+    return "msocl_planes_wide_rk4_middle";
+  case PL_RK4_LAST:
+    return "msocl_planes_wide_rk4_last";
+  case PL_EULER:
+    return "msocl_planes_wide_euler";
+  default:
+    return NULL;
+  }
+}
+
+/* Planes kernel q from prog, and its _spill twin where it has one (the
+ * twin's last argument, the list of the points that spill, set). */
 static int make_kernel(msocl__engine *s, cl_program prog, int q)
 {
   const char *name = names[q];
   if (q == PL_VELOCITY)
     s->pl_wide = wide(s);
-  if (s->pl_wide && (q == PL_VELOCITY || q == PL_FUSED))
-    name = q == PL_VELOCITY ? "msocl_planes_wide_velocity"
-                            : "msocl_planes_wide_fused";
+  if (s->pl_wide && wide_name(q))
+    name = wide_name(q);
   TRY(msocl__kernel_make(s->dev, prog, name, &s->pl_k[q]));
   if (s->pl_nspill == 0 || !gathers(q))
     return MSOCL_OK;
@@ -577,7 +599,7 @@ int msocl__pl_launch(msocl__engine *s, int k)
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
   size_t off[3], size[3];
   own_part(s, k, off, size);
-  if (s->pl_wide && (k == PL_VELOCITY || k == PL_FUSED)) {
+  if (s->pl_wide && wide_name(k)) {
     /* MSOCL_ROWS_W points a work-item (planes_wide.cl) */
     size[0] /= 16;
     local[0] = 4;
