@@ -18,160 +18,17 @@
  * after) overwrites; RK4's sums, which the twin reads, are left alone for
  * it. */
 #include "rows.h"
-#if defined(MSOCL_PLANES) && !defined(MSOCL_LAYOUT_GRID) && \
-    !defined(MSOCL_LAYOUT_IMAGE2D)
 
-/* q at the lanes' indices j */
-static inline msocl_rows_f msocl_wide_gather(__global const float *q,
-                                             const int *j)
-{
-  float t[MSOCL_ROWS_W];
-#pragma unroll
-  for (int u = 0; u < MSOCL_ROWS_W; u++)
-    t[u] = q[j[u]];
-  return MSOCL_ROWS_LOAD(t);
-}
-
-/* The spring and dashpot force on points x0 .. x0 + W - 1 at positions
- * p and velocities v, slot by slot (msocl_planes_force's sums, before
- * viscous damping), and the points' own positions and velocities. */
-static inline void msocl_wide_force(MSOCL_CONN, __global const float *p,
-                                    __global const float *v, int slab,
-                                    int plane, int x0, msocl_rows_f *qx_out,
-                                    msocl_rows_f *qy_out,
-                                    msocl_rows_f *qz_out,
-                                    msocl_rows_f *ux_out,
-                                    msocl_rows_f *uy_out,
-                                    msocl_rows_f *uz_out, msocl_rows_f *fx_out,
-                                    msocl_rows_f *fy_out, msocl_rows_f *fz_out)
-{
-  __global const float *py_ = p + plane, *pz_ = py_ + plane;
-  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
-  const msocl_rows_f qx = MSOCL_ROWS_LOAD(p + x0),
-                     qy = MSOCL_ROWS_LOAD(py_ + x0),
-                     qz = MSOCL_ROWS_LOAD(pz_ + x0);
-  const msocl_rows_f ux = MSOCL_ROWS_LOAD(v + x0),
-                     uy = MSOCL_ROWS_LOAD(vy_ + x0),
-                     uz = MSOCL_ROWS_LOAD(vz_ + x0);
-  const msocl_rows_m self = MSOCL_ROWS_LANES + x0;
-  msocl_rows_f fx = 0.0f, fy = 0.0f, fz = 0.0f;
-  /* one slot at a time: unrolled, every slot's 16 lanes stayed live and
-   * were spilled to a stack frame of kilobytes */
-#pragma unroll 1
-  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
-    const int at = s * slab + x0;
-    int j[MSOCL_ROWS_W];
-#pragma unroll
-    for (int u = 0; u < MSOCL_ROWS_W; u++)
-      j[u] = nbr[at + u];
-    const msocl_rows_m jv = MSOCL_ROWS_LOAD(j);
-#ifdef MSOCL_CLASSES
-    float r[MSOCL_ROWS_W], k[MSOCL_ROWS_W], c[MSOCL_ROWS_W];
-#pragma unroll
-    for (int u = 0; u < MSOCL_ROWS_W; u++) {
-      __global const float *w = (__global const float *)dmp + 4 * rk[at + u];
-      r[u] = w[0];
-      k[u] = w[1];
-      c[u] = w[2];
-    }
-    const msocl_rows_f rest = MSOCL_ROWS_LOAD(r), kk = MSOCL_ROWS_LOAD(k);
-#ifdef MSOCL_DAMPING
-    const msocl_rows_f cc = MSOCL_ROWS_LOAD(c);
-#endif
-#else
-    __global const float *w = (__global const float *)rk;
-    const msocl_rows_f rest = MSOCL_ROWS_LOAD(w + at),
-                       kk = MSOCL_ROWS_LOAD(w + MSOCL_SLOTS * slab + at);
-#ifdef MSOCL_DAMPING
-    const msocl_rows_f cc = MSOCL_ROWS_LOAD(dmp + at);
-#endif
-#endif
-    const msocl_rows_m there = jv != self;
-    const msocl_rows_f dx = msocl_wide_gather(p, j) - qx,
-                       dy = msocl_wide_gather(py_, j) - qy,
-                       dz = msocl_wide_gather(pz_, j) - qz;
-    const msocl_rows_f len2 = dx * dx + dy * dy + dz * dz;
-    const msocl_rows_f len = MSOCL_SQRT(len2);
-    const msocl_rows_f t = kk * MSOCL_DIV(len - rest, len);
-    const msocl_rows_m on = there & (len > 0.0f);
-    fx += MSOCL_ROWS_SEL(on, t * dx, 0.0f);
-    fy += MSOCL_ROWS_SEL(on, t * dy, 0.0f);
-    fz += MSOCL_ROWS_SEL(on, t * dz, 0.0f);
-#ifdef MSOCL_DAMPING
-    const msocl_rows_f wx = msocl_wide_gather(v, j) - ux,
-                       wy = msocl_wide_gather(vy_, j) - uy,
-                       wz = msocl_wide_gather(vz_, j) - uz;
-    const msocl_rows_f h = cc * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
-    const msocl_rows_m onh = there & (len2 > 0.0f);
-    fx += MSOCL_ROWS_SEL(onh, h * dx, 0.0f);
-    fy += MSOCL_ROWS_SEL(onh, h * dy, 0.0f);
-    fz += MSOCL_ROWS_SEL(onh, h * dz, 0.0f);
-#endif
-  }
-  *qx_out = qx;
-  *qy_out = qy;
-  *qz_out = qz;
-  *ux_out = ux;
-  *uy_out = uy;
-  *uz_out = uz;
-  *fx_out = fx;
-  *fy_out = fy;
-  *fz_out = fz;
-}
-
-/* Whether each of the points x0 .. x0 + W - 1 is pinned */
-static inline msocl_rows_m msocl_wide_pinned(__global const float *aux,
-                                             int plane, int x0)
-{
-#ifdef MSOCL_PINS
-  return MSOCL_ROWS_LOAD(aux + plane + x0) != 0.0f;
-#else
-  (void)aux; (void)plane; (void)x0;
-  return (msocl_rows_m)(0);
-#endif
-}
-
-/* The new velocities of points x0 .. x0 + W - 1 (msocl_planes_kick's),
- * their positions in *px.., and whether each is pinned. */
-static inline void msocl_wide_kick(MSOCL_CONN, __global const float *p,
-                                   __global const float *v,
-                                   __global const float *aux, int slab,
-                                   int plane, float4 gravity, float viscous,
-                                   float air, float dt,
-                                   __constant const float *cf, int x0,
-                                   msocl_rows_f *px, msocl_rows_f *py,
-                                   msocl_rows_f *pz, msocl_rows_f *vx_out,
-                                   msocl_rows_f *vy_out,
-                                   msocl_rows_f *vz_out, msocl_rows_m *held)
-{
-  msocl_rows_f ux, uy, uz, fx, fy, fz;
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, slab, plane, x0, px, py, pz, &ux,
-                   &uy, &uz, &fx, &fy, &fz);
-  msocl_rows_f vx, vy, vz;
-  msocl_rows_velocity(fx, fy, fz, ux, uy, uz, MSOCL_ROWS_LOAD(aux + x0), *px,
-                      *py, *pz, gravity, viscous, air, dt, cf, &vx, &vy, &vz);
-  *held = msocl_wide_pinned(aux, plane, x0);
-  *vx_out = MSOCL_ROWS_SEL(*held, 0.0f, vx);
-  *vy_out = MSOCL_ROWS_SEL(*held, 0.0f, vy);
-  *vz_out = MSOCL_ROWS_SEL(*held, 0.0f, vz);
-}
-
-/* msocl_planes_force's viscous damping on a spring force */
-static inline msocl_rows_f msocl_wide_viscous(msocl_rows_f f, msocl_rows_f u,
-                                              float viscous)
-{
-#ifdef MSOCL_VISCOUS
-  return f - viscous * u;
-#else
-  (void)u; (void)viscous;
-  return f;
-#endif
-}
+#ifdef MSOCL_ROWS
+/* Every helper inlined: a float16 passed by value to a call left in the
+ * kernel goes through the stack on AVX2 (and a shared helper, called from
+ * several kernels, was left a call). */
+#define MSOCL_WIDE_INLINE inline __attribute__((always_inline))
 
 /* v's W values at q, or those of them below n (the row's padding keeps
  * its zeros) */
-static inline void msocl_wide_store(msocl_rows_f v, __global float *q,
-                                    int x0, int n)
+static MSOCL_WIDE_INLINE void
+msocl_wide_store(msocl_rows_f v, __global float *q, int x0, int n)
 {
   if (x0 + MSOCL_ROWS_W <= n) {
     MSOCL_ROWS_STORE(v, q + x0);
@@ -182,16 +39,224 @@ static inline void msocl_wide_store(msocl_rows_f v, __global float *q,
     q[x0 + u] = t[u];
 }
 
+#endif
+#ifdef MSOCL_ROWS
+
+/* The work-item's 16 points x0 .. x0 + W - 1 of row y (BUFFER: of the
+ * points in index order) at a in the planes, the row's first point at
+ * row; a result stored for those below the row's end. */
+#define MSOCL_WIDE_AT                                                         \
+  const int x0 = get_global_id(0) * MSOCL_ROWS_W, y = get_global_id(1);      \
+  const int a = MSOCL_PLANES_AT(x0, y, 0), row = a - x0;                     \
+  (void)y
+#define MSOCL_WIDE_PUT(val, q)                                                \
+  msocl_wide_store((val), (q) + row, x0, MSOCL_PLANES_NX)
+
+#ifndef MSOCL_LAYOUT_GRID
+/* q at the lanes' indices j */
+static MSOCL_WIDE_INLINE msocl_rows_f
+msocl_wide_gather(__global const float *q, const int *j)
+{
+  float t[MSOCL_ROWS_W];
+#pragma unroll
+  for (int u = 0; u < MSOCL_ROWS_W; u++)
+    t[u] = q[j[u]];
+  return MSOCL_ROWS_LOAD(t);
+}
+#endif
+
+/* One slot's spring and dashpot on the points at q (velocities u), from
+ * their neighbours at n (velocities w) where `there`: msocl_planes_pull's
+ * terms, added to f. */
+static MSOCL_WIDE_INLINE void
+msocl_wide_pull(msocl_rows_f nx, msocl_rows_f ny, msocl_rows_f nz,
+                msocl_rows_f wx0, msocl_rows_f wy0, msocl_rows_f wz0,
+                msocl_rows_f qx, msocl_rows_f qy, msocl_rows_f qz,
+                msocl_rows_f ux, msocl_rows_f uy, msocl_rows_f uz,
+                msocl_rows_m there, msocl_rows_f rest, msocl_rows_f kk,
+                msocl_rows_f cc, msocl_rows_f *fx, msocl_rows_f *fy,
+                msocl_rows_f *fz)
+{
+  const msocl_rows_f dx = nx - qx, dy = ny - qy, dz = nz - qz;
+  const msocl_rows_f len2 = dx * dx + dy * dy + dz * dz;
+  const msocl_rows_f len = MSOCL_SQRT(len2);
+  const msocl_rows_f t = kk * MSOCL_DIV(len - rest, len);
+  const msocl_rows_m on = there & (len > 0.0f);
+  *fx += MSOCL_ROWS_SEL(on, t * dx, 0.0f);
+  *fy += MSOCL_ROWS_SEL(on, t * dy, 0.0f);
+  *fz += MSOCL_ROWS_SEL(on, t * dz, 0.0f);
+#ifdef MSOCL_DAMPING
+  const msocl_rows_f wx = wx0 - ux, wy = wy0 - uy, wz = wz0 - uz;
+  const msocl_rows_f h = cc * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
+  const msocl_rows_m onh = there & (len2 > 0.0f);
+  *fx += MSOCL_ROWS_SEL(onh, h * dx, 0.0f);
+  *fy += MSOCL_ROWS_SEL(onh, h * dy, 0.0f);
+  *fz += MSOCL_ROWS_SEL(onh, h * dz, 0.0f);
+#else
+  (void)wx0; (void)wy0; (void)wz0; (void)ux; (void)uy; (void)uz; (void)cc;
+#endif
+}
+
+/* The spring and dashpot force f on the points x0 .. x0 + W - 1 of row
+ * y at positions p and velocities v, slot by slot (msocl_planes_force's
+ * sums, before viscous damping), and the points' own positions q and
+ * velocities u. GRID: each neighbour a fixed offset away, one vector load;
+ * BUFFER: the table's, gathered lane by lane. */
+static MSOCL_WIDE_INLINE void
+msocl_wide_force(MSOCL_CONN, __global const float *p, __global const float *v,
+                 int pitch, int slab, int plane, int x0, int y,
+                 msocl_rows_f q_out[3], msocl_rows_f u_out[3],
+                 msocl_rows_f f_out[3])
+{
+  const int a = MSOCL_PLANES_AT(x0, y, 0);
+  __global const float *py_ = p + plane, *pz_ = py_ + plane;
+  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
+  const msocl_rows_f qx = MSOCL_ROWS_LOAD(p + a),
+                     qy = MSOCL_ROWS_LOAD(py_ + a),
+                     qz = MSOCL_ROWS_LOAD(pz_ + a);
+  const msocl_rows_f ux = MSOCL_ROWS_LOAD(v + a),
+                     uy = MSOCL_ROWS_LOAD(vy_ + a),
+                     uz = MSOCL_ROWS_LOAD(vz_ + a);
+  msocl_rows_f fx = 0.0f, fy = 0.0f, fz = 0.0f;
+  msocl_rows_f wx = 0.0f, wy = 0.0f, wz = 0.0f;
+#ifdef MSOCL_LAYOUT_GRID
+  (void)slab;
+  const msocl_rows_m lx = MSOCL_ROWS_LANES + x0;
+#pragma unroll
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    if (MSOCL_PLANES_SKIP(s))
+      continue;
+    const int b = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];
+    const int ny_ = y + msocl_grid_dy[s];
+    const float kk = MSOCL_GRID_K(s);
+    const msocl_rows_m nx_ = lx + msocl_grid_dx[s];
+    const msocl_rows_m there =
+        (nx_ >= 0) & (nx_ < grid_nx) &
+        (msocl_rows_m)(-(int)(ny_ >= 0 && ny_ < grid_ny && kk != 0.0f));
+#ifdef MSOCL_DAMPING
+    wx = MSOCL_ROWS_LOAD(v + b);
+    wy = MSOCL_ROWS_LOAD(vy_ + b);
+    wz = MSOCL_ROWS_LOAD(vz_ + b);
+#endif
+    msocl_wide_pull(MSOCL_ROWS_LOAD(p + b), MSOCL_ROWS_LOAD(py_ + b),
+                    MSOCL_ROWS_LOAD(pz_ + b), wx, wy, wz, qx, qy, qz, ux, uy,
+                    uz, there, (msocl_rows_f)MSOCL_GRID_R(s),
+                    (msocl_rows_f)kk, (msocl_rows_f)MSOCL_GRID_C, &fx, &fy,
+                    &fz);
+  }
+#else
+  (void)pitch;
+  const msocl_rows_m self = MSOCL_ROWS_LANES + x0;
+  /* one slot at a time: unrolled, every slot's 16 lanes stayed live and
+   * were spilled to a stack frame of kilobytes */
+#pragma unroll 1
+  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+    const int at = s * slab + x0;
+    int j[MSOCL_ROWS_W];
+#pragma unroll
+    for (int u = 0; u < MSOCL_ROWS_W; u++)
+      j[u] = nbr[at + u];
+    const msocl_rows_m jv = MSOCL_ROWS_LOAD(j);
+    msocl_rows_f cc = 0.0f;
+#ifdef MSOCL_CLASSES
+    float r[MSOCL_ROWS_W], k[MSOCL_ROWS_W], c[MSOCL_ROWS_W];
+#pragma unroll
+    for (int u = 0; u < MSOCL_ROWS_W; u++) {
+      __global const float *w = (__global const float *)dmp + 4 * rk[at + u];
+      r[u] = w[0];
+      k[u] = w[1];
+      c[u] = w[2];
+    }
+    const msocl_rows_f rest = MSOCL_ROWS_LOAD(r), kk = MSOCL_ROWS_LOAD(k);
+    cc = MSOCL_ROWS_LOAD(c);
+#else
+    __global const float *w = (__global const float *)rk;
+    const msocl_rows_f rest = MSOCL_ROWS_LOAD(w + at),
+                       kk = MSOCL_ROWS_LOAD(w + MSOCL_SLOTS * slab + at);
+#ifdef MSOCL_DAMPING
+    cc = MSOCL_ROWS_LOAD(dmp + at);
+#endif
+#endif
+#ifdef MSOCL_DAMPING
+    wx = msocl_wide_gather(v, j);
+    wy = msocl_wide_gather(vy_, j);
+    wz = msocl_wide_gather(vz_, j);
+#endif
+    msocl_wide_pull(msocl_wide_gather(p, j), msocl_wide_gather(py_, j),
+                    msocl_wide_gather(pz_, j), wx, wy, wz, qx, qy, qz, ux, uy,
+                    uz, jv != self, rest, kk, cc, &fx, &fy, &fz);
+  }
+#endif
+  q_out[0] = qx;
+  q_out[1] = qy;
+  q_out[2] = qz;
+  u_out[0] = ux;
+  u_out[1] = uy;
+  u_out[2] = uz;
+  f_out[0] = fx;
+  f_out[1] = fy;
+  f_out[2] = fz;
+}
+
+/* Whether each of the W points at a is pinned */
+static MSOCL_WIDE_INLINE msocl_rows_m
+msocl_wide_pinned(__global const float *aux, int plane, int a)
+{
+#ifdef MSOCL_PINS
+  return MSOCL_ROWS_LOAD(aux + plane + a) != 0.0f;
+#else
+  (void)aux; (void)plane; (void)a;
+  return (msocl_rows_m)(0);
+#endif
+}
+
+/* The new velocities of points x0 .. x0 + W - 1 (msocl_planes_kick's),
+ * their positions in *px.., and whether each is pinned. */
+static MSOCL_WIDE_INLINE void
+msocl_wide_kick(MSOCL_CONN, __global const float *p, __global const float *v,
+                __global const float *aux, int slab, int plane, float4 gravity,
+                float viscous, float air, float dt, __constant const float *cf,
+                int pitch, int x0, int y, int a, msocl_rows_f *px,
+                msocl_rows_f *py, msocl_rows_f *pz, msocl_rows_f *vx_out,
+                msocl_rows_f *vy_out, msocl_rows_f *vz_out, msocl_rows_m *held)
+{
+  msocl_rows_f q[3], u[3], f[3];
+  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, q, u, f);
+  *px = q[0];
+  *py = q[1];
+  *pz = q[2];
+  msocl_rows_f vx, vy, vz;
+  msocl_rows_velocity(f[0], f[1], f[2], u[0], u[1], u[2],
+                      MSOCL_ROWS_LOAD(aux + a), q[0], q[1], q[2], gravity,
+                      viscous, air, dt, cf, &vx, &vy, &vz);
+  *held = msocl_wide_pinned(aux, plane, a);
+  *vx_out = MSOCL_ROWS_SEL(*held, 0.0f, vx);
+  *vy_out = MSOCL_ROWS_SEL(*held, 0.0f, vy);
+  *vz_out = MSOCL_ROWS_SEL(*held, 0.0f, vz);
+}
+
+/* msocl_planes_force's viscous damping on a spring force */
+static MSOCL_WIDE_INLINE msocl_rows_f
+msocl_wide_viscous(msocl_rows_f f, msocl_rows_f u, float viscous)
+{
+#ifdef MSOCL_VISCOUS
+  return f - viscous * u;
+#else
+  (void)u; (void)viscous;
+  return f;
+#endif
+}
+
 #define MSOCL_WIDE_KICK                                                       \
-  const int x0 = get_global_id(0) * MSOCL_ROWS_W;                            \
+  MSOCL_WIDE_AT;                                                             \
   msocl_rows_f px, py, pz, vx, vy, vz;                                       \
   msocl_rows_m held;                                                         \
   msocl_wide_kick(MSOCL_CONN_ARGS, p, v, aux, slab, plane, gravity, viscous, \
-                  air, dt, (__constant const float *)col, x0, &px, &py,      \
-                  &pz, &vx, &vy, &vz, &held);                                \
-  msocl_wide_store(vx, v_out, x0, pitch);                                    \
-  msocl_wide_store(vy, v_out + plane, x0, pitch);                            \
-  msocl_wide_store(vz, v_out + 2 * plane, x0, pitch)
+                  air, dt, (__constant const float *)col, pitch, x0, y, a,   \
+                  &px, &py, &pz, &vx, &vy, &vz, &held);                      \
+  MSOCL_WIDE_PUT(vx, v_out);                                                 \
+  MSOCL_WIDE_PUT(vy, v_out + plane);                                         \
+  MSOCL_WIDE_PUT(vz, v_out + 2 * plane)
 
 __kernel void msocl_planes_wide_velocity(MSOCL_CONN, __global const float *p,
                                          __global const float *v,
@@ -208,11 +273,9 @@ __kernel void msocl_planes_wide_fused(MSOCL_CONN, __global const float *p,
                                       MSOCL_PLANES_ARGS)
 {
   MSOCL_WIDE_KICK;
-  msocl_wide_store(MSOCL_ROWS_SEL(held, px, px + dt * vx), p_out, x0, pitch);
-  msocl_wide_store(MSOCL_ROWS_SEL(held, py, py + dt * vy), p_out + plane, x0,
-                   pitch);
-  msocl_wide_store(MSOCL_ROWS_SEL(held, pz, pz + dt * vz), p_out + 2 * plane,
-                   x0, pitch);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, px, px + dt * vx), p_out);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, py, py + dt * vy), p_out + plane);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, pz, pz + dt * vz), p_out + 2 * plane);
 }
 
 /* Velocity Verlet's kick on BUFFER's table (msocl_planes_vkick's
@@ -223,40 +286,37 @@ __kernel void msocl_planes_wide_vkick(MSOCL_CONN, __global const float *p,
                                       __global float *acc_out,
                                       MSOCL_PLANES_ARGS)
 {
-  const int x0 = get_global_id(0) * MSOCL_ROWS_W;
-  msocl_rows_f qx, qy, qz, ux, uy, uz, fx, fy, fz;
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, slab, plane, x0, &qx, &qy, &qz,
-                   &ux, &uy, &uz, &fx, &fy, &fz);
-  fx = msocl_wide_viscous(fx, ux, viscous);
-  fy = msocl_wide_viscous(fy, uy, viscous);
-  fz = msocl_wide_viscous(fz, uz, viscous);
-  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + x0);
+  MSOCL_WIDE_AT;
+  msocl_rows_f q[3], u[3], f[3];
+  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, q, u, f);
+  const msocl_rows_f fx = msocl_wide_viscous(f[0], u[0], viscous),
+                     fy = msocl_wide_viscous(f[1], u[1], viscous),
+                     fz = msocl_wide_viscous(f[2], u[2], viscous);
+  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
   const float h = 0.5f * dt;
   const msocl_rows_f ax = fx * im + gravity.x, ay = fy * im + gravity.y,
                      az = fz * im + gravity.z;
-  msocl_rows_f vx = ux + h * ax, vy = uy + h * ay, vz = uz + h * az;
+  msocl_rows_f vx = u[0] + h * ax, vy = u[1] + h * ay, vz = u[2] + h * az;
 #ifdef MSOCL_AIR
   vx = air * vx;
   vy = air * vy;
   vz = air * vz;
 #endif
-  (void)air; (void)col; (void)qx; (void)qy; (void)qz;
-  const msocl_rows_m held = msocl_wide_pinned(aux, plane, x0);
-  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, vx), v_out, x0, pitch);
-  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, vy), v_out + plane, x0, pitch);
-  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, vz), v_out + 2 * plane, x0,
-                   pitch);
-  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, ax), acc_out, x0, pitch);
-  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, ay), acc_out + plane, x0,
-                   pitch);
-  msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, az), acc_out + 2 * plane, x0,
-                   pitch);
+  (void)air; (void)col; (void)q;
+  const msocl_rows_m held = msocl_wide_pinned(aux, plane, a);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, vx), v_out);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, vy), v_out + plane);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, vz), v_out + 2 * plane);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, ax), acc_out);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, ay), acc_out + plane);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, az), acc_out + 2 * plane);
 }
 
 /* Which of the points x0 .. x0 + W - 1 have all their springs in the
  * table: a point that spills is finished by the _spill twin, which reads
  * the RK4 sums this kernel would otherwise have updated already. */
-static inline msocl_rows_m msocl_wide_whole(MSOCL_CONN, int x0, int n)
+static MSOCL_WIDE_INLINE msocl_rows_m
+msocl_wide_whole(MSOCL_CONN, int x0, int n)
 {
 #ifdef MSOCL_SPILL
   int w[MSOCL_ROWS_W];
@@ -275,26 +335,26 @@ static inline msocl_rows_m msocl_wide_whole(MSOCL_CONN, int x0, int n)
 /* RK4's first (mode 0) and middle (1) stages on BUFFER's table
  * (msocl_planes_rk4's arithmetic): the stage's derivative at (sp, sv)
  * added to the sums, and the next stage state p0 + c dt k. */
-static inline void msocl_wide_rk4(
-    MSOCL_CONN, __global const float *p0, __global const float *v0,
-    __global const float *sp, __global const float *sv,
-    __global float *sum_p, __global float *sum_v, __global float *np,
-    __global float *nv, __global const float *aux, int pitch, int slab,
-    int plane, float4 gravity, float viscous, float dt, float c,
-    const int mode)
+static MSOCL_WIDE_INLINE void
+msocl_wide_rk4(MSOCL_CONN, __global const float *p0, __global const float *v0,
+               __global const float *sp, __global const float *sv,
+               __global float *sum_p, __global float *sum_v,
+               __global float *np, __global float *nv,
+               __global const float *aux, int pitch, int slab, int plane,
+               float4 gravity, float viscous, float dt, float c,
+               const int mode)
 {
-  const int x0 = get_global_id(0) * MSOCL_ROWS_W;
+  MSOCL_WIDE_AT;
   msocl_rows_f q[3], k[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, slab, plane, x0, &q[0], &q[1],
-                   &q[2], &k[0], &k[1], &k[2], &f[0], &f[1], &f[2]);
-  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + x0);
+  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, x0, y, q, k, f);
+  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
   const float g[3] = {gravity.x, gravity.y, gravity.z};
-  const msocl_rows_m held = msocl_wide_pinned(aux, plane, x0);
+  const msocl_rows_m held = msocl_wide_pinned(aux, plane, a);
   const msocl_rows_m whole = msocl_wide_whole(MSOCL_CONN_ARGS, x0, pitch);
   const float h = c * dt;
 #pragma unroll
   for (int d = 0; d < 3; d++) {
-    const int o = d * plane + x0;
+    const int o = d * plane + a;
     const msocl_rows_f kv = msocl_wide_viscous(f[d], k[d], viscous) * im + g[d];
     const msocl_rows_f kp = k[d];
     msocl_rows_f s_p = kp, s_v = kv;
@@ -304,13 +364,14 @@ static inline void msocl_wide_rk4(
       s_p = MSOCL_ROWS_SEL(whole, old_p + 2.0f * kp, old_p);
       s_v = MSOCL_ROWS_SEL(whole, old_v + 2.0f * kv, old_v);
     }
-    msocl_wide_store(s_p, sum_p + d * plane, x0, pitch);
-    msocl_wide_store(s_v, sum_v + d * plane, x0, pitch);
+    MSOCL_WIDE_PUT(s_p, sum_p + d * plane);
+    MSOCL_WIDE_PUT(s_v, sum_v + d * plane);
     const msocl_rows_f start = MSOCL_ROWS_LOAD(p0 + o);
-    msocl_wide_store(MSOCL_ROWS_SEL(held, start, start + h * kp),
-                     np + d * plane, x0, pitch);
-    msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, MSOCL_ROWS_LOAD(v0 + o) + h * kv),
-                     nv + d * plane, x0, pitch);
+    MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, start, start + h * kp),
+                   np + d * plane);
+    MSOCL_WIDE_PUT(
+        MSOCL_ROWS_SEL(held, 0.0f, MSOCL_ROWS_LOAD(v0 + o) + h * kv),
+        nv + d * plane);
   }
   (void)q;
 }
@@ -337,10 +398,10 @@ __kernel void msocl_planes_wide_rk4_middle(
 
 /* msocl_planes_project for every collider, lane by lane: a point found
  * inside goes back to the surface and loses its inward speed. */
-static inline void msocl_wide_project(msocl_rows_f *px, msocl_rows_f *py,
-                                      msocl_rows_f *pz, msocl_rows_f *vx,
-                                      msocl_rows_f *vy, msocl_rows_f *vz,
-                                      float dt, __constant const float *cf)
+static MSOCL_WIDE_INLINE void
+msocl_wide_project(msocl_rows_f *px, msocl_rows_f *py, msocl_rows_f *pz,
+                   msocl_rows_f *vx, msocl_rows_f *vy, msocl_rows_f *vz,
+                   float dt, __constant const float *cf)
 {
 #pragma unroll
   for (int c = 0; c < MSOCL_NCOL; c++) {
@@ -387,16 +448,15 @@ static inline void msocl_wide_project(msocl_rows_f *px, msocl_rows_f *py,
 __kernel void msocl_planes_wide_rk4_last(
     MSOCL_WIDE_PARAMS(MSOCL_PLANES_RK4_ARGS))
 {
-  const int x0 = get_global_id(0) * MSOCL_ROWS_W;
+  MSOCL_WIDE_AT;
   msocl_rows_f q[3], k[3], f[3], e[3], w[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, slab, plane, x0, &q[0], &q[1],
-                   &q[2], &k[0], &k[1], &k[2], &f[0], &f[1], &f[2]);
-  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + x0);
+  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, x0, y, q, k, f);
+  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
   const float g[3] = {gravity.x, gravity.y, gravity.z};
   const float h = dt / 6.0f;
 #pragma unroll
   for (int d = 0; d < 3; d++) {
-    const int o = d * plane + x0;
+    const int o = d * plane + a;
     const msocl_rows_f kv =
         msocl_wide_viscous(f[d], k[d], viscous) * im + g[d];
     e[d] = MSOCL_ROWS_LOAD(p0 + o) +
@@ -409,14 +469,12 @@ __kernel void msocl_planes_wide_rk4_last(
   (void)air; (void)c; (void)q;
   msocl_wide_project(&e[0], &e[1], &e[2], &w[0], &w[1], &w[2], dt,
                      (__constant const float *)col);
-  const msocl_rows_m held = msocl_wide_pinned(aux, plane, x0);
+  const msocl_rows_m held = msocl_wide_pinned(aux, plane, a);
 #pragma unroll
   for (int d = 0; d < 3; d++) {
-    msocl_wide_store(MSOCL_ROWS_SEL(held, MSOCL_ROWS_LOAD(p0 + d * plane + x0),
-                                    e[d]),
-                     np + d * plane, x0, pitch);
-    msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, w[d]), nv + d * plane, x0,
-                     pitch);
+    MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, MSOCL_ROWS_LOAD(p0 + d * plane + a),
+                                    e[d]), np + d * plane);
+    MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, w[d]), nv + d * plane);
   }
 }
 
@@ -429,11 +487,10 @@ __kernel void msocl_planes_wide_euler(MSOCL_CONN, __global const float *p,
                                       __global float *p_out,
                                       MSOCL_PLANES_ARGS)
 {
-  const int x0 = get_global_id(0) * MSOCL_ROWS_W;
+  MSOCL_WIDE_AT;
   msocl_rows_f q[3], u[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, slab, plane, x0, &q[0], &q[1],
-                   &q[2], &u[0], &u[1], &u[2], &f[0], &f[1], &f[2]);
-  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + x0);
+  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, q, u, f);
+  const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
   const float g[3] = {gravity.x, gravity.y, gravity.z};
   msocl_rows_f e[3], w[3];
 #pragma unroll
@@ -447,14 +504,59 @@ __kernel void msocl_planes_wide_euler(MSOCL_CONN, __global const float *p,
   (void)air;
   msocl_wide_project(&e[0], &e[1], &e[2], &w[0], &w[1], &w[2], dt,
                      (__constant const float *)col);
-  const msocl_rows_m held = msocl_wide_pinned(aux, plane, x0);
+  const msocl_rows_m held = msocl_wide_pinned(aux, plane, a);
 #pragma unroll
   for (int d = 0; d < 3; d++) {
-    msocl_wide_store(MSOCL_ROWS_SEL(held, q[d], e[d]), p_out + d * plane, x0,
-                     pitch);
-    msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, w[d]), v_out + d * plane, x0,
-                     pitch);
+    MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, q[d], e[d]), p_out + d * plane);
+    MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, w[d]), v_out + d * plane);
   }
 }
 
+#endif
+
+/* Verlet's drift (msocl_planes_drift's arithmetic), pointwise, so on a
+ * cloth grid's padded rows too: v+ = v + dt/2 a with the collision
+ * response, in place, and p' = p + dt v+; only points x < nx stored. */
+#ifdef MSOCL_ROWS
+__kernel void msocl_planes_wide_drift(__global const float *p,
+                                      __global float *v,
+                                      __global const float *acc,
+                                      __global float *p_out,
+                                      __global const float *aux, int nx,
+                                      int pitch, int slab, int plane,
+                                      float dt, __constant float4 *col)
+{
+  const int x0 = get_global_id(0) * MSOCL_ROWS_W, y = get_global_id(1),
+            z = get_global_id(2);
+  const int a = MSOCL_PLANES_AT(x0, y, z);
+  (void)slab; (void)y; (void)z; /* BUFFER's address is x0 alone */
+  const float h = 0.5f * dt;
+  msocl_rows_f q[3], u[3];
+#pragma unroll
+  for (int d = 0; d < 3; d++) {
+    q[d] = MSOCL_ROWS_LOAD(p + d * plane + a);
+    u[d] = MSOCL_ROWS_LOAD(v + d * plane + a) +
+           h * MSOCL_ROWS_LOAD(acc + d * plane + a);
+  }
+  __constant const float *cf = (__constant const float *)col;
+#pragma unroll
+  for (int c = 0; c < MSOCL_NCOL; c++)
+    msocl_rows_collide(q[0], q[1], q[2], &u[0], &u[1], &u[2], dt, cf, c);
+  (void)cf;
+#ifdef MSOCL_PINS
+  const msocl_rows_m held = MSOCL_ROWS_LOAD(aux + plane + a) != 0.0f;
+#else
+  const msocl_rows_m held = (msocl_rows_m)(0);
+#endif
+  (void)aux;
+  /* the row's first point at x0 = 0 */
+  const int row = a - x0;
+#pragma unroll
+  for (int d = 0; d < 3; d++) {
+    msocl_wide_store(MSOCL_ROWS_SEL(held, q[d], q[d] + dt * u[d]),
+                     p_out + d * plane + row, x0, nx);
+    msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, u[d]), v + d * plane + row,
+                     x0, nx);
+  }
+}
 #endif

@@ -10,6 +10,7 @@
 #if defined(MSOCL_PLANES) &&                                                 \
     ((defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_GRID_3D)) ||               \
      (!defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_LAYOUT_IMAGE2D)))
+#define MSOCL_ROWS 1 /* the vectors below exist in this program */
 #ifndef MSOCL_ROWS_W
 #define MSOCL_ROWS_W 16
 #endif

@@ -259,8 +259,8 @@ END_TEST
 
 /* GRID (planes_rows for symplectic Euler's sphere), BUFFER (on a CPU
  * planes_wide.cl's vectors) and IMAGE2D give bitwise the same pass of a
- * moving shape: the collision response (symplectic Euler) and the
- * projection (RK4's last stage, forward Euler). */
+ * moving shape: the collision response (symplectic Euler, Verlet's
+ * drift) and the projection (RK4's last stage, forward Euler). */
 static const struct {
   int kind;
   msocl_integrator in;
@@ -268,6 +268,7 @@ static const struct {
 } alike[] = {
     {SPHERE, MSOCL_SYMPLECTIC_EULER, 0.0f},
     {BOX_TURNING, MSOCL_SYMPLECTIC_EULER, 0.0f},
+    {BOX_TURNING, MSOCL_VERLET, 1e-3f},
     {CAPSULE, MSOCL_RK4, 1e-3f},
     {BOX_TURNING, MSOCL_RK4, 1e-3f},
     {SPHERE, MSOCL_EXPLICIT_EULER, 1e-3f},

@@ -75,8 +75,8 @@ struct msocl__engine {
   size_t pl_global[3];    /* the passes' range: rows padded to a group */
   size_t pl_group;        /* a work-group's points (CPU devices) */
   /* symplectic Euler in one sweep a step (planes_rows.c), where it applies */
-  int pl_wide;            /* the gathering passes are planes_wide.cl's
-                             where it has them (planes.c) */
+  unsigned pl_wide;       /* 1 << q: planes kernel q is planes_wide.cl's
+                             (planes.c) */
   cl_kernel pl_rows;
   cl_mem pl_ring;         /* its work-items' rings of spring terms */
   size_t pl_blocks;       /* its work-items: blocks of rows */

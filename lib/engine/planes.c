@@ -427,21 +427,25 @@ static int padded_table(msocl__engine *s)
   return MSOCL_OK;
 }
 
-/* Whether the gathering passes wide_name() lists take planes_wide.cl's
- * kernels: BUFFER's gather (EDGES's too) on a CPU device, where PoCL may
- * leave the scalar ones unvectorised; one engine (they launch over every
- * point), precise math (bitwise the scalar kernels'). */
+/* Whether the planes kernels take their planes_wide.cl twins (wide_name):
+ * on a CPU device, where PoCL may leave the scalar kernels unvectorised;
+ * one engine (they launch over every point), precise math (bitwise the
+ * scalar kernels'); BUFFER's or EDGES's table, or a cloth grid whose rows
+ * come in work-groups of 64 (16 points a work-item, 4 a group). */
 static int wide(const msocl__engine *s)
 {
-  return s->dev->info.type == MSOCL_DEVICE_CPU &&
-         (s->lay.kind == MSOCL_LAYOUT_BUFFER ||
-          s->lay.kind == MSOCL_LAYOUT_EDGES) &&
-         s->lo == 0 && s->hi == s->n &&
-         s->o.math == MSOCL_MATH_PRECISE;
+  if (s->dev->info.type != MSOCL_DEVICE_CPU || s->lo != 0 ||
+      s->hi != s->n || s->o.math != MSOCL_MATH_PRECISE)
+    return 0;
+  return s->lay.kind == MSOCL_LAYOUT_BUFFER ||
+         s->lay.kind == MSOCL_LAYOUT_EDGES ||
+         (s->lay.kind == MSOCL_LAYOUT_GRID && s->lay.grid_nz == 0 &&
+          s->pl_group == 64);
 }
 
 /* Planes kernel q's twin in planes_wide.cl, or NULL: every gathering
- * step kernel but implicit Euler's and the strain limits'. */
+ * step kernel but implicit Euler's and the strain limits', and Verlet's
+ * drift. */
 static const char *wide_name(int q)
 {
   switch (q) {
@@ -459,6 +463,8 @@ static const char *wide_name(int q)
     return "msocl_planes_wide_rk4_last";
   case PL_EULER:
     return "msocl_planes_wide_euler";
+  case PL_DRIFT:
+    return "msocl_planes_wide_drift";
   default:
     return NULL;
   }
@@ -469,10 +475,12 @@ static const char *wide_name(int q)
 static int make_kernel(msocl__engine *s, cl_program prog, int q)
 {
   const char *name = names[q];
-  if (q == PL_VELOCITY)
-    s->pl_wide = wide(s);
-  if (s->pl_wide && wide_name(q))
+  const unsigned bit = 1u << q;
+  s->pl_wide &= ~bit;
+  if (wide_name(q) && wide(s)) {
     name = wide_name(q);
+    s->pl_wide |= bit;
+  }
   TRY(msocl__kernel_make(s->dev, prog, name, &s->pl_k[q]));
   if (s->pl_nspill == 0 || !gathers(q))
     return MSOCL_OK;
@@ -599,7 +607,7 @@ int msocl__pl_launch(msocl__engine *s, int k)
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
   size_t off[3], size[3];
   own_part(s, k, off, size);
-  if (s->pl_wide && wide_name(k)) {
+  if (s->pl_wide & (1u << k)) {
     /* MSOCL_ROWS_W points a work-item (planes_wide.cl) */
     size[0] /= 16;
     local[0] = 4;
