@@ -228,7 +228,7 @@ msocl_wide_kick(MSOCL_CONN, __global const float *p, __global const float *v,
   msocl_rows_f vx, vy, vz;
   msocl_rows_velocity(f[0], f[1], f[2], u[0], u[1], u[2],
                       MSOCL_ROWS_LOAD(aux + a), q[0], q[1], q[2], gravity,
-                      viscous, air, dt, cf, &vx, &vy, &vz);
+                      viscous, air, dt, cf, 0, &vx, &vy, &vz);
   *held = msocl_wide_pinned(aux, plane, a);
   *vx_out = MSOCL_ROWS_SEL(*held, 0.0f, vx);
   *vy_out = MSOCL_ROWS_SEL(*held, 0.0f, vy);
@@ -541,7 +541,7 @@ __kernel void msocl_planes_wide_drift(__global const float *p,
   __constant const float *cf = (__constant const float *)col;
 #pragma unroll
   for (int c = 0; c < MSOCL_NCOL; c++)
-    msocl_rows_collide(q[0], q[1], q[2], &u[0], &u[1], &u[2], dt, cf, c);
+    msocl_rows_collide(q[0], q[1], q[2], &u[0], &u[1], &u[2], dt, cf, c, 0);
   (void)cf;
 #ifdef MSOCL_PINS
   const msocl_rows_m held = MSOCL_ROWS_LOAD(aux + plane + a) != 0.0f;

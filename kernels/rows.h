@@ -152,11 +152,14 @@ static inline msocl_rows_f msocl_rows_gap(msocl_rows_f px, msocl_rows_f py,
   return g;
 }
 
-/* msocl_planes_collide's response for collider c, lane by lane. */
-static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
-                               msocl_rows_f pz, msocl_rows_f *vx_io,
-                               msocl_rows_f *vy_io, msocl_rows_f *vz_io,
-                               float dt, __constant const float *cf, int c)
+/* msocl_planes_collide's response for collider c, lane by lane; `still`
+ * (a constant where it is inlined) when the host knows no collider moves
+ * this step: the same bits, without the motion's terms and branches. */
+static inline __attribute__((always_inline)) void
+msocl_rows_collide(msocl_rows_f px, msocl_rows_f py, msocl_rows_f pz,
+                   msocl_rows_f *vx_io, msocl_rows_f *vy_io,
+                   msocl_rows_f *vz_io, float dt, __constant const float *cf,
+                   int c, int still)
 {
   msocl_rows_f nx, ny, nz;
   const msocl_rows_f g = msocl_rows_gap(px, py, pz, cf, c, &nx, &ny, &nz);
@@ -164,7 +167,7 @@ static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
   const float fr = 1.0f * cv(1);
   /* on the velocity relative to a moving collider's surface */
   MSOCL_PLANES_SURFACE(msocl_rows_f, cv, px, py, pz);
-  const bool moving = cv(2) != 0.0f;
+  const bool moving = !still && cv(2) != 0.0f;
 #undef cv
   const msocl_rows_f vx = *vx_io, vy = *vy_io, vz = *vz_io;
   const msocl_rows_f ox = moving ? vx - ux : vx, oy = moving ? vy - uy : vy,
@@ -191,12 +194,12 @@ static inline void msocl_rows_collide(msocl_rows_f px, msocl_rows_f py,
  * u and inverse masses im: viscous damping, gravity, air resistance and
  * the colliders at their positions q - msocl_planes_kick's arithmetic,
  * so the bits are its. */
-static inline void msocl_rows_velocity(
+static inline __attribute__((always_inline)) void msocl_rows_velocity(
     msocl_rows_f fx, msocl_rows_f fy, msocl_rows_f fz, msocl_rows_f ux,
     msocl_rows_f uy, msocl_rows_f uz, msocl_rows_f im, msocl_rows_f qx,
     msocl_rows_f qy, msocl_rows_f qz, float4 gravity, float viscous,
-    float air, float dt, __constant const float *cf, msocl_rows_f *vx_out,
-    msocl_rows_f *vy_out, msocl_rows_f *vz_out)
+    float air, float dt, __constant const float *cf, int still,
+    msocl_rows_f *vx_out, msocl_rows_f *vy_out, msocl_rows_f *vz_out)
 {
 #ifdef MSOCL_VISCOUS
   fx = fx - viscous * ux;
@@ -215,7 +218,7 @@ static inline void msocl_rows_velocity(
   (void)air;
 #pragma unroll
   for (int c = 0; c < MSOCL_NCOL; c++)
-    msocl_rows_collide(qx, qy, qz, &vx, &vy, &vz, dt, cf, c);
+    msocl_rows_collide(qx, qy, qz, &vx, &vy, &vz, dt, cf, c, still);
   (void)cf;
   *vx_out = vx;
   *vy_out = vy;

@@ -57,6 +57,8 @@ struct msocl__engine {
   cl_mem pl_sp[2], pl_sv[2], pl_sum[2]; /* RK4: stage states, sums */
   cl_mem pl_s[2];         /* strain sweeps (velocity: pl_s[0]) */
   cl_mem pl_col;          /* the colliders, a float4 a value (planes.c) */
+  int pl_col_moving;      /* a collider in the table as last written moves
+                             (sim_colliders.c): the sweep's still twin not */
   float pl_colx[8 * MSOCL__MAX_COLLIDERS]; /* their msocl__collider.x */
   unsigned pl_kinds;      /* the collider kinds compiled in, 1 << kind */
   int pl_rebuilds;        /* programs taken after creation: what a test
@@ -77,7 +79,7 @@ struct msocl__engine {
   /* symplectic Euler in one sweep a step (planes_rows.c), where it applies */
   unsigned pl_wide;       /* 1 << q: planes kernel q is planes_wide.cl's
                              (planes.c) */
-  cl_kernel pl_rows;
+  cl_kernel pl_rows, pl_rows_still; /* and with colliders at rest */
   cl_mem pl_ring;         /* its work-items' rings of spring terms */
   size_t pl_blocks;       /* its work-items: blocks of rows */
   int pl_rows_wind;       /* it blows wind on the quads (wind.c) */

@@ -177,6 +177,8 @@ int msocl__planes_fit(const msocl__engine *s)
 /* The _spill twin of planes kernel k, or NULL. */
 static cl_kernel twin(const msocl__engine *s, cl_kernel k)
 {
+  if (k && k == s->pl_rows)
+    return s->pl_rows_still;
   for (int q = 0; q < PL_COUNT; q++)
     if (s->pl_k[q] == k)
       return s->pl_ks[q];

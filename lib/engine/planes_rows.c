@@ -42,13 +42,9 @@ int msocl__pl_rows_ring_w(const msocl__engine *s)
              : 0;
 }
 
-/* The sweep's kernel from prog, its arguments set, its wind off. */
-static int sweep_kernel(msocl__engine *s, cl_program prog)
+/* A sweep kernel's arguments that hold for the engine's life. */
+static int fixed_args(msocl__engine *s, cl_kernel k, int ring_w)
 {
-  MSOCL__TRY(msocl__kernel_make(s->dev, prog, "msocl_planes_rows",
-                                &s->pl_rows));
-  const int ring_w = ring_width(s);
-  cl_kernel k = s->pl_rows;
   const struct msocl__named fixed[] = {
       {"aux", sizeof s->pl_aux, &s->pl_aux},
       {"pitch", sizeof(int), &s->pl_pitch},
@@ -63,6 +59,19 @@ static int sweep_kernel(msocl__engine *s, cl_program prog)
   MSOCL__TRY(msocl__layout_set_args(&s->lay, s->dev, k));
   for (size_t q = 0; q < sizeof fixed / sizeof fixed[0]; q++)
     MSOCL__TRY(msocl__arg(s, k, fixed[q].name, fixed[q].size, fixed[q].v));
+  return MSOCL_OK;
+}
+
+/* The sweep's kernels from prog, their arguments set, their wind off. */
+static int sweep_kernel(msocl__engine *s, cl_program prog)
+{
+  MSOCL__TRY(msocl__kernel_make(s->dev, prog, "msocl_planes_rows",
+                                &s->pl_rows));
+  MSOCL__TRY(msocl__kernel_make(s->dev, prog, "msocl_planes_rows_still",
+                                &s->pl_rows_still));
+  const int ring_w = ring_width(s);
+  for (int q = 0; q < 2; q++)
+    MSOCL__TRY(fixed_args(s, q ? s->pl_rows_still : s->pl_rows, ring_w));
   return msocl__pl_rows_wind(s, NULL, 0.0f, 0.0f);
 }
 
@@ -71,6 +80,7 @@ int msocl__pl_rows_rebuild(msocl__engine *s, cl_program prog)
   if (!s->pl_rows)
     return MSOCL_OK;
   msocl__kernel_free(s->dev, &s->pl_rows);
+  msocl__kernel_free(s->dev, &s->pl_rows_still);
   if (applies(s))
     return sweep_kernel(s, prog);
   /* a capsule or box: the other planes kernels from now on */
@@ -117,9 +127,12 @@ int msocl__pl_rows_wind(msocl__engine *s, const float air[3], float kd,
                         air ? air[2] : 0.0f, 0.0f}},
                   c = {{kd, kl, 0.0f, 0.0f}};
   const int on = air != NULL;
-  MSOCL__TRY(msocl__arg(s, s->pl_rows, "wind_air", sizeof w, &w));
-  MSOCL__TRY(msocl__arg(s, s->pl_rows, "wind_coef", sizeof c, &c));
-  MSOCL__TRY(msocl__arg_int(s, s->pl_rows, "wind", on));
+  for (int q = 0; q < 2; q++) {
+    cl_kernel k = q ? s->pl_rows_still : s->pl_rows;
+    MSOCL__TRY(msocl__arg(s, k, "wind_air", sizeof w, &w));
+    MSOCL__TRY(msocl__arg(s, k, "wind_coef", sizeof c, &c));
+    MSOCL__TRY(msocl__arg_int(s, k, "wind", on));
+  }
   s->pl_rows_wind = on;
   return MSOCL_OK;
 }
@@ -129,13 +142,13 @@ int msocl__pl_rows_step(msocl__engine *s, int r, int w)
   /* without wind or dashpots the velocities move in place; with them,
    * into set w, as they read the neighbours' velocities before the step */
   const int out = s->pl_rows_wind || s->damped ? w : r;
-  cl_kernel k = s->pl_rows;
+  cl_kernel k = s->pl_col_moving ? s->pl_rows : s->pl_rows_still;
   MSOCL__TRY(msocl__arg_mem(s, k, "p", s->pl_p[r]));
   MSOCL__TRY(msocl__arg_mem(s, k, "v", s->pl_v[r]));
   MSOCL__TRY(msocl__arg_mem(s, k, "p_out", s->pl_p[w]));
   MSOCL__TRY(msocl__arg_mem(s, k, "v_out", s->pl_v[out]));
   const size_t one = 1;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_rows, 1, NULL,
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL,
                                    &s->pl_blocks, &one, 0, NULL, NULL));
   if (out == r) {
     /* moved in place: set w's velocities are now that buffer */
@@ -149,6 +162,7 @@ int msocl__pl_rows_step(msocl__engine *s, int r, int w)
 void msocl__pl_rows_release(msocl__engine *s)
 {
   msocl__kernel_free(s->dev, &s->pl_rows);
+  msocl__kernel_free(s->dev, &s->pl_rows_still);
   if (s->pl_ring)
     clReleaseMemObject(s->pl_ring);
 }

@@ -122,6 +122,7 @@ static int write_table(msocl_sim *s, float f0, float f1)
   if (m->writes > 0 && slot == 0)
     MSOCL__CL(clFinish(e->dev->queue)); /* the ring's slots are read */
   float *t = m->ring[slot];
+  e->pl_col_moving = 0;
   for (int c = 0; c < m->n; c++) {
     float *row_at = t + 4 * MSOCL__COL_VALUES * c;
     if (m->target[c] && f1 >= 0.0f) {
@@ -133,6 +134,8 @@ static int write_table(msocl_sim *s, float f0, float f1)
       row(m, c, P0, Q0, P1, Q1, e->o.dt, row_at);
     } else
       row(m, c, m->pos[c], m->rot[c], NULL, NULL, e->o.dt, row_at);
+    /* the kernels' "moving" value: the sweep takes its twin without */
+    e->pl_col_moving |= row_at[4 * 2] != 0.0f;
   }
   m->writes++;
   const size_t bytes = 4 * MSOCL__COL_VALUES * (size_t)m->n * sizeof(float);
