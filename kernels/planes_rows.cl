@@ -347,8 +347,8 @@ __kernel void msocl_planes_rows(MSOCL_ROWS_PARAMS)
 }
 
 /* The same step when the host knows that no collider moves in it (the
- * table's motion flags all 0): the colliders' motion compiled out, a
- * third fewer instructions in the kick on AVX2, the same bits. */
+ * table's motion flags all 0): the colliders' motion compiled out of the
+ * kick, which then spills less, the same bits. */
 __kernel void msocl_planes_rows_still(MSOCL_ROWS_PARAMS)
 {
   msocl_rows_step(MSOCL_ROWS_ARGS, 1);

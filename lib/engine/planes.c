@@ -174,7 +174,8 @@ int msocl__planes_fit(const msocl__engine *s)
   return MSOCL_OK;
 }
 
-/* The _spill twin of planes kernel k, or NULL. */
+/* The twin that takes kernel k's arguments too: a planes kernel's _spill
+ * twin, the sweep's still one (planes_rows.c), or NULL. */
 static cl_kernel twin(const msocl__engine *s, cl_kernel k)
 {
   if (k && k == s->pl_rows)
