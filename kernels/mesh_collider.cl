@@ -110,6 +110,7 @@ static inline void msocl_mesh_point(
   const float3 P = (float3)(p[a], p[plane + a], p[2 * plane + a]);
   const float f0 = prm.x, f1 = prm.y, thick = prm.z;
   float best = reach2; /* farther than the reach: no contact */
+  float root = sqrt(best);
   int bt = -1, bfeat = 0;
   float3 bw = (float3)(0.0f);
   /* outside the culled grid (cell -2): every triangle, placed here */
@@ -125,11 +126,12 @@ static inline void msocl_mesh_point(
     else
       g[3] = cur[4 * t + 3];
     /* the distances to its bounding sphere and to its plane bound the
-     * distance to the triangle: most triangles end there */
+     * distance to the triangle: most triangles end there (the sphere's
+     * |P - m| - r >= root squared, with no root taken a triangle) */
     const float4 s4 = g[3];
     const float3 e = P - s4.xyz;
-    const float r = s4.w * s4.w, e2 = dot(e, e);
-    if (e2 > r && e2 - 2.0f * s4.w * sqrt(e2) + r >= best)
+    const float out = s4.w + root;
+    if (dot(e, e) >= out * out)
       continue;
     if (!all) {
       g[0] = cur[4 * t];
@@ -147,6 +149,7 @@ static inline void msocl_mesh_point(
     const float d2 = dot(d, d);
     if (d2 < best) {
       best = d2;
+      root = sqrt(d2);
       bt = t;
       bw = w;
       bfeat = feat;
@@ -180,7 +183,7 @@ static inline void msocl_mesh_point(
   }
   const float3 c1 = bw.x * A1 + bw.y * B1 + bw.z * C1;
   const float3 D = P - c1;
-  const float dist = sqrt(best);
+  const float dist = root; /* sqrt(best) */
   const bool behind = dot(D, n1) * side < 0.0f;
   /* behind an open mesh's boundary the point went round its rim, not
    * through it: kept off the rim like a point in front */
@@ -265,24 +268,43 @@ static inline int msocl_mesh_cell_of(__global const float *p,
   return in && any ? c : box && !in ? -2 : -1;
 }
 
-/* Whether any of the 8 points from a is in the grid or, culled, in the
- * box: msocl_mesh_cell_of's tests in float8, the same roundings, so a
- * chunk it passes over holds no point that would search. */
-static inline bool msocl_mesh_near8(__global const float *p, float4 origin,
-                                    int gx, int gy, int gz, int plane,
-                                    float4 lo, float4 hi, int culled, int a)
+/* The cells of the n (at most 8) points from a into cell[], as
+ * msocl_mesh_cell_of finds each (its tests in float8, the same roundings),
+ * or false where none of the 8 is near the grid: a chunk far from the
+ * grid costs a few vector tests, a near one no scalar floor. */
+static inline bool msocl_mesh_cells8(__global const float *p,
+                                     __global const float *aux,
+                                     __global const int *cell_start,
+                                     float4 origin, int gx, int gy, int gz,
+                                     int plane, float4 lo, float4 hi,
+                                     int culled, int a, int n, int *cell)
 {
   const float w = origin.w;
   const float8 px = vload8(0, p + a), py = vload8(0, p + plane + a),
                pz = vload8(0, p + 2 * plane + a);
-  const float8 fx = floor((px - origin.x) * w),
-               fy = floor((py - origin.y) * w),
-               fz = floor((pz - origin.z) * w);
+  /* floor(u) >= 0 and < g just where u is: no floor, and for u >= 0 the
+   * conversion truncates as floor does */
+  const float8 fx = (px - origin.x) * w, fy = (py - origin.y) * w,
+               fz = (pz - origin.z) * w;
   const int8 in = fx >= 0.0f & fy >= 0.0f & fz >= 0.0f & fx < (float)gx &
                   fy < (float)gy & fz < (float)gz;
   const int8 box = px >= lo.x & py >= lo.y & pz >= lo.z & px <= hi.x &
                    py <= hi.y & pz <= hi.z & (int8)(culled ? -1 : 0);
-  return any(in | box);
+  if (!any(in | box))
+    return false;
+  const int8 c = select((int8)(0), (convert_int8(fz) * gy +
+                                    convert_int8(fy)) * gx + convert_int8(fx),
+                        in);
+  int ci[8], ini[8], boxi[8];
+  vstore8(c, 0, ci);
+  vstore8(in, 0, ini);
+  vstore8(box, 0, boxi);
+  for (int i = 0; i < n; i++) {
+    const bool free = !MSOCL_PLANES_PINNED(aux[plane + a + i]);
+    const bool has = ini[i] && cell_start[ci[i] + 1] > cell_start[ci[i]];
+    cell[i] = free && has ? ci[i] : free && boxi[i] && !ini[i] ? -2 : -1;
+  }
+  return true;
 }
 
 #define MSOCL_MESH_PARAMS                                                     \
@@ -332,15 +354,15 @@ __kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
     const int x1 = min(nx, x0 + MSOCL_MESH_RUN);
     (void)y; (void)z;
     for (int x8 = x0; x8 < x1; x8 += 8) {
-      if (!msocl_mesh_near8(p, origin, gx, gy, gz, plane, lo, hi, culled,
-                            MSOCL_PLANES_AT(x8, y, z)))
+      const int n = min(x1 - x8, 8);
+      int cell[8];
+      if (!msocl_mesh_cells8(p, aux, cell_start, origin, gx, gy, gz, plane,
+                             lo, hi, culled, MSOCL_PLANES_AT(x8, y, z), n,
+                             cell))
         continue;
-      for (int x = x8; x < min(x1, x8 + 8); x++) {
+      for (int x = x8; x < x8 + n; x++) {
         const int a = MSOCL_PLANES_AT(x, y, z);
-        msocl_mesh_point(MSOCL_MESH_ARGS(
-            msocl_mesh_cell_of(p, aux, cell_start, origin, gx, gy, gz,
-                               plane, lo, hi, culled, a),
-            a));
+        msocl_mesh_point(MSOCL_MESH_ARGS(cell[x - x8], a));
       }
     }
   }
