@@ -2,7 +2,9 @@
  * after each step, each point is kept `thickness` from the mesh, and out
  * of a closed one. The mesh's vertices move linearly from va (the call's
  * start) to vb (its end); this step runs from fraction f0 to f1 of that
- * motion. A uniform grid over the call's swept bounds lists, per cell, the
+ * motion. Each call places the grid's triangles once (cur: their corners
+ * at both ends and a sphere that bounds them all the way), and each step
+ * places between the ends only the triangles its points come near. A uniform grid over the call's swept bounds lists, per cell, the
  * triangles whose swept bounds (grown by the reach) touch it, so a point
  * looks only at its own cell (a grid culled to where the cloth will be
  * leaves a point outside it, within the mesh's bounds, all triangles). */
@@ -71,30 +73,50 @@ static inline float3 msocl_mesh_vertex(__global const float *m, int k, int nv)
  * friction); orient: +1 or -1 for a closed mesh (the side its normals
  * point to is outside), 0 for an open one (a point stays on the side of
  * the triangle it was on at the step's start). */
-/* Triangle t at fraction f of its motion, as msocl_mesh_place writes it
- * into cur (q[0 .. 3]). */
-static inline void msocl_mesh_at(__global const float *va,
-                                 __global const float *vb,
-                                 __global const int *tri, int t, float f,
-                                 int nv, int nt, float4 *q)
+/* Triangle t over the call, as msocl_mesh_place writes it into cur (q[0
+ * .. 7]): its corners at the call's start (q[0 .. 2]) and end (q[3 .. 5]),
+ * and a sphere that holds it at every fraction of the motion between:
+ * about the centroid at the start (q[6].xyz) moved by a fraction of its
+ * motion (q[7].xyz), a radius (q[6].w) past both ends'
+ * (a corner's offset from the centroid moves linearly, so its length is
+ * largest at an end), grown for the roundings of the centroid placed. */
+/* a to b at fraction f: a triangle's corners, wherever placed */
+#define MSOCL_MESH_LERP(a, b, f) ((a) + ((b) - (a)) * (f))
+
+static inline void msocl_mesh_ends(__global const float *va,
+                                   __global const float *vb,
+                                   __global const int *tri, int t, int nv,
+                                   int nt, float4 *q)
 {
-  const int i0 = tri[t], i1 = tri[nt + t], i2 = tri[2 * nt + t];
-  const float3 A = mix(msocl_mesh_vertex(va, i0, nv),
-                       msocl_mesh_vertex(vb, i0, nv), f);
-  const float3 B = mix(msocl_mesh_vertex(va, i1, nv),
-                       msocl_mesh_vertex(vb, i1, nv), f);
-  const float3 C = mix(msocl_mesh_vertex(va, i2, nv),
-                       msocl_mesh_vertex(vb, i2, nv), f);
-  const float3 n = normalize(cross(B - A, C - A));
-  const float3 m = (A + B + C) / 3.0f;
-  const float r = sqrt(fmax(dot(A - m, A - m),
-                            fmax(dot(B - m, B - m), dot(C - m, C - m))));
-  q[0] = (float4)(A, n.x);
-  q[1] = (float4)(B, n.y);
-  q[2] = (float4)(C, n.z);
-  q[3] = (float4)(m, r * 1.0001f);
+  const int k[3] = {tri[t], tri[nt + t], tri[2 * nt + t]};
+  float r2 = 0.0f;
+  for (int e = 0; e < 2; e++) {
+    __global const float *v = e ? vb : va;
+    const float3 A = msocl_mesh_vertex(v, k[0], nv),
+                 B = msocl_mesh_vertex(v, k[1], nv),
+                 C = msocl_mesh_vertex(v, k[2], nv);
+    const float3 m = (A + B + C) / 3.0f;
+    r2 = fmax(r2, fmax(dot(A - m, A - m),
+                       fmax(dot(B - m, B - m), dot(C - m, C - m))));
+    q[3 * e] = (float4)(A, 0.0f);
+    q[3 * e + 1] = (float4)(B, 0.0f);
+    q[3 * e + 2] = (float4)(C, 0.0f);
+    q[6 + e] = (float4)(m, 0.0f);
+  }
+  const float3 big = fmax(fabs(q[6].xyz), fabs(q[7].xyz));
+  q[6].w = sqrt(r2) * 1.0001f + 1e-6f * (big.x + big.y + big.z);
+  q[7].xyz -= q[6].xyz;
 }
 
+/* One mesh collider on every point of the planes state: p and v (this
+ * step's end, changed in place), pp (its start), aux (pins: left alone).
+ * tri: three planes of nt corner indices; rim: each triangle's features on
+ * the open mesh's boundary (msocl_mesh_closest's bits); the grid: cells
+ * gx * gy * gz of size 1 / origin.w from origin.xyz, cell c's triangles
+ * cell_tri[cell_start[c] .. cell_start[c + 1]). prm: (f0, f1, thickness,
+ * friction); orient: +1 or -1 for a closed mesh (the side its normals
+ * point to is outside), 0 for an open one (a point stays on the side of
+ * the triangle it was on at the step's start). */
 static inline void msocl_mesh_point(
     __global float *p, __global float *v, __global const float *pp,
     __global const float *aux, __global const float *va,
@@ -112,7 +134,7 @@ static inline void msocl_mesh_point(
   float best = reach2; /* farther than the reach: no contact */
   float root = sqrt(best);
   int bt = -1, bfeat = 0;
-  float3 bw = (float3)(0.0f);
+  float3 bw = (float3)(0.0f), A1 = bw, B1 = bw, C1 = bw;
   /* outside the culled grid (cell -2): every triangle, placed here */
   const bool all = cell < 0;
   if (all)
@@ -120,28 +142,27 @@ static inline void msocl_mesh_point(
   const int q0 = all ? 0 : cell_start[cell], q1 = all ? nt : cell_start[cell + 1];
   for (int q = q0; q < q1; q++) {
     const int t = all ? q : cell_tri[q];
-    float4 g[4];
+    __global const float4 *ct = cur + 8 * t;
+    float4 g[8];
     if (all)
-      msocl_mesh_at(va, vb, tri, t, f1, nv, nt, g);
-    else
-      g[3] = cur[4 * t + 3];
+      msocl_mesh_ends(va, vb, tri, t, nv, nt, g);
+    const float4 s0 = all ? g[6] : ct[6], s1 = all ? g[7] : ct[7];
     /* the distances to its bounding sphere and to its plane bound the
      * distance to the triangle: most triangles end there (the sphere's
      * |P - m| - r >= root squared, with no root taken a triangle) */
-    const float4 s4 = g[3];
-    const float3 e = P - s4.xyz;
-    const float out = s4.w + root;
+    const float3 e = P - (s0.xyz + s1.xyz * f1);
+    const float out = s0.w + root;
     if (dot(e, e) >= out * out)
       continue;
-    if (!all) {
-      g[0] = cur[4 * t];
-      g[1] = cur[4 * t + 1];
-      g[2] = cur[4 * t + 2];
-    }
-    const float4 a4 = g[0], b4 = g[1], c4 = g[2];
-    const float3 A = a4.xyz, B = b4.xyz, C = c4.xyz;
-    const float h = dot(P - A, (float3)(a4.w, b4.w, c4.w));
-    if (h * h >= best)
+    const float3 A = all ? MSOCL_MESH_LERP(g[0].xyz, g[3].xyz, f1)
+                         : MSOCL_MESH_LERP(ct[0].xyz, ct[3].xyz, f1),
+                 B = all ? MSOCL_MESH_LERP(g[1].xyz, g[4].xyz, f1)
+                         : MSOCL_MESH_LERP(ct[1].xyz, ct[4].xyz, f1),
+                 C = all ? MSOCL_MESH_LERP(g[2].xyz, g[5].xyz, f1)
+                         : MSOCL_MESH_LERP(ct[2].xyz, ct[5].xyz, f1);
+    const float3 c = cross(B - A, C - A); /* not unit: no root */
+    const float h = dot(P - A, c);
+    if (h * h > best * dot(c, c))
       continue;
     float3 w;
     const int feat = msocl_mesh_closest(P, A, B, C, &w);
@@ -153,6 +174,9 @@ static inline void msocl_mesh_point(
       bt = t;
       bw = w;
       bfeat = feat;
+      A1 = A;
+      B1 = B;
+      C1 = C;
     }
   }
   if (bt < 0)
@@ -164,16 +188,7 @@ static inline void msocl_mesh_point(
   const float3 DA = msocl_mesh_vertex(vb, i0, nv) - A0,
                DB = msocl_mesh_vertex(vb, i1, nv) - B0,
                DC = msocl_mesh_vertex(vb, i2, nv) - C0;
-  float4 g[4]; /* as the search saw it */
-  if (all) {
-    msocl_mesh_at(va, vb, tri, bt, f1, nv, nt, g);
-  } else {
-    g[0] = cur[4 * bt];
-    g[1] = cur[4 * bt + 1];
-    g[2] = cur[4 * bt + 2];
-  }
-  const float3 A1 = g[0].xyz, B1 = g[1].xyz, C1 = g[2].xyz;
-  const float3 n1 = (float3)(g[0].w, g[1].w, g[2].w);
+  const float3 n1 = normalize(cross(B1 - A1, C1 - A1));
   /* the side the point belongs on */
   float side = orient;
   if (orient == 0.0f) {
@@ -214,31 +229,23 @@ static inline void msocl_mesh_point(
   v[2 * plane + a] = Vn.z;
 }
 
-/* The triangles at the ends of the next `steps` steps (fraction f.sk of
- * the motion from va to vb for step k, at most 8), step k's into slot k
- * of cur (4 nt float4s a slot), each triangle as four float4s: its
- * corners, in their w its unit normal, and its bounding sphere (centroid,
- * radius); work-item (i, k): live[i] where nlive >= 0, the grid's
- * triangles, else i; those past the counts do nothing. One launch for
- * several steps: on a CPU device a launch costs more than the work. */
+/* Each triangle over the call into cur (msocl_mesh_ends), work-item i
+ * taking live[i] where nlive >= 0 (the grid's triangles), else i; those
+ * past the count do nothing. */
 __kernel void msocl_mesh_place(__global const float *va,
                                __global const float *vb,
                                __global const int *tri, __global float4 *cur,
-                               float8 f, int steps, int nv, int nt,
-                               __global const int *live, int nlive)
+                               int nv, int nt, __global const int *live,
+                               int nlive)
 {
-  const int i = get_global_id(0), k = get_global_id(1);
-  if (i >= (nlive >= 0 ? nlive : nt) || k >= steps)
+  const int i = get_global_id(0);
+  if (i >= (nlive >= 0 ? nlive : nt))
     return;
   const int t = nlive >= 0 ? live[i] : i;
-  const float fk[8] = {f.s0, f.s1, f.s2, f.s3, f.s4, f.s5, f.s6, f.s7};
-  float4 q[4];
-  msocl_mesh_at(va, vb, tri, t, fk[k], nv, nt, q);
-  __global float4 *c = cur + (size_t)4 * ((size_t)k * nt + t);
-  c[0] = q[0];
-  c[1] = q[1];
-  c[2] = q[2];
-  c[3] = q[3];
+  float4 q[8];
+  msocl_mesh_ends(va, vb, tri, t, nv, nt, q);
+  for (int j = 0; j < 8; j++)
+    cur[8 * t + j] = q[j];
 }
 
 /* Point a's cell, -1 where it has no triangles (or is pinned, or outside
@@ -316,7 +323,7 @@ static inline bool msocl_mesh_cells8(__global const float *p,
       float4 prm, float orient, float dt, int nv, int nt, int nx, int pitch,  \
       int slab, int plane, __global const float4 *cur, float reach2,          \
       int culled, float4 lo, float4 hi, __global int *esc, int rows_y,        \
-      int runs, int slot
+      int runs
 #define MSOCL_MESH_ARGS(c, a)                                                 \
   p, v, pp, aux, va, vb, tri, rim, cell_start, cell_tri, origin, gx, gy, gz,  \
       prm, orient, dt, nv, nt, plane, cur, reach2, esc, c, a
@@ -324,7 +331,6 @@ static inline bool msocl_mesh_cells8(__global const float *p,
 /* A work-item a point (GPUs). */
 __kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
 {
-  cur += (size_t)4 * slot * nt; /* this step's triangles */
   MSOCL_PLANES_XYZ;
   const int a = MSOCL_PLANES_AT(x, y, z);
   (void)slab; (void)rows_y; (void)runs;
@@ -345,7 +351,6 @@ __kernel void msocl_mesh_collide(MSOCL_MESH_PARAMS)
 #define MSOCL_MESH_RUN 256
 __kernel void msocl_mesh_collide_rows(MSOCL_MESH_PARAMS)
 {
-  cur += (size_t)4 * slot * nt; /* this step's triangles */
   const int row_runs = (nx + MSOCL_MESH_RUN - 1) / MSOCL_MESH_RUN;
   (void)slab;
   for (int r = get_global_id(0); r < runs; r += get_global_size(0)) {

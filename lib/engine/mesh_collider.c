@@ -74,14 +74,13 @@ struct msocl__mesh_dev {
   int *hstart, *hlist, *hlive;
   size_t hstart_cap, hlist_cap, hlive_cap;
   struct msocl__device *dev; /* its kernels' */
-  cl_kernel k, place;    /* the pass; the triangles at a step's end */
+  cl_kernel k, place;    /* the pass; the triangles over a call */
   cl_kernel count, scan_sums, scan_top, scan_out, fill, sort; /* the grid */
   cl_mem dcount, sums;   /* per cell; per chunk of cells */
   size_t count_cap, sums_cap;
   int host;              /* tests: msocl__mesh_host_grid's mode */
-  cl_mem cur;            /* ... there: 4 float4s a triangle */
-  int placed;            /* cur holds a static mesh */
-  int slots, j;          /* cur's steps; the call's step */
+  cl_mem cur;            /* ... over the call: 8 float4s a triangle */
+  int placed;            /* cur holds this call's (or a static mesh's) */
   cl_float4 origin;      /* the grid: origin, 1 / cell size */
   int g[3];
 };
@@ -256,11 +255,7 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   TRY(msocl__kernel_make(s->dev, s->prog, name, &d->k));
   TRY(msocl__kernel_make(s->dev, s->prog, "msocl_mesh_place", &d->place));
   int rc2 = MSOCL_OK;
-  /* slots for up to 8 steps' triangles, within about 16 MB */
-  d->slots = (int)((16u << 20) / (64 * (size_t)d->nt));
-  d->slots = d->slots < 1 ? 1 : d->slots > 8 ? 8 : d->slots;
-  d->cur = buffer(s, 16 * (size_t)d->slots * d->nt * sizeof(float), NULL,
-                  &rc2);
+  d->cur = buffer(s, 32 * (size_t)d->nt * sizeof(float), NULL, &rc2);
   TRY(rc2);
   TRY(msocl__arg_mem(s, d->place, "tri", d->dtri));
   TRY(msocl__arg_mem(s, d->place, "cur", d->cur));
@@ -808,7 +803,6 @@ int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n)
    * have left it running) */
   if (d->moving || !d->built || d->culled)
     MSOCL__CL(clFinish(s->dev->queue));
-  d->j = 0;
   if (d->moving)
     TRY(upload(s, d, 1 - d->a));
   if (d->moving) {
@@ -844,29 +838,15 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
     d->full -= d->full > 0;
     TRY(build(s, d, step, whole ? NULL : near));
   }
-  /* a moving mesh's triangles for the next few steps (slots) in one
-   * launch; a static mesh's once */
-  const int slot = d->moving ? d->j % d->slots : 0;
-  if (d->moving ? slot == 0 : !d->placed) {
-    const int steps = d->moving ? (d->n - d->j < d->slots ? d->n - d->j
-                                                           : d->slots)
-                                : 1;
-    cl_float8 f; /* motion.c's fractions, (float)(j + 1) / (float)n */
-    for (int q = 0; q < 8; q++)
-      f.s[q] = d->moving ? (float)(d->j + 1 + (q < steps ? q : steps - 1)) /
-                               (float)d->n
-                         : f1;
-    TRY(msocl__arg(s, d->place, "f", sizeof f, &f));
-    TRY(msocl__arg_int(s, d->place, "steps", steps));
+  /* the triangles over the call, once a call (a static mesh's once) */
+  if (!d->placed) {
     const int m = d->nlive >= 0 ? d->nlive : d->nt;
-    const size_t tris[2] = {((size_t)m + 63) / 64 * 64, (size_t)steps};
+    const size_t tris = ((size_t)m + 63) / 64 * 64;
     if (m > 0)
-      MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->place, 2, NULL,
-                                       tris, NULL, 0, NULL, NULL));
-    d->placed = !d->moving;
+      MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->place, 1, NULL,
+                                       &tris, NULL, 0, NULL, NULL));
+    d->placed = 1;
   }
-  d->j++;
-  TRY(msocl__arg_int(s, d->k, "slot", slot));
   const int set = s->pl_set;
   TRY(msocl__arg_mem(s, d->k, "p", s->pl_p[set]));
   TRY(msocl__arg_mem(s, d->k, "v", s->pl_v[set]));
