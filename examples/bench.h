@@ -75,6 +75,9 @@ void bench_csv_row(FILE *f, const struct bench_row *r);
 void bench_device_label(char *out, size_t size, const msocl_device_info *d);
 
 double bench_now(void);
+/* The CPU time of the whole process (every thread, the device's workers on
+ * a CPU device included): over a wall time, the cores kept busy. */
+double bench_cpu_now(void);
 /* "\r[i/n] text" on stderr when it is a terminal; nothing otherwise.
  * i = 0 clears the line. */
 void bench_progress(int i, int n, const char *fmt, ...)

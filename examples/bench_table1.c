@@ -115,7 +115,7 @@ struct ctx {
   int nres, done, total;
   float *xyz;
   const float *expert_pos; /* --expert: its final positions, this grid */
-  double expert_ips;
+  double expert_ips, expert_busy; /* ... its speed; cores busy, best run */
 };
 
 static void print_row(const struct bench_row *r, const char *engine,
@@ -179,11 +179,12 @@ static const float *host_expert_pos(const void *e)
 
 /* Times h->state (NULL: it failed to build, error rc) as run_device times
  * the library: one warm-up step, then the best of --repeat runs. *ips: its
- * iterations per second, 0 if it failed; ref: serial C's final positions
- * for the error column, or NULL. */
+ * iterations per second, 0 if it failed; *busy: the cores it kept busy in
+ * that run; ref: serial C's final positions for the error column, or
+ * NULL. */
 static void run_host(struct ctx *c, const struct host *h, int rc, int n,
                      float dt, int steps, const float *ref,
-                     double serial_ips, double *ips)
+                     double serial_ips, double *ips, double *busy)
 {
   struct bench_row r;
   bench_row_init(&r);
@@ -204,9 +205,11 @@ static void run_host(struct ctx *c, const struct host *h, int rc, int n,
     h->step(h->state, 1); /* warm-up */
     r.seconds = INFINITY;
     for (int rep = 0; rep < c->o->repeat; rep++) {
-      double t0 = bench_now();
+      const double t0 = bench_now(), c0 = bench_cpu_now();
       h->step(h->state, steps);
-      double t = bench_now() - t0;
+      const double t = bench_now() - t0;
+      if (t < r.seconds)
+        *busy = (bench_cpu_now() - c0) / t;
       r.seconds = t < r.seconds ? t : r.seconds;
     }
     r.status = "ok";
@@ -229,7 +232,8 @@ static int run_serial(struct ctx *c, int n, float dt, int steps,
   int rc = bench_serial_create(&s, n, dt);
   struct host h = {"host serial C", "springs", "serial C (Algorithm 1)", s,
                    serial_step, host_serial_pos};
-  run_host(c, &h, rc, n, dt, steps, NULL, 0.0, ips);
+  double busy = 0.0;
+  run_host(c, &h, rc, n, dt, steps, NULL, 0.0, ips, &busy);
   *pos = s ? bench_serial_positions(s) : NULL;
   *keep_s = s;
   return rc;
@@ -250,15 +254,18 @@ static void run_expert(struct ctx *c, const msocl_model *m, int n, float dt,
            bench_expert_threads(), bench_expert_threads() > 1 ? "s" : "");
   struct host h = {"host expert C", "expert-planes", engine, e, expert_step,
                    host_expert_pos};
-  run_host(c, &h, rc, n, dt, steps, serial_pos, serial_ips, &c->expert_ips);
+  run_host(c, &h, rc, n, dt, steps, serial_pos, serial_ips, &c->expert_ips,
+           &c->expert_busy);
   c->expert_pos = e ? bench_expert_positions(e) : NULL;
   *keep_e = e;
 }
 
-/* Expert C against the library's run: their speeds and whether
- * the final positions agree bit for bit. */
+/* Expert C against the library's run: their speeds, whether the final
+ * positions agree bit for bit and, on a CPU device (busy > 0), the cores
+ * each kept busy: where the library's kernels take the expert's CPU time,
+ * the rest of the gap is its threads waiting between launches. */
 static void print_expert(const struct ctx *c, const float *xyz, int n,
-                         double ips, double gbps)
+                         double ips, double gbps, double busy)
 {
   double most = 0.0;
   int same = 1;
@@ -273,6 +280,10 @@ static void print_expert(const struct ctx *c, const float *xyz, int n,
   printf("%9s   expert C vs this: bitwise: %s, max |diff| %.3g; expert C's "
          "speed over this: %s\n",
          "", same ? "yes" : "no", most, ratio);
+  if (busy > 0 && c->expert_busy > 0)
+    printf("%9s   cores busy (the process's CPU time over the wall time): "
+           "expert C %.2f (OpenMP's waits spin), this %.2f\n",
+           "", c->expert_busy, busy);
   /* issue 15's memory bound: 48 bytes a vertex-step (x, y, z of position
    * and velocity read and written) at the measured copy bandwidth */
   if (gbps > 0) {
@@ -317,6 +328,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   double need = 1.5 * (double)n * n * (64 + 32 + 4 + 16 + 16 + conn);
   msocl_sim *s = NULL;
   int rc = MSOCL_OK, vs_expert = 0;
+  double busy = 0.0; /* the best run's cores kept busy */
   if (info->global_mem > 0 && need > (double)info->global_mem) {
     r.status = "skipped (device memory)";
   } else {
@@ -336,9 +348,11 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
       rc = msocl_sim_step(s, 1); /* warm-up */
     r.seconds = INFINITY;
     for (int rep = 0; rc == MSOCL_OK && rep < c->o->repeat; rep++) {
-      double t0 = bench_now();
+      const double t0 = bench_now(), c0 = bench_cpu_now();
       rc = msocl_sim_step(s, steps);
-      double t = bench_now() - t0;
+      const double t = bench_now() - t0;
+      if (t < r.seconds)
+        busy = (bench_cpu_now() - c0) / t;
       r.seconds = t < r.seconds ? t : r.seconds;
     }
     vs_expert = c->expert_pos && math == MSOCL_MATH_PRECISE &&
@@ -358,7 +372,8 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   bench_progress(0, 0, " ");
   print_row(&r, engine, serial_ips);
   if (vs_expert && r.status && !strcmp(r.status, "ok"))
-    print_expert(c, c->xyz, n, r.steps_per_s, c->copy[dev]);
+    print_expert(c, c->xyz, n, r.steps_per_s, c->copy[dev],
+                 info->type == MSOCL_DEVICE_CPU ? busy : 0.0);
   bench_csv_row(c->csv, &r);
   keep(c, &r, engine);
 }
