@@ -4,7 +4,8 @@
  * start) to vb (its end); this step runs from fraction f0 to f1 of that
  * motion. Each call places the grid's triangles once (cur: their corners
  * at both ends and a sphere that bounds them all the way), and each step
- * places between the ends only the triangles its points come near. A uniform grid over the call's swept bounds lists, per cell, the
+ * places between the ends only the triangles its points come near. A
+ * uniform grid over the call's swept bounds lists, per cell, the
  * triangles whose swept bounds (grown by the reach) touch it, so a point
  * looks only at its own cell (a grid culled to where the cloth will be
  * leaves a point outside it, within the mesh's bounds, all triangles). */
@@ -64,25 +65,16 @@ static inline float3 msocl_mesh_vertex(__global const float *m, int k, int nv)
   return (float3)(m[k], m[nv + k], m[2 * nv + k]);
 }
 
-/* One mesh collider on every point of the planes state: p and v (this
- * step's end, changed in place), pp (its start), aux (pins: left alone).
- * tri: three planes of nt corner indices; rim: each triangle's features on
- * the open mesh's boundary (msocl_mesh_closest's bits); the grid: cells
- * gx * gy * gz of size 1 / origin.w from origin.xyz, cell c's triangles
- * cell_tri[cell_start[c] .. cell_start[c + 1]). prm: (f0, f1, thickness,
- * friction); orient: +1 or -1 for a closed mesh (the side its normals
- * point to is outside), 0 for an open one (a point stays on the side of
- * the triangle it was on at the step's start). */
+/* a to b at fraction f: a triangle's corners, wherever placed */
+#define MSOCL_MESH_LERP(a, b, f) ((a) + ((b) - (a)) * (f))
+
 /* Triangle t over the call, as msocl_mesh_place writes it into cur (q[0
  * .. 7]): its corners at the call's start (q[0 .. 2]) and end (q[3 .. 5]),
  * and a sphere that holds it at every fraction of the motion between:
  * about the centroid at the start (q[6].xyz) moved by a fraction of its
- * motion (q[7].xyz), a radius (q[6].w) past both ends'
- * (a corner's offset from the centroid moves linearly, so its length is
- * largest at an end), grown for the roundings of the centroid placed. */
-/* a to b at fraction f: a triangle's corners, wherever placed */
-#define MSOCL_MESH_LERP(a, b, f) ((a) + ((b) - (a)) * (f))
-
+ * motion (q[7].xyz), a radius (q[6].w) past both ends' (a corner's
+ * offset from the centroid moves linearly, so its length is largest at
+ * an end), grown for the roundings of the centroid placed. */
 static inline void msocl_mesh_ends(__global const float *va,
                                    __global const float *vb,
                                    __global const int *tri, int t, int nv,
