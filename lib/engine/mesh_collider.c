@@ -841,10 +841,12 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
   /* the triangles over the call, once a call (a static mesh's once) */
   if (!d->placed) {
     const int m = d->nlive >= 0 ? d->nlive : d->nt;
-    const size_t tris = ((size_t)m + 63) / 64 * 64;
+    /* groups of 64 whatever the count: PoCL builds its code again for
+     * each work-group size it picks, and it picks the count */
+    const size_t tris = ((size_t)m + 63) / 64 * 64, group = 64;
     if (m > 0)
       MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, d->place, 1, NULL,
-                                       &tris, NULL, 0, NULL, NULL));
+                                       &tris, &group, 0, NULL, NULL));
     d->placed = 1;
   }
   const int set = s->pl_set;

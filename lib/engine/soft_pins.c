@@ -116,9 +116,10 @@ int msocl__soft_pass(msocl__engine *s)
   TRY(msocl__arg_mem(s, k, "p", s->pl_p[s->pl_set]));
   TRY(msocl__arg_mem(s, k, "v", s->pl_v[s->pl_set]));
   TRY(msocl__arg_float(s, k, "f", s->soft_f));
-  const size_t global = ((size_t)s->soft_m + 63) / 64 * 64;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &global, NULL,
-                                   0, NULL, NULL));
+  /* groups of 64: PoCL builds its code again for each work-group size */
+  const size_t global = ((size_t)s->soft_m + 63) / 64 * 64, group = 64;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &global,
+                                   &group, 0, NULL, NULL));
   return MSOCL_OK;
 }
 

@@ -371,9 +371,11 @@ static int place(msocl__engine *e, struct msocl__controls *c, float fp,
       {"capture", sizeof capture, &capture}};
   for (size_t q = 0; q < sizeof args / sizeof args[0]; q++)
     MSOCL__TRY(msocl__arg(e, k, args[q].name, args[q].size, args[q].v));
-  const size_t global = (size_t)c->m;
-  MSOCL__CL(clEnqueueNDRangeKernel(e->dev->queue, k, 1, NULL, &global, NULL,
-                                   0, NULL, NULL));
+  /* groups of 64 whatever the count: PoCL builds its code again for each
+   * work-group size it picks, and it picks the count */
+  const size_t global = ((size_t)c->m + 63) / 64 * 64, group = 64;
+  MSOCL__CL(clEnqueueNDRangeKernel(e->dev->queue, k, 1, NULL, &global,
+                                   &group, 0, NULL, NULL));
   return MSOCL_OK;
 }
 
