@@ -59,16 +59,58 @@
                                                                : grid_k.z)
 #define MSOCL_ROWS_HAS(f) ((MSOCL_GRID_KINDS >> MSOCL_ROWS_KIND(f)) & 1)
 
+/* Wind on the quads at row y's padded columns c.. (at a in the planes)
+ * into ring row t (terms 6 and 7: A and B), from the velocities before
+ * the step and the quads' edges (msocl_rows_springs' ex..ez: right,
+ * above, -, above-right), as msocl_wind_quads computes them: zero where
+ * the quad is not the model's (its padding corners hold NaN). */
+static inline __attribute__((always_inline)) void
+msocl_rows_wind(MSOCL_CONN, __global const float *v, int pitch, int plane,
+                int y, int a, int c, const msocl_rows_f *ex,
+                const msocl_rows_f *ey, const msocl_rows_f *ez, float4 air,
+                float4 coef, __global float *t, int ring_w)
+{
+  const int q = plane;
+  const msocl_rows_m x = MSOCL_ROWS_LANES + (c - 2);
+  /* select reads a lane's sign bit: the row's test as -1 or 0 */
+  const int row_real = -(int)(y >= 0 && y + 1 < grid_ny);
+  const msocl_rows_m real = (x >= 0) & (x + 1 < grid_nx) & row_real;
+  /* the quad's corners a, a+1, a+pitch+1 (A) and a, a+pitch+1,
+   * a+pitch (B) */
+  const int r = a + 1, u = a + pitch + 1, l = a + pitch;
+#define V(o) MSOCL_ROWS_LOAD(v + (o))
+  const msocl_rows_f v0x = V(a), v0y = V(q + a), v0z = V(2 * q + a);
+  const msocl_rows_f vux = V(u), vuy = V(q + u), vuz = V(2 * q + u);
+  MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wa_, ex[0], ey[0], ez[0],
+                   ex[3], ey[3], ez[3], v0x + V(r) + vux,
+                   v0y + V(q + r) + vuy, v0z + V(2 * q + r) + vuz, air,
+                   coef, ax, ay, az);
+  __global float *o = t + 3 * 6 * ring_w + c;
+  MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, ax, 0.0f), o);
+  MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, ay, 0.0f), o + ring_w);
+  MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, az, 0.0f), o + 2 * ring_w);
+  MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wb_, ex[3], ey[3], ez[3],
+                   ex[1], ey[1], ez[1], v0x + vux + V(l),
+                   v0y + vuy + V(q + l), v0z + vuz + V(2 * q + l), air,
+                   coef, bx, by, bz);
+#undef V
+  o += 3 * ring_w;
+  MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, bx, 0.0f), o);
+  MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, by, 0.0f), o + ring_w);
+  MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, bz, 0.0f), o + 2 * ring_w);
+}
+
 /* Row y's forward spring terms at padded columns 0..nx + 2 (x from -2 to
  * nx) into ring row t: msocl_planes_pull's `on ? t * d : 0`, and with
  * dashpots its `onh ? u * d : 0` from the velocities before the step (a
  * backward one negates exactly: w and d both flip, w . d and len2 stay).
  * The last vector is moved back to end at column nx + 2, and overlaps the
  * one before it (the same terms again), so no load passes the planes. */
-static void msocl_rows_springs(MSOCL_CONN, __global const float *p,
-                               __global const float *v, int pitch,
-                               int plane, int y, __global float *t,
-                               int ring_w)
+static inline __attribute__((always_inline)) void
+msocl_rows_springs(MSOCL_CONN, __global const float *p,
+                   __global const float *v, int pitch, int plane, int y,
+                   __global float *t, int ring_w, float4 air, float4 coef,
+                   const int wind)
 {
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
 #ifdef MSOCL_DAMPING
@@ -87,15 +129,26 @@ static void msocl_rows_springs(MSOCL_CONN, __global const float *p,
                        vy = MSOCL_ROWS_LOAD(vy_ + a),
                        vz = MSOCL_ROWS_LOAD(vz_ + a);
 #endif
+    /* wind's quad edges: springs 0, 3 and 1's (right, above-right,
+     * above), the same bits as loading them again */
+    msocl_rows_f ex[4], ey[4], ez[4];
 #pragma unroll
     for (int f = 0; f < 6; f++) {
-      if (!MSOCL_ROWS_HAS(f))
+      const bool edge = wind && f < 4 && f != 2;
+      if (!MSOCL_ROWS_HAS(f) && !edge)
         continue;
       const int b = a + MSOCL_ROWS_OFF(f, pitch);
       const float kk = MSOCL_ROWS_K(f), rest = MSOCL_ROWS_REST(f);
       const msocl_rows_f dx = MSOCL_ROWS_LOAD(p + b) - px,
                          dy = MSOCL_ROWS_LOAD(py_ + b) - py,
                          dz = MSOCL_ROWS_LOAD(pz_ + b) - pz;
+      if (edge) {
+        ex[f] = dx;
+        ey[f] = dy;
+        ez[f] = dz;
+      }
+      if (!MSOCL_ROWS_HAS(f))
+        continue;
       const msocl_rows_f len2 = dx * dx + dy * dy + dz * dz;
       const msocl_rows_f len = MSOCL_SQRT(len2);
       const msocl_rows_f k = kk * MSOCL_DIV(len - rest, len);
@@ -117,56 +170,11 @@ static void msocl_rows_springs(MSOCL_CONN, __global const float *p,
       MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(onh, u * dz, 0.0f), h + 2 * ring_w);
 #endif
     }
+    if (wind)
+      msocl_rows_wind(MSOCL_CONN_ARGS, v, pitch, plane, y, a, c, ex, ey, ez,
+                      air, coef, t, ring_w);
   }
 }
-
-/* Wind on row y's quads at padded columns 0..nx + 2 into ring row t
- * (terms 6 and 7: A and B), from the velocities before the step, as
- * msocl_wind_quads computes them: zero where the quad is not the model's
- * (its padding corners hold NaN). */
-static void msocl_rows_wind(MSOCL_CONN, __global const float *p,
-                            __global const float *v,
-                            int pitch, int plane, int y, float4 air,
-                            float4 coef, __global float *t, int ring_w)
-{
-  const int row = (y + 2) * pitch, cols = grid_nx + 3, q = plane;
-  for (int c0 = 0; c0 < cols; c0 += MSOCL_ROWS_W) {
-    const int c = min(c0, cols - MSOCL_ROWS_W), a = row + c;
-    const msocl_rows_m x = MSOCL_ROWS_LANES + (c - 2);
-    /* select reads a lane's sign bit: the row's test as -1 or 0 */
-    const int row_real = -(int)(y >= 0 && y + 1 < grid_ny);
-    const msocl_rows_m real = (x >= 0) & (x + 1 < grid_nx) & row_real;
-    /* the quad's corners a, a+1, a+pitch+1 (A) and a, a+pitch+1,
-     * a+pitch (B), each loaded once, both triangles before any store */
-    const int r = a + 1, u = a + pitch + 1, l = a + pitch;
-#define L(o) MSOCL_ROWS_LOAD(p + (o))
-#define V(o) MSOCL_ROWS_LOAD(v + (o))
-    const msocl_rows_f p0x = L(a), p0y = L(q + a), p0z = L(2 * q + a);
-    const msocl_rows_f ux_ = L(u) - p0x, uy_ = L(q + u) - p0y,
-                       uz_ = L(2 * q + u) - p0z;
-    const msocl_rows_f v0x = V(a), v0y = V(q + a), v0z = V(2 * q + a);
-    const msocl_rows_f vux = V(u), vuy = V(q + u), vuz = V(2 * q + u);
-    MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wa_, L(r) - p0x,
-                     L(q + r) - p0y, L(2 * q + r) - p0z, ux_, uy_, uz_,
-                     v0x + V(r) + vux, v0y + V(q + r) + vuy,
-                     v0z + V(2 * q + r) + vuz, air, coef, ax, ay, az);
-    MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wb_, ux_, uy_, uz_,
-                     L(l) - p0x, L(q + l) - p0y, L(2 * q + l) - p0z,
-                     v0x + vux + V(l), v0y + vuy + V(q + l),
-                     v0z + vuz + V(2 * q + l), air, coef, bx, by, bz);
-#undef L
-#undef V
-    __global float *o = t + 3 * 6 * ring_w + c;
-    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, ax, 0.0f), o);
-    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, ay, 0.0f), o + ring_w);
-    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, az, 0.0f), o + 2 * ring_w);
-    o += 3 * ring_w;
-    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, bx, 0.0f), o);
-    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, by, 0.0f), o + ring_w);
-    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, bz, 0.0f), o + 2 * ring_w);
-  }
-}
-
 
 /* Term q of forward spring f in ring row r at padded column c */
 #define MSOCL_ROWS_T(r, f, q, c)                                              \
@@ -326,12 +334,14 @@ msocl_rows_step(MSOCL_ROWS_PARAMS, int still)
   __global float *mine = ring + (size_t)b * 3 * one;
   __constant const float *cf = (__constant const float *)col;
   for (int y = y0 - 2; y < y1; y++) {
-    msocl_rows_springs(MSOCL_CONN_ARGS, p, v, pitch, plane, y,
-                       mine + (size_t)((y + 3) % 3) * one, rw);
+    /* the windless loop apart, specialised */
+    __global float *t = mine + (size_t)((y + 3) % 3) * one;
     if (wind && y >= y0 - 1)
-      msocl_rows_wind(MSOCL_CONN_ARGS, p, v, pitch, plane, y, wind_air,
-                      wind_coef,
-                      mine + (size_t)((y + 3) % 3) * one, rw);
+      msocl_rows_springs(MSOCL_CONN_ARGS, p, v, pitch, plane, y, t, rw,
+                         wind_air, wind_coef, 1);
+    else
+      msocl_rows_springs(MSOCL_CONN_ARGS, p, v, pitch, plane, y, t, rw,
+                         wind_air, wind_coef, 0);
     if (y >= y0)
       msocl_rows_kick(MSOCL_CONN_ARGS, p, v, v_out, p_out, aux, pitch, plane,
                       gravity, viscous, air, dt, cf,

@@ -8,11 +8,12 @@
  * rho Cl / 2, into fx, fy, fz (declared here, of type T, with temporaries
  * named after `tag`; SEL(c, a, b) is c ? a : b for T): the one arithmetic
  * of every wind kernel, scalar or vector (planes_rows.cl), so that each
- * layout gets the same bits. With
- * the unnormalised normal N = e1 x e2 = 2 A n the area cancels:
- * f = kd |N.u| u / 2 + kl (N.u) (|u|^2 N - (N.u) u) / (2 |N| |u|), one
- * square root (two would be paired into a vector and stop PoCL
- * vectorising the kernel). */
+ * layout gets the same bits. With the unnormalised normal N = e1 x e2 =
+ * 2 A n the area cancels: f = kd |N.u| u / 2 + kl (N.u) (|u|^2 N -
+ * (N.u) u) / (2 |N| |u|) = a u + b N, one square root and one division
+ * (two would be paired into a vector and stop PoCL vectorising the
+ * kernel). Each component has its own shape, so that -O3's SLP
+ * vectorizer does not pair the three into a vector either (wind.cl). */
 #define MSOCL_WIND_FORCE(T, SEL, tag, e1x, e1y, e1z, e2x, e2y, e2z, sx, sy,   \
                          sz, air, coef, fx, fy, fz)                           \
   const T tag##nx = (e1y) * (e2z) - (e1z) * (e2y),                            \
@@ -21,7 +22,7 @@
   const float tag##third = 1.0f / 3.0f;                                       \
   const T tag##ux = (air).x - (sx) * tag##third,                              \
           tag##uy = fma((sy), -tag##third, (air).y),                          \
-          tag##uz = (air).z - (sz) / 3.0f;                                    \
+          tag##uz = -((sz) * tag##third - (air).z);                           \
   const T tag##nu = tag##nx * tag##ux + tag##ny * tag##uy + tag##nz * tag##uz;\
   const T tag##uu = tag##ux * tag##ux + tag##uy * tag##uy + tag##uz * tag##uz;\
   const T tag##root =                                                         \
@@ -31,12 +32,9 @@
   const T tag##l =                                                            \
       SEL(tag##root > 0.0f,                                                   \
           0.5f * tag##third * (coef).y * tag##nu / tag##root, 0.0f);          \
-  const T fx = tag##d * tag##ux +                                             \
-               tag##l * (tag##uu * tag##nx - tag##nu * tag##ux);              \
-  const T fy =                                                                \
-      fma(tag##d, tag##uy,                                                    \
-          tag##l * fma(tag##uu, tag##ny, -(tag##nu * tag##uy)));              \
-  const T fz =                                                                \
-      fma(tag##l, fma(-tag##nu, tag##uz, tag##uu * tag##nz), tag##d * tag##uz)
+  const T tag##a = tag##d - tag##l * tag##nu, tag##b = tag##l * tag##uu;      \
+  const T fx = tag##a * tag##ux + tag##b * tag##nx;                           \
+  const T fy = fma(tag##a, tag##uy, tag##b * tag##ny);                        \
+  const T fz = fma(tag##b, tag##nz, tag##a * tag##uz)
 
 #endif
