@@ -404,21 +404,24 @@ static int spans(const struct msocl__mesh_dev *d, const float *box, int t,
 
 /* The reference build on the host, a counting sort over the triangles'
  * bounds box (6 floats each), into hstart and hlist (*total entries);
- * the triangles in the grid into hlive (d->nlive). */
+ * the triangles in the grid into hlive (d->nlive). Each cell's count
+ * goes to its own entry, summed into the cell's end, and the fill walks
+ * the triangles backwards, each taking the slot below its cells' ends:
+ * every end becomes its cell's start, the triangles in order, and no
+ * second array of ends to copy. */
 static int host_lists(struct msocl__mesh_dev *d, const float *box,
                       size_t *total)
 {
   const size_t ncell = (size_t)d->g[0] * d->g[1] * d->g[2];
-  int rc = grow(&d->hstart, &d->hstart_cap, ncell + 1);
+  *total = 0;
+  TRY(grow(&d->hstart, &d->hstart_cap, ncell + 1));
+  TRY(grow(&d->hlive, &d->hlive_cap, (size_t)d->nt));
   int *start = d->hstart;
-  if (rc == MSOCL_OK)
-    memset(start, 0, (ncell + 1) * sizeof *start);
-  if (rc == MSOCL_OK)
-    rc = grow(&d->hlive, &d->hlive_cap, (size_t)d->nt);
+  memset(start, 0, (ncell + 1) * sizeof *start);
+  const size_t gx = (size_t)d->g[0], gxy = gx * (size_t)d->g[1];
   int a[3], b[3];
-  size_t sum = 0;
   d->nlive = 0;
-  for (int t = 0; rc == MSOCL_OK && t < d->nt; t++) {
+  for (int t = 0; t < d->nt; t++) {
     if (misses(d, box, t))
       continue;
     spans(d, box, t, a, b);
@@ -426,31 +429,24 @@ static int host_lists(struct msocl__mesh_dev *d, const float *box,
     for (int z = a[2]; z <= b[2]; z++)
       for (int y = a[1]; y <= b[1]; y++)
         for (int x = a[0]; x <= b[0]; x++)
-          start[((size_t)z * d->g[1] + y) * d->g[0] + x + 1]++;
+          start[(size_t)z * gxy + (size_t)y * gx + (size_t)x]++;
   }
-  for (size_t q = 0; rc == MSOCL_OK && q < ncell; q++)
-    start[q + 1] += start[q];
-  if (rc == MSOCL_OK)
-    sum = (size_t)start[ncell];
-  int *fill = rc == MSOCL_OK ? malloc(ncell * sizeof *fill) : NULL;
-  if (rc == MSOCL_OK && !fill)
-    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider's grid");
-  if (rc == MSOCL_OK)
-    rc = grow(&d->hlist, &d->hlist_cap, sum + 1);
+  for (size_t q = 1; q < ncell; q++)
+    start[q] += start[q - 1];
+  const size_t sum = ncell ? (size_t)start[ncell - 1] : 0;
+  start[ncell] = (int)sum;
+  TRY(grow(&d->hlist, &d->hlist_cap, sum + 1));
   int *list = d->hlist;
-  if (rc == MSOCL_OK)
-    memcpy(fill, start, ncell * sizeof *fill);
-  for (int i = 0; rc == MSOCL_OK && i < d->nlive; i++) {
+  for (int i = d->nlive - 1; i >= 0; i--) {
     const int t = d->hlive[i];
     spans(d, box, t, a, b);
     for (int z = a[2]; z <= b[2]; z++)
       for (int y = a[1]; y <= b[1]; y++)
         for (int x = a[0]; x <= b[0]; x++)
-          list[fill[((size_t)z * d->g[1] + y) * d->g[0] + x]++] = t;
+          list[--start[(size_t)z * gxy + (size_t)y * gx + (size_t)x]] = t;
   }
-  free(fill);
-  *total = rc == MSOCL_OK ? sum : 0;
-  return rc;
+  *total = sum;
+  return MSOCL_OK;
 }
 
 /* The host's lists, uploaded. */
