@@ -87,14 +87,20 @@ void msocl__kernel_free(struct msocl__device *dev, cl_kernel *k)
 }
 
 /* Index of k's argument `name` into *i; -1: k has none of that name, -2:
- * k was not made by msocl__kernel_make. */
+ * k was not made by msocl__kernel_make. k's entry moves to the list's
+ * head: a step sets arguments of a few kernels out of dozens, again and
+ * again. */
 static int find(struct msocl__device *dev, cl_kernel k, const char *name,
                 cl_uint *i, const char **kernel)
 {
   int found = -2;
   pthread_mutex_lock(&dev->names_lock);
-  for (struct msocl__kernel_names *e = dev->names; e; e = e->next)
-    if (e->k == k) {
+  for (struct msocl__kernel_names **p = &dev->names; *p; p = &(*p)->next)
+    if ((*p)->k == k) {
+      struct msocl__kernel_names *e = *p;
+      *p = e->next;
+      e->next = dev->names;
+      dev->names = e;
       found = -1;
       *kernel = e->kernel;
       for (cl_uint a = 0; a < e->n; a++)
