@@ -65,6 +65,77 @@ msocl_wide_gather(__global const float *q, const int *j)
 }
 #endif
 
+/* The slot loop of the W points x0.. of row y at a: MSOCL_WIDE_SLOTS
+ * { MSOCL_WIDE_SLOT; ... } declares, slot by slot, `there` (the spring
+ * exists: msocl_planes_neighbor's answer), `rest`, `kk` and `cc`, and
+ * MSOCL_WIDE_NB(q) reads plane q at the neighbours. GRID: each neighbour
+ * a fixed offset away, one vector load; BUFFER: the table's, gathered
+ * lane by lane, one slot at a time (unrolled, every slot's 16 lanes
+ * stayed live and were spilled to a stack frame of kilobytes). */
+#ifdef MSOCL_LAYOUT_GRID
+#define MSOCL_WIDE_SLOTS                                                      \
+  (void)slab;                                                                \
+  _Pragma("unroll") for (int s = 0; s < MSOCL_TABLE_SLOTS; s++)              \
+    if (!MSOCL_PLANES_SKIP(s))
+#define MSOCL_WIDE_SLOT                                                       \
+  const int b_ = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];            \
+  const int ny_ = y + msocl_grid_dy[s];                                      \
+  const float k_ = MSOCL_GRID_K(s);                                          \
+  const msocl_rows_m nx_ = MSOCL_ROWS_LANES + (x0 + msocl_grid_dx[s]);       \
+  const msocl_rows_m there =                                                 \
+      (nx_ >= 0) & (nx_ < grid_nx) &                                         \
+      (msocl_rows_m)(-(int)(ny_ >= 0 && ny_ < grid_ny && k_ != 0.0f));       \
+  const msocl_rows_f rest = (msocl_rows_f)MSOCL_GRID_R(s),                   \
+                     kk = (msocl_rows_f)k_, cc = (msocl_rows_f)MSOCL_GRID_C; \
+  (void)kk; (void)cc
+#define MSOCL_WIDE_NB(q) MSOCL_ROWS_LOAD((q) + b_)
+#else
+#define MSOCL_WIDE_SLOTS                                                      \
+  (void)pitch;                                                               \
+  _Pragma("unroll 1") for (int s = 0; s < MSOCL_TABLE_SLOTS; s++)
+#define MSOCL_WIDE_SLOT                                                       \
+  int j_[MSOCL_ROWS_W];                                                      \
+  msocl_rows_f rest, kk, cc;                                                 \
+  const msocl_rows_m there =                                                 \
+      msocl_wide_slot(MSOCL_CONN_ARGS, s, slab, x0, j_, &rest, &kk, &cc)
+#define MSOCL_WIDE_NB(q) msocl_wide_gather((q), j_)
+
+/* Slot s of the W points from x0 in BUFFER's table: their neighbours in
+ * j, the springs' values, and whether each has one (a free slot holds the
+ * point itself) */
+static MSOCL_WIDE_INLINE msocl_rows_m
+msocl_wide_slot(MSOCL_CONN, int s, int slab, int x0, int *j,
+                msocl_rows_f *rest, msocl_rows_f *kk, msocl_rows_f *cc)
+{
+  const int at = s * slab + x0;
+#pragma unroll
+  for (int u = 0; u < MSOCL_ROWS_W; u++)
+    j[u] = nbr[at + u];
+  *cc = 0.0f;
+#ifdef MSOCL_CLASSES
+  float r[MSOCL_ROWS_W], k[MSOCL_ROWS_W], c[MSOCL_ROWS_W];
+#pragma unroll
+  for (int u = 0; u < MSOCL_ROWS_W; u++) {
+    __global const float *w = (__global const float *)dmp + 4 * rk[at + u];
+    r[u] = w[0];
+    k[u] = w[1];
+    c[u] = w[2];
+  }
+  *rest = MSOCL_ROWS_LOAD(r);
+  *kk = MSOCL_ROWS_LOAD(k);
+  *cc = MSOCL_ROWS_LOAD(c);
+#else
+  __global const float *w = (__global const float *)rk;
+  *rest = MSOCL_ROWS_LOAD(w + at);
+  *kk = MSOCL_ROWS_LOAD(w + MSOCL_SLOTS * slab + at);
+#ifdef MSOCL_DAMPING
+  *cc = MSOCL_ROWS_LOAD(dmp + at);
+#endif
+#endif
+  return MSOCL_ROWS_LOAD(j) != MSOCL_ROWS_LANES + x0;
+}
+#endif
+
 /* One slot's spring and dashpot on the points at q (velocities u), from
  * their neighbours at n (velocities w) where `there`: msocl_planes_pull's
  * terms, added to f. */
@@ -119,74 +190,17 @@ msocl_wide_force(MSOCL_CONN, __global const float *p, __global const float *v,
                      uz = MSOCL_ROWS_LOAD(vz_ + a);
   msocl_rows_f fx = 0.0f, fy = 0.0f, fz = 0.0f;
   msocl_rows_f wx = 0.0f, wy = 0.0f, wz = 0.0f;
-#ifdef MSOCL_LAYOUT_GRID
-  (void)slab;
-  const msocl_rows_m lx = MSOCL_ROWS_LANES + x0;
-#pragma unroll
-  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
-    if (MSOCL_PLANES_SKIP(s))
-      continue;
-    const int b = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];
-    const int ny_ = y + msocl_grid_dy[s];
-    const float kk = MSOCL_GRID_K(s);
-    const msocl_rows_m nx_ = lx + msocl_grid_dx[s];
-    const msocl_rows_m there =
-        (nx_ >= 0) & (nx_ < grid_nx) &
-        (msocl_rows_m)(-(int)(ny_ >= 0 && ny_ < grid_ny && kk != 0.0f));
+  MSOCL_WIDE_SLOTS {
+    MSOCL_WIDE_SLOT;
 #ifdef MSOCL_DAMPING
-    wx = MSOCL_ROWS_LOAD(v + b);
-    wy = MSOCL_ROWS_LOAD(vy_ + b);
-    wz = MSOCL_ROWS_LOAD(vz_ + b);
+    wx = MSOCL_WIDE_NB(v);
+    wy = MSOCL_WIDE_NB(vy_);
+    wz = MSOCL_WIDE_NB(vz_);
 #endif
-    msocl_wide_pull(MSOCL_ROWS_LOAD(p + b), MSOCL_ROWS_LOAD(py_ + b),
-                    MSOCL_ROWS_LOAD(pz_ + b), wx, wy, wz, qx, qy, qz, ux, uy,
-                    uz, there, (msocl_rows_f)MSOCL_GRID_R(s),
-                    (msocl_rows_f)kk, (msocl_rows_f)MSOCL_GRID_C, &fx, &fy,
-                    &fz);
+    msocl_wide_pull(MSOCL_WIDE_NB(p), MSOCL_WIDE_NB(py_), MSOCL_WIDE_NB(pz_),
+                    wx, wy, wz, qx, qy, qz, ux, uy, uz, there, rest, kk, cc,
+                    &fx, &fy, &fz);
   }
-#else
-  (void)pitch;
-  const msocl_rows_m self = MSOCL_ROWS_LANES + x0;
-  /* one slot at a time: unrolled, every slot's 16 lanes stayed live and
-   * were spilled to a stack frame of kilobytes */
-#pragma unroll 1
-  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
-    const int at = s * slab + x0;
-    int j[MSOCL_ROWS_W];
-#pragma unroll
-    for (int u = 0; u < MSOCL_ROWS_W; u++)
-      j[u] = nbr[at + u];
-    const msocl_rows_m jv = MSOCL_ROWS_LOAD(j);
-    msocl_rows_f cc = 0.0f;
-#ifdef MSOCL_CLASSES
-    float r[MSOCL_ROWS_W], k[MSOCL_ROWS_W], c[MSOCL_ROWS_W];
-#pragma unroll
-    for (int u = 0; u < MSOCL_ROWS_W; u++) {
-      __global const float *w = (__global const float *)dmp + 4 * rk[at + u];
-      r[u] = w[0];
-      k[u] = w[1];
-      c[u] = w[2];
-    }
-    const msocl_rows_f rest = MSOCL_ROWS_LOAD(r), kk = MSOCL_ROWS_LOAD(k);
-    cc = MSOCL_ROWS_LOAD(c);
-#else
-    __global const float *w = (__global const float *)rk;
-    const msocl_rows_f rest = MSOCL_ROWS_LOAD(w + at),
-                       kk = MSOCL_ROWS_LOAD(w + MSOCL_SLOTS * slab + at);
-#ifdef MSOCL_DAMPING
-    cc = MSOCL_ROWS_LOAD(dmp + at);
-#endif
-#endif
-#ifdef MSOCL_DAMPING
-    wx = msocl_wide_gather(v, j);
-    wy = msocl_wide_gather(vy_, j);
-    wz = msocl_wide_gather(vz_, j);
-#endif
-    msocl_wide_pull(msocl_wide_gather(p, j), msocl_wide_gather(py_, j),
-                    msocl_wide_gather(pz_, j), wx, wy, wz, qx, qy, qz, ux, uy,
-                    uz, jv != self, rest, kk, cc, &fx, &fy, &fz);
-  }
-#endif
   q_out[0] = qx;
   q_out[1] = qy;
   q_out[2] = qz;
@@ -512,6 +526,112 @@ __kernel void msocl_planes_wide_euler(MSOCL_CONN, __global const float *p,
   }
 }
 
+/* A strain sweep's sums d and weight w into the move d / w where w > 0
+ * (msocl_planes_strain's and msocl_planes_strain_v's ends) */
+static MSOCL_WIDE_INLINE msocl_rows_f msocl_wide_share(msocl_rows_f d,
+                                                       msocl_rows_f w)
+{
+  return MSOCL_ROWS_SEL(w > 0.0f, MSOCL_DIV(d, w), d);
+}
+
+/* Whether each of the neighbours at MSOCL_WIDE_NB is pinned: its share
+ * of a spring's correction is all of it then, else half */
+#ifdef MSOCL_PINS
+#define MSOCL_WIDE_NB_SHARE                                                   \
+  MSOCL_ROWS_SEL(MSOCL_WIDE_NB(aux + plane) != 0.0f, 1.0f, 0.5f)
+#else
+#define MSOCL_WIDE_NB_SHARE ((msocl_rows_f)0.5f)
+#endif
+
+/* Provot's sweep (msocl_planes_strain's arithmetic and slot order): each
+ * point moved by the weighted average of what its over-long springs
+ * ask. */
+__kernel void msocl_planes_wide_strain(MSOCL_CONN, __global const float *p,
+                                       __global float *p_out,
+                                       __global const float *aux, int pitch,
+                                       int slab, int plane, float limit)
+{
+  MSOCL_WIDE_AT;
+  __global const float *py_ = p + plane, *pz_ = py_ + plane;
+  const msocl_rows_f qx = MSOCL_ROWS_LOAD(p + a),
+                     qy = MSOCL_ROWS_LOAD(py_ + a),
+                     qz = MSOCL_ROWS_LOAD(pz_ + a);
+  msocl_rows_f dx_ = 0.0f, dy_ = 0.0f, dz_ = 0.0f, w = 0.0f;
+  MSOCL_WIDE_SLOTS {
+    MSOCL_WIDE_SLOT;
+    const msocl_rows_f dx = MSOCL_WIDE_NB(p) - qx,
+                       dy = MSOCL_WIDE_NB(py_) - qy,
+                       dz = MSOCL_WIDE_NB(pz_) - qz;
+    const msocl_rows_f len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+    const msocl_rows_f over = len - (1.0f + limit) * rest;
+    const msocl_rows_f ask = MSOCL_WIDE_NB_SHARE * over;
+    const msocl_rows_f t = ask * MSOCL_DIV(ask, len);
+    const msocl_rows_m on = there & (over > 0.0f);
+    dx_ += MSOCL_ROWS_SEL(on, t * dx, 0.0f);
+    dy_ += MSOCL_ROWS_SEL(on, t * dy, 0.0f);
+    dz_ += MSOCL_ROWS_SEL(on, t * dz, 0.0f);
+    w += MSOCL_ROWS_SEL(on, ask, 0.0f);
+  }
+  const msocl_rows_m held = msocl_wide_pinned(aux, plane, a);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, qx, qx + msocl_wide_share(dx_, w)),
+                 p_out);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, qy, qy + msocl_wide_share(dy_, w)),
+                 p_out + plane);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, qz, qz + msocl_wide_share(dz_, w)),
+                 p_out + 2 * plane);
+}
+
+/* The velocity kind's sweep (msocl_planes_strain_v's arithmetic and slot
+ * order), then the collision response again without friction. */
+__kernel void msocl_planes_wide_strain_v(
+    MSOCL_CONN, __global const float *p, __global const float *v,
+    __global float *v_out, __global const float *aux, int pitch, int slab,
+    int plane, float limit, float dt, __constant float4 *col)
+{
+  MSOCL_WIDE_AT;
+  __global const float *py_ = p + plane, *pz_ = py_ + plane;
+  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
+  const msocl_rows_f qx = MSOCL_ROWS_LOAD(p + a),
+                     qy = MSOCL_ROWS_LOAD(py_ + a),
+                     qz = MSOCL_ROWS_LOAD(pz_ + a);
+  const msocl_rows_f ux = MSOCL_ROWS_LOAD(v + a),
+                     uy = MSOCL_ROWS_LOAD(vy_ + a),
+                     uz = MSOCL_ROWS_LOAD(vz_ + a);
+  msocl_rows_f dx_ = 0.0f, dy_ = 0.0f, dz_ = 0.0f, w = 0.0f;
+  MSOCL_WIDE_SLOTS {
+    MSOCL_WIDE_SLOT;
+    const msocl_rows_f dx = MSOCL_WIDE_NB(p) - qx,
+                       dy = MSOCL_WIDE_NB(py_) - qy,
+                       dz = MSOCL_WIDE_NB(pz_) - qz;
+    const msocl_rows_f len = MSOCL_SQRT(MSOCL_DOT3(dx, dy, dz, dx, dy, dz));
+    const msocl_rows_f allowed = MSOCL_DIV((1.0f + limit) * rest - len, dt);
+    const msocl_rows_f excess =
+        MSOCL_DIV(MSOCL_DOT3(MSOCL_WIDE_NB(v) - ux, MSOCL_WIDE_NB(vy_) - uy,
+                             MSOCL_WIDE_NB(vz_) - uz, dx, dy, dz),
+                  len) -
+        allowed;
+    const msocl_rows_f ask = MSOCL_WIDE_NB_SHARE * excess;
+    const msocl_rows_f t = ask * MSOCL_DIV(ask, len);
+    const msocl_rows_m on = there & (len > 0.0f) & (excess > 0.0f);
+    dx_ += MSOCL_ROWS_SEL(on, t * dx, 0.0f);
+    dy_ += MSOCL_ROWS_SEL(on, t * dy, 0.0f);
+    dz_ += MSOCL_ROWS_SEL(on, t * dz, 0.0f);
+    w += MSOCL_ROWS_SEL(on, ask, 0.0f);
+  }
+  msocl_rows_f wx = ux + msocl_wide_share(dx_, w),
+               wy = uy + msocl_wide_share(dy_, w),
+               wz = uz + msocl_wide_share(dz_, w);
+  __constant const float *cf = (__constant const float *)col;
+#pragma unroll
+  for (int c = 0; c < MSOCL_NCOL; c++)
+    msocl_rows_collide(qx, qy, qz, &wx, &wy, &wz, dt, cf, c, 0, 0.0f);
+  (void)cf;
+  const msocl_rows_m held = msocl_wide_pinned(aux, plane, a);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, wx), v_out);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, wy), v_out + plane);
+  MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, 0.0f, wz), v_out + 2 * plane);
+}
+
 #endif
 
 /* Verlet's drift (msocl_planes_drift's arithmetic), pointwise, so on a
@@ -541,7 +661,8 @@ __kernel void msocl_planes_wide_drift(__global const float *p,
   __constant const float *cf = (__constant const float *)col;
 #pragma unroll
   for (int c = 0; c < MSOCL_NCOL; c++)
-    msocl_rows_collide(q[0], q[1], q[2], &u[0], &u[1], &u[2], dt, cf, c, 0);
+    msocl_rows_collide(q[0], q[1], q[2], &u[0], &u[1], &u[2], dt, cf, c, 0,
+                       1.0f);
   (void)cf;
 #ifdef MSOCL_PINS
   const msocl_rows_m held = MSOCL_ROWS_LOAD(aux + plane + a) != 0.0f;

@@ -152,19 +152,20 @@ static inline msocl_rows_f msocl_rows_gap(msocl_rows_f px, msocl_rows_f py,
   return g;
 }
 
-/* msocl_planes_collide's response for collider c, lane by lane; `still`
- * (a constant where it is inlined) when the host knows no collider moves
- * this step: the same bits, without the motion's terms and branches. */
+/* msocl_planes_collide's response for collider c, lane by lane, its
+ * friction times fscale; `still` (a constant where it is inlined) when
+ * the host knows no collider moves this step: the same bits, without the
+ * motion's terms and branches. */
 static inline __attribute__((always_inline)) void
 msocl_rows_collide(msocl_rows_f px, msocl_rows_f py, msocl_rows_f pz,
                    msocl_rows_f *vx_io, msocl_rows_f *vy_io,
                    msocl_rows_f *vz_io, float dt, __constant const float *cf,
-                   int c, int still)
+                   int c, int still, float fscale)
 {
   msocl_rows_f nx, ny, nz;
   const msocl_rows_f g = msocl_rows_gap(px, py, pz, cf, c, &nx, &ny, &nz);
 #define cv(k) MSOCL_PLANES_COL(cf, c, k)
-  const float fr = 1.0f * cv(1);
+  const float fr = fscale * cv(1);
   /* on the velocity relative to a moving collider's surface */
   MSOCL_PLANES_SURFACE(msocl_rows_f, cv, px, py, pz);
   const bool moving = !still && cv(2) != 0.0f;
@@ -218,7 +219,7 @@ static inline __attribute__((always_inline)) void msocl_rows_velocity(
   (void)air;
 #pragma unroll
   for (int c = 0; c < MSOCL_NCOL; c++)
-    msocl_rows_collide(qx, qy, qz, &vx, &vy, &vz, dt, cf, c, still);
+    msocl_rows_collide(qx, qy, qz, &vx, &vy, &vz, dt, cf, c, still, 1.0f);
   (void)cf;
   *vx_out = vx;
   *vy_out = vy;

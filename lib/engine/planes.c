@@ -447,8 +447,7 @@ static int wide(const msocl__engine *s)
 }
 
 /* Planes kernel q's twin in planes_wide.cl, or NULL: every gathering
- * step kernel but implicit Euler's and the strain limits', and Verlet's
- * drift. */
+ * kernel but implicit Euler's, and Verlet's drift. */
 static const char *wide_name(int q)
 {
   switch (q) {
@@ -468,6 +467,10 @@ static const char *wide_name(int q)
     return "msocl_planes_wide_euler";
   case PL_DRIFT:
     return "msocl_planes_wide_drift";
+  case PL_STRAIN:
+    return "msocl_planes_wide_strain";
+  case PL_STRAIN_V:
+    return "msocl_planes_wide_strain_v";
   default:
     return NULL;
   }
