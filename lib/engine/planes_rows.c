@@ -1,7 +1,8 @@
 /* Symplectic Euler on a cloth grid in planes in one sweep a step, each
  * spring computed once (kernels/planes_rows.cl), where it applies: a CPU
- * device, a cloth (not a lattice), no strain limit, rows of at least one
- * vector. Elsewhere planes.c's passes run. */
+ * device, a cloth (not a lattice), no strain limit or Provot's (whose
+ * sweeps follow the step's two passes, so the sweep's end), rows of at
+ * least one vector. Elsewhere planes.c's passes run. */
 #include "config.h"
 #include "planes.h"
 
@@ -22,7 +23,7 @@ static int applies(const msocl__engine *s)
          s->lo == 0 && s->hi == s->n &&
          s->lay.grid_nz == 0 && s->lay.grid_nx >= ROWS_W &&
          s->o.integrator == MSOCL_SYMPLECTIC_EULER &&
-         s->o.strain == MSOCL_STRAIN_NONE;
+         s->o.strain != MSOCL_STRAIN_VELOCITY;
 }
 
 /* A ring row's width: a padded row's columns -2..nx in whole vectors,
