@@ -447,7 +447,7 @@ static int wide(const msocl__engine *s)
 }
 
 /* Planes kernel q's twin in planes_wide.cl, or NULL: every gathering
- * kernel but implicit Euler's, and Verlet's drift. */
+ * kernel, and Verlet's drift. */
 static const char *wide_name(int q)
 {
   switch (q) {
@@ -471,6 +471,10 @@ static const char *wide_name(int q)
     return "msocl_planes_wide_strain";
   case PL_STRAIN_V:
     return "msocl_planes_wide_strain_v";
+  case PL_IE_RHS:
+    return "msocl_planes_wide_ie_rhs";
+  case PL_IE_APPLY:
+    return "msocl_planes_wide_ie_apply";
   default:
     return NULL;
   }
