@@ -42,13 +42,14 @@ msocl_wide_store(msocl_rows_f v, __global float *q, int x0, int n)
 #endif
 #ifdef MSOCL_ROWS
 
-/* The work-item's 16 points x0 .. x0 + W - 1 of row y (BUFFER: of the
- * points in index order) at a in the planes, the row's first point at
- * row; a result stored for those below the row's end. */
+/* The work-item's 16 points x0 .. x0 + W - 1 of row y of layer z
+ * (BUFFER: of the points in index order) at a in the planes, the row's
+ * first point at row; a result stored for those below the row's end. */
 #define MSOCL_WIDE_AT                                                         \
-  const int x0 = get_global_id(0) * MSOCL_ROWS_W, y = get_global_id(1);      \
-  const int a = MSOCL_PLANES_AT(x0, y, 0), row = a - x0;                     \
-  (void)y
+  const int x0 = get_global_id(0) * MSOCL_ROWS_W, y = get_global_id(1),      \
+            z = get_global_id(2);                                            \
+  const int a = MSOCL_PLANES_AT(x0, y, z), row = a - x0;                     \
+  (void)y; (void)z
 #define MSOCL_WIDE_PUT(val, q)                                                \
   msocl_wide_store((val), (q) + row, x0, MSOCL_PLANES_NX)
 
@@ -73,25 +74,36 @@ msocl_wide_gather(__global const float *q, const int *j)
  * lane by lane, one slot at a time (unrolled, every slot's 16 lanes
  * stayed live and were spilled to a stack frame of kilobytes). */
 #ifdef MSOCL_LAYOUT_GRID
+#ifdef MSOCL_GRID_3D
+/* a lattice's neighbour: its layer, and whether that is one */
+#define MSOCL_WIDE_DZ(s) (msocl_grid_dz[s] * slab)
+#define MSOCL_WIDE_IN_Z(s)                                                    \
+  (z + msocl_grid_dz[s] >= 0 && z + msocl_grid_dz[s] < grid_nz)
+#else
+#define MSOCL_WIDE_DZ(s) 0
+#define MSOCL_WIDE_IN_Z(s) true
+#endif
 #define MSOCL_WIDE_SLOTS                                                      \
-  (void)slab;                                                                \
+  (void)slab; (void)z;                                                       \
   _Pragma("unroll") for (int s = 0; s < MSOCL_TABLE_SLOTS; s++)              \
     if (!MSOCL_PLANES_SKIP(s))
 #define MSOCL_WIDE_SLOT                                                       \
-  const int b_ = a + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];            \
+  const int b_ =                                                             \
+      a + MSOCL_WIDE_DZ(s) + msocl_grid_dy[s] * pitch + msocl_grid_dx[s];    \
   const int ny_ = y + msocl_grid_dy[s];                                      \
   const float k_ = MSOCL_GRID_K(s);                                          \
   const msocl_rows_m nx_ = MSOCL_ROWS_LANES + (x0 + msocl_grid_dx[s]);       \
   const msocl_rows_m there =                                                 \
       (nx_ >= 0) & (nx_ < grid_nx) &                                         \
-      (msocl_rows_m)(-(int)(ny_ >= 0 && ny_ < grid_ny && k_ != 0.0f));       \
+      (msocl_rows_m)(-(int)(ny_ >= 0 && ny_ < grid_ny && MSOCL_WIDE_IN_Z(s) && \
+                            k_ != 0.0f));                                    \
   const msocl_rows_f rest = (msocl_rows_f)MSOCL_GRID_R(s),                   \
                      kk = (msocl_rows_f)k_, cc = (msocl_rows_f)MSOCL_GRID_C; \
   (void)kk; (void)cc
 #define MSOCL_WIDE_NB(q) MSOCL_ROWS_LOAD((q) + b_)
 #else
 #define MSOCL_WIDE_SLOTS                                                      \
-  (void)pitch;                                                               \
+  (void)pitch; (void)z;                                                      \
   _Pragma("unroll 1") for (int s = 0; s < MSOCL_TABLE_SLOTS; s++)
 #define MSOCL_WIDE_SLOT                                                       \
   int j_[MSOCL_ROWS_W];                                                      \
@@ -175,11 +187,11 @@ msocl_wide_pull(msocl_rows_f nx, msocl_rows_f ny, msocl_rows_f nz,
  * BUFFER: the table's, gathered lane by lane. */
 static MSOCL_WIDE_INLINE void
 msocl_wide_force(MSOCL_CONN, __global const float *p, __global const float *v,
-                 int pitch, int slab, int plane, int x0, int y,
+                 int pitch, int slab, int plane, int x0, int y, int z,
                  msocl_rows_f q_out[3], msocl_rows_f u_out[3],
                  msocl_rows_f f_out[3])
 {
-  const int a = MSOCL_PLANES_AT(x0, y, 0);
+  const int a = MSOCL_PLANES_AT(x0, y, z);
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
   __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
   const msocl_rows_f qx = MSOCL_ROWS_LOAD(p + a),
@@ -230,12 +242,13 @@ static MSOCL_WIDE_INLINE void
 msocl_wide_kick(MSOCL_CONN, __global const float *p, __global const float *v,
                 __global const float *aux, int slab, int plane, float4 gravity,
                 float viscous, float air, float dt, __constant const float *cf,
-                int pitch, int x0, int y, int a, msocl_rows_f *px,
+                int pitch, int x0, int y, int z, int a, msocl_rows_f *px,
                 msocl_rows_f *py, msocl_rows_f *pz, msocl_rows_f *vx_out,
                 msocl_rows_f *vy_out, msocl_rows_f *vz_out, msocl_rows_m *held)
 {
   msocl_rows_f q[3], u[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, q, u, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, z, q,
+                   u, f);
   *px = q[0];
   *py = q[1];
   *pz = q[2];
@@ -266,7 +279,7 @@ msocl_wide_viscous(msocl_rows_f f, msocl_rows_f u, float viscous)
   msocl_rows_f px, py, pz, vx, vy, vz;                                       \
   msocl_rows_m held;                                                         \
   msocl_wide_kick(MSOCL_CONN_ARGS, p, v, aux, slab, plane, gravity, viscous, \
-                  air, dt, (__constant const float *)col, pitch, x0, y, a,   \
+                  air, dt, (__constant const float *)col, pitch, x0, y, z, a,\
                   &px, &py, &pz, &vx, &vy, &vz, &held);                      \
   MSOCL_WIDE_PUT(vx, v_out);                                                 \
   MSOCL_WIDE_PUT(vy, v_out + plane);                                         \
@@ -302,7 +315,8 @@ __kernel void msocl_planes_wide_vkick(MSOCL_CONN, __global const float *p,
 {
   MSOCL_WIDE_AT;
   msocl_rows_f q[3], u[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, q, u, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, z, q,
+                   u, f);
   const msocl_rows_f fx = msocl_wide_viscous(f[0], u[0], viscous),
                      fy = msocl_wide_viscous(f[1], u[1], viscous),
                      fz = msocl_wide_viscous(f[2], u[2], viscous);
@@ -360,7 +374,8 @@ msocl_wide_rk4(MSOCL_CONN, __global const float *p0, __global const float *v0,
 {
   MSOCL_WIDE_AT;
   msocl_rows_f q[3], k[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, x0, y, q, k, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, x0, y, z, q,
+                   k, f);
   const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
   const float g[3] = {gravity.x, gravity.y, gravity.z};
   const msocl_rows_m held = msocl_wide_pinned(aux, plane, a);
@@ -464,7 +479,8 @@ __kernel void msocl_planes_wide_rk4_last(
 {
   MSOCL_WIDE_AT;
   msocl_rows_f q[3], k[3], f[3], e[3], w[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, x0, y, q, k, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, x0, y, z, q,
+                   k, f);
   const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
   const float g[3] = {gravity.x, gravity.y, gravity.z};
   const float h = dt / 6.0f;
@@ -503,7 +519,8 @@ __kernel void msocl_planes_wide_euler(MSOCL_CONN, __global const float *p,
 {
   MSOCL_WIDE_AT;
   msocl_rows_f q[3], u[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, q, u, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, z, q,
+                   u, f);
   const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
   const float g[3] = {gravity.x, gravity.y, gravity.z};
   msocl_rows_f e[3], w[3];
@@ -653,8 +670,10 @@ msocl_wide_jacobian(msocl_rows_f dx, msocl_rows_f dy, msocl_rows_f dz,
 }
 
 /* A CG kernel's term of a dot product, at the points' indices */
-#define MSOCL_WIDE_DOT(val) msocl_wide_store((val), dots + y * MSOCL_PLANES_NX, \
-                                             x0, MSOCL_PLANES_NX)
+#define MSOCL_WIDE_DOT(val)                                                   \
+  msocl_wide_store((val),                                                    \
+                   dots + (z * (int)get_global_size(1) + y) * MSOCL_PLANES_NX, \
+                   x0, MSOCL_PLANES_NX)
 
 /* Implicit Euler's right-hand side (msocl_planes_ie_rhs's arithmetic):
  * b = dt (f + dt K v); x = 0, r = d = b; dots: b.b */
@@ -666,7 +685,8 @@ __kernel void msocl_planes_wide_ie_rhs(
 {
   MSOCL_WIDE_AT;
   msocl_rows_f q[3], u[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, q, u, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, z, q,
+                   u, f);
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
   __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
   msocl_rows_f kx = 0.0f, ky = 0.0f, kz = 0.0f;

@@ -7,9 +7,7 @@
 
 /* The vector of points this sweep works in, and planes_wide.cl's kernels
  * (BUFFER's table) too. */
-#if defined(MSOCL_PLANES) &&                                                 \
-    ((defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_GRID_3D)) ||               \
-     (!defined(MSOCL_LAYOUT_GRID) && !defined(MSOCL_LAYOUT_IMAGE2D)))
+#if defined(MSOCL_PLANES) && !defined(MSOCL_LAYOUT_IMAGE2D)
 #define MSOCL_ROWS 1 /* the vectors below exist in this program */
 #ifndef MSOCL_ROWS_W
 #define MSOCL_ROWS_W 16

@@ -433,8 +433,8 @@ static int padded_table(msocl__engine *s)
 /* Whether the planes kernels take their planes_wide.cl twins (wide_name):
  * on a CPU device, where PoCL may leave the scalar kernels unvectorised;
  * one engine (they launch over every point), precise math (bitwise the
- * scalar kernels'); BUFFER's or EDGES's table, or a cloth grid whose rows
- * come in work-groups of 64 (16 points a work-item, 4 a group). */
+ * scalar kernels'); BUFFER's or EDGES's table, or a cloth grid or lattice
+ * whose rows come in work-groups of 16 points or more (16 a work-item). */
 static int wide(const msocl__engine *s)
 {
   if (s->dev->info.type != MSOCL_DEVICE_CPU || s->lo != 0 ||
@@ -442,8 +442,7 @@ static int wide(const msocl__engine *s)
     return 0;
   return s->lay.kind == MSOCL_LAYOUT_BUFFER ||
          s->lay.kind == MSOCL_LAYOUT_EDGES ||
-         (s->lay.kind == MSOCL_LAYOUT_GRID && s->lay.grid_nz == 0 &&
-          s->pl_group == 64);
+         (s->lay.kind == MSOCL_LAYOUT_GRID && s->pl_group >= 16);
 }
 
 /* Planes kernel q's twin in planes_wide.cl, or NULL: every gathering
@@ -620,7 +619,7 @@ int msocl__pl_launch(msocl__engine *s, int k)
   if (s->pl_wide & (1u << k)) {
     /* MSOCL_ROWS_W points a work-item (planes_wide.cl) */
     size[0] /= 16;
-    local[0] = 4;
+    local[0] = s->pl_group / 16;
   }
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 3, off, size,
                                    group, 0, NULL, NULL));
