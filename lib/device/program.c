@@ -67,16 +67,20 @@ static void drop_includes(char *text)
   }
 }
 
+/* The most kernel files a program joins (Makefile.am's KERNEL_FILES) */
+#define MAX_KERNEL_FILES 32
+
 static int build(struct msocl__device *dev, const char *options,
                  cl_program *out)
 {
   const int n = msocl__kernel_source_count;
-  const char *texts[16];
-  char *owned[16] = {0};
+  const char *texts[MAX_KERNEL_FILES];
+  char *owned[MAX_KERNEL_FILES] = {0};
   const char *dir = getenv("MSOCL_KERNEL_PATH");
   int rc = MSOCL_OK;
-  if (n > 16)
-    return msocl__fail(MSOCL_ERR_TOO_MANY, "too many kernel files");
+  if (n > MAX_KERNEL_FILES)
+    return msocl__fail(MSOCL_ERR_TOO_MANY, "too many kernel files: %d",
+                       n);
   for (int i = 0; i < n && rc == MSOCL_OK; i++) {
     texts[i] = msocl__kernel_sources[i].text;
     if (dir && *dir) {

@@ -445,8 +445,9 @@ static int wide(const msocl__engine *s)
          (s->lay.kind == MSOCL_LAYOUT_GRID && s->pl_group >= 16);
 }
 
-/* Planes kernel q's twin in planes_wide.cl, or NULL: every gathering
- * kernel, and Verlet's drift. */
+/* Planes kernel q's twin in explicit vectors (planes_wide.cl,
+ * planes_wide_strain.cl, planes_wide_implicit.cl), or NULL: every
+ * gathering kernel, and Verlet's drift. */
 static const char *wide_name(int q)
 {
   switch (q) {
