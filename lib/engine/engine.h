@@ -230,7 +230,7 @@ int msocl__mesh_nv(const struct msocl__mesh_dev *d);
 int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n);
 int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
                      float f1);
-void msocl__mesh_end(struct msocl__mesh_dev *d);
+int msocl__mesh_end(msocl__engine *s, struct msocl__mesh_dev *d);
 void msocl__mesh_free(struct msocl__mesh_dev *d);
 /* Tests only: mesh colliders created from now on build their grid on the
  * device (mode 0), on the host (1: the reference), on the device checked

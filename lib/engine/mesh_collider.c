@@ -703,15 +703,22 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step,
   return msocl__arg_int(s, d->k, "gz", d->g[2]);
 }
 
-/* The cloth's free points' bounds now and move since, queued for the host
- * (read at the first pass: the host waits while the device goes on). */
-static int cloth_bounds(msocl__engine *s, struct msocl__mesh_dev *d)
+/* A queued read of the cloth's bounds, waited for and let go. */
+static void drop_read(struct msocl__mesh_dev *d)
 {
-  if (d->read) { /* a failed call's */
+  if (d->read) {
     clWaitForEvents(1, &d->read);
     clReleaseEvent(d->read);
     d->read = NULL;
   }
+}
+
+/* The cloth's free points' bounds now and move since, queued for the host
+ * at a moving call's end (or the next one's start, where none is), read at
+ * the next moving call's first pass. */
+static int cloth_bounds(msocl__engine *s, struct msocl__mesh_dev *d)
+{
+  drop_read(d); /* a failed call's */
   const int set = s->pl_set;
   TRY(msocl__arg_mem(s, d->bounds, "p", s->pl_p[set]));
   TRY(msocl__arg_mem(s, d->bounds, "out", d->dbounds));
@@ -802,11 +809,15 @@ int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n)
   if (d->moving)
     TRY(upload(s, d, 1 - d->a));
   if (d->moving) {
-    TRY(cloth_bounds(s, d));
+    /* the bounds the last moving call queued at its end, else now */
+    if (!d->read)
+      TRY(cloth_bounds(s, d));
     d->n = n;
     d->pending = 1;
-  } else if (!d->built || d->culled) { /* once while it stays: whole */
-    TRY(build(s, d, 0.0f, NULL));
+  } else {
+    drop_read(d); /* stale by the next moving call */
+    if (!d->built || d->culled) /* once while it stays: whole */
+      TRY(build(s, d, 0.0f, NULL));
   }
   const cl_mem a = d->vert[d->a], b = d->vert[d->moving ? 1 - d->a : d->a];
   TRY(msocl__arg_mem(s, d->place, "va", a));
@@ -862,31 +873,31 @@ int msocl__mesh_pass(msocl__engine *s, struct msocl__mesh_dev *d, float f0,
   return MSOCL_OK;
 }
 
-void msocl__mesh_end(struct msocl__mesh_dev *d)
+int msocl__mesh_end(msocl__engine *s, struct msocl__mesh_dev *d)
 {
   if (d->pending) { /* disabled through a call that moved it: no grid */
-    clWaitForEvents(1, &d->read);
-    clReleaseEvent(d->read);
-    d->read = NULL;
+    drop_read(d);
     d->pending = d->built = 0;
   }
   if (!d->moving)
-    return;
+    return MSOCL_OK;
   d->a = 1 - d->a;
   d->placed = 0;
   /* the host's copies agree again, for a later partial move */
   memcpy(d->at[1 - d->a], d->at[d->a], 3 * (size_t)d->nv * sizeof(float));
   d->moving = 0;
+  /* the cloth's bounds for the next call, read as this one finishes:
+   * that call builds its grid without waiting for the device (positions
+   * written between the calls leave them stale: a slower grid, never a
+   * missed contact) */
+  return cloth_bounds(s, d);
 }
 
 void msocl__mesh_free(struct msocl__mesh_dev *d)
 {
   if (!d)
     return;
-  if (d->read) {
-    clWaitForEvents(1, &d->read);
-    clReleaseEvent(d->read);
-  }
+  drop_read(d);
   cl_kernel *k[9] = {&d->k,        &d->place,    &d->count,
                      &d->scan_sums, &d->scan_top, &d->scan_out,
                      &d->fill,      &d->sort,     &d->bounds};

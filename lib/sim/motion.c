@@ -63,9 +63,9 @@ int msocl__motion_steps(msocl_sim *s, int n)
       msocl__soft_pins_place(s, 1.0f);
     if (cols)
       MSOCL__TRY(msocl__colliders_done(s));
-    if (meshes)
-      msocl__meshes_end(s);
     s->call_n = 0;
+    if (meshes)
+      MSOCL__TRY(msocl__meshes_end(s));
   }
   return MSOCL_OK;
 }

@@ -160,7 +160,7 @@ void msocl__meshes_free(msocl_sim *s);
 int msocl__meshes_active(const msocl_sim *s);
 int msocl__meshes_begin(msocl_sim *s, int n);
 int msocl__meshes_step(msocl_sim *s, float f0, float f1);
-void msocl__meshes_end(msocl_sim *s);
+int msocl__meshes_end(msocl_sim *s);
 /* A call that moves things over its steps (motion.c): begun before a
  * stepping call of n steps; whether it moves anything; `n` of its steps. */
 void msocl__motion_call(msocl_sim *s, int n);

@@ -57,10 +57,14 @@ int msocl__meshes_step(msocl_sim *s, float f0, float f1)
   return MSOCL_OK;
 }
 
-void msocl__meshes_end(msocl_sim *s)
+int msocl__meshes_end(msocl_sim *s)
 {
-  for (int c = 0; c < s->nmesh; c++)
-    msocl__mesh_end(s->mesh[c]);
+  int rc = MSOCL_OK;
+  for (int c = 0; c < s->nmesh; c++) { /* each ends its call, even on error */
+    const int e = msocl__mesh_end(s->part[0], s->mesh[c]);
+    rc = rc == MSOCL_OK ? e : rc;
+  }
+  return rc;
 }
 
 static int known(const msocl_sim *s, int id)
