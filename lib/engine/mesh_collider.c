@@ -603,6 +603,18 @@ static int verify(msocl__engine *s, struct msocl__mesh_dev *d,
   return rc;
 }
 
+/* A triangle's bounds along axis c from its corners' (vb: each vertex's
+ * low and high a coordinate). */
+static inline void tri_axis(const float *vb, const int *k, int c, float *lo,
+                            float *hi)
+{
+  const float *x = vb + 2 * (3 * k[0] + c), *y = vb + 2 * (3 * k[1] + c),
+              *z = vb + 2 * (3 * k[2] + c);
+  const float l = x[0] < y[0] ? x[0] : y[0], h = x[1] > y[1] ? x[1] : y[1];
+  *lo = l < z[0] ? l : z[0];
+  *hi = h > z[1] ? h : z[1];
+}
+
 /* Each triangle's bounds over the call, from start to end, grown by the
  * reach: the thickness and the mesh's largest motion a step. A point held
  * at the thickness that crosses a triangle within one step ends up at
@@ -629,28 +641,35 @@ static int build(msocl__engine *s, struct msocl__mesh_dev *d, float step,
     vb[2 * i] = p0[i] < p1[i] ? p0[i] : p1[i];
     vb[2 * i + 1] = p0[i] > p1[i] ? p0[i] : p1[i];
   }
-  float lo[3] = {INFINITY, INFINITY, INFINITY},
-        hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  /* each axis in its own scalars, the box stored once: a box assembled
+   * in memory and copied out stalled on its stores (most of the loop) */
+  float lx = INFINITY, ly = INFINITY, lz = INFINITY, hx = -INFINITY,
+        hy = -INFINITY, hz = -INFINITY;
   double size = 0;
   for (int t = 0; t < d->nt; t++) {
-    float b[6];
     const int *k = d->tri + 3 * t;
-    for (int c = 0; c < 3; c++) {
-      const float *x = vb + 2 * (3 * k[0] + c), *y = vb + 2 * (3 * k[1] + c),
-                  *z = vb + 2 * (3 * k[2] + c);
-      const float l = x[0] < y[0] ? x[0] : y[0], h = x[1] > y[1] ? x[1] : y[1];
-      b[c] = l < z[0] ? l : z[0];
-      b[3 + c] = h > z[1] ? h : z[1];
-      size += (double)(b[3 + c] - b[c]);
-      b[c] -= reach;
-      b[3 + c] += reach;
-      /* (not fminf: a libm call a bound here; the bounds are finite) */
-      lo[c] = b[c] < lo[c] ? b[c] : lo[c];
-      hi[c] = b[3 + c] > hi[c] ? b[3 + c] : hi[c];
+    float l0, l1, l2, h0, h1, h2;
+    tri_axis(vb, k, 0, &l0, &h0);
+    tri_axis(vb, k, 1, &l1, &h1);
+    tri_axis(vb, k, 2, &l2, &h2);
+    size += (double)(h0 - l0);
+    size += (double)(h1 - l1);
+    size += (double)(h2 - l2);
+    l0 -= reach, l1 -= reach, l2 -= reach;
+    h0 += reach, h1 += reach, h2 += reach;
+    /* (not fminf: a libm call a bound here; the bounds are finite) */
+    lx = l0 < lx ? l0 : lx;
+    ly = l1 < ly ? l1 : ly;
+    lz = l2 < lz ? l2 : lz;
+    hx = h0 > hx ? h0 : hx;
+    hy = h1 > hy ? h1 : hy;
+    hz = h2 > hz ? h2 : hz;
+    if (box) {
+      float *o = box + 6 * t;
+      o[0] = l0, o[1] = l1, o[2] = l2, o[3] = h0, o[4] = h1, o[5] = h2;
     }
-    if (box)
-      memcpy(box + 6 * t, b, sizeof b);
   }
+  float lo[3] = {lx, ly, lz}, hi[3] = {hx, hy, hz};
   for (int c = 0; c < 3; c++) {
     d->lo.s[c] = lo[c];
     d->hi.s[c] = hi[c];
