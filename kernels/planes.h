@@ -211,7 +211,7 @@ static MSOCL_PLANES_INLINE float msocl_planes_gap(float px, float py, float pz,
  * user (they replace the exact zeros its float4 twin adds). GRID: the
  * neighbour a fixed offset away, past the grid's edge (or of a kind with
  * k 0) reading the padding or another row; BUFFER and IMAGE2D: the other
- * end that the table holds (energy.cl's msocl_slot4), a free slot the point itself (a padding
+ * end that the table holds, a free slot the point itself (a padding
  * work-item reads no slot: the table holds n points a slot). */
 static MSOCL_PLANES_INLINE bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, int y, int z,
                                   int a, int pitch, int slab, int *b,

@@ -1,24 +1,62 @@
-/* Kinetic, spring and gravitational energy of a simulation's state, summed
- * on the device by work-group reduction and finished on the host in
- * double. */
+/* Kinetic, spring and gravitational energy of a simulation's state, read
+ * from the planes, summed on the device in runs of 64 points and
+ * finished on the host in double. */
 #include "config.h"
 #include "engine.h"
 
 #include <math.h>
 
+/* The floats a plane of the points' parts: every point of the model (the
+ * whole planes run), and every point the sums read. */
+int msocl__energy_stride(const msocl__engine *s)
+{
+  const size_t read = s->offset + 64 * s->groups;
+  return (int)(read > (size_t)s->n ? read : (size_t)s->n);
+}
+
+/* The energy kernels' arguments that hold for the engine's life: the
+ * planes' connectivity and shape, the parts' planes (the state's buffers
+ * are set each time). */
+int msocl__energy_args(msocl__engine *s)
+{
+  cl_kernel k = s->k[MSOCL__K_ENERGY_POINTS];
+  const int stride = msocl__energy_stride(s), first = (int)s->offset,
+            runs = (int)s->groups;
+  const struct msocl__named fixed[] = {
+      {"aux", sizeof s->pl_aux, &s->pl_aux},
+      {"pitch", sizeof(int), &s->pl_pitch},
+      {"slab", sizeof(int), &s->pl_slab},
+      {"plane", sizeof(int), &s->pl_plane},
+      {"parts", sizeof s->parts, &s->parts},
+      {"stride", sizeof stride, &stride},
+      {"first", sizeof first, &first},
+      {"runs", sizeof runs, &runs}};
+  const int nf = (int)(sizeof fixed / sizeof fixed[0]);
+  MSOCL__TRY(msocl__layout_set_args(&s->pl_lay, s->dev, k));
+  MSOCL__TRY(msocl__args_named(s, k, fixed, nf));
+  return msocl__args_named(s, s->k[MSOCL__K_ENERGY], fixed, nf);
+}
+
 int msocl__energy(msocl__engine *s, msocl_energy *e)
 {
-  cl_kernel k = s->k[MSOCL__K_ENERGY];
-  int rc = msocl__planes_current(s);
+  cl_kernel k = s->k[MSOCL__K_ENERGY_POINTS];
+  /* the state in planes (where the steps leave it), not copied out */
+  int rc = msocl__planes_enter(s);
   if (rc == MSOCL_OK)
-    rc = msocl__arg_mem(s, k, "pos", s->pos[s->r]);
+    rc = msocl__arg_mem(s, k, "p", s->pl_p[s->pl_set]);
   if (rc == MSOCL_OK)
-    rc = msocl__arg_mem(s, k, "vel", s->vel[s->r]);
+    rc = msocl__arg_mem(s, k, "v", s->pl_v[s->pl_set]);
   if (rc != MSOCL_OK)
     return rc;
-  const size_t local = 64, global = 64 * s->groups;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, &s->offset, &global,
-                                   &local, 0, NULL, NULL));
+  /* each point's part over the planes as their passes run (the whole
+   * planes: a split's others are dropped), then sums in the model's order */
+  size_t group[3] = {s->pl_group, 1, 1};
+  MSOCL__CL(clEnqueueNDRangeKernel(
+      s->dev->queue, k, 3, NULL, s->pl_global,
+      s->dev->info.type == MSOCL_DEVICE_CPU ? group : NULL, 0, NULL, NULL));
+  const size_t runs = (s->groups + 63) / 64 * 64;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[MSOCL__K_ENERGY], 1,
+                                   NULL, &runs, NULL, 0, NULL, NULL));
   MSOCL__CL(clEnqueueReadBuffer(s->dev->queue, s->partial, CL_TRUE, 0,
                                 s->groups * sizeof(cl_float4),
                                 s->partial_host, 0, NULL, NULL));

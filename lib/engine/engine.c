@@ -163,6 +163,9 @@ static int make_buffers(msocl__engine *s, const msocl_model *m)
   }
   s->partial = buffer(s, CL_MEM_READ_WRITE, s->groups * sizeof(cl_float4),
                       NULL, &rc);
+  s->parts = buffer(s, CL_MEM_READ_WRITE,
+                    3 * (size_t)msocl__energy_stride(s) * sizeof(float),
+                    NULL, &rc);
   if (rc == MSOCL_OK) {
     /* Velocities start at zero: a pattern fill, no host transfer. */
     float zero = 0.0f;
@@ -181,15 +184,15 @@ out:
 }
 
 /* Kernels by enum index; the energy gathers. */
-static const char *const kernel_names[MSOCL__K_COUNT] = {"msocl_normals",
-                                                         "msocl_energy"};
+static const char *const kernel_names[MSOCL__K_COUNT] = {
+    "msocl_normals", "msocl_energy", "msocl_energy_points"};
 
 /* Creates the float4 state's kernels: the normals and the energy. */
 static int make_kernels(msocl__engine *s, cl_program prog)
 {
   for (int q = 0; q < MSOCL__K_COUNT; q++)
     MSOCL__TRY(msocl__kernel_make(s->dev, prog, kernel_names[q], &s->k[q]));
-  return msocl__layout_set_args(&s->lay, s->dev, s->k[MSOCL__K_ENERGY]);
+  return MSOCL_OK;
 }
 
 int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
@@ -266,6 +269,8 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
   if (rc == MSOCL_OK)
     rc = msocl__planes_create(s, prog);
   if (rc == MSOCL_OK)
+    rc = msocl__energy_args(s);
+  if (rc == MSOCL_OK)
     rc = msocl__wind_create(s, m, prog);
   if (rc == MSOCL_OK)
     rc = msocl__field_create(s, prog);
@@ -299,7 +304,7 @@ void msocl__engine_destroy(msocl__engine *s)
   cl_mem mems[] = {s->pos[0],   s->pos[1],    s->vel[0],    s->vel[1],
                    s->inv_mass, s->col,       s->normal,    s->tri_off,
                    s->tri_ab,   s->backup_p,  s->backup_v,
-                   s->partial};
+                   s->partial,  s->parts};
   for (size_t q = 0; q < sizeof mems / sizeof mems[0]; q++)
     if (mems[q])
       clReleaseMemObject(mems[q]);
@@ -364,6 +369,7 @@ int msocl__engine_terms(msocl__engine *s, int viscous, int air)
   for (int q = 0; q < MSOCL__K_COUNT; q++)
     msocl__kernel_free(s->dev, &s->k[q]);
   MSOCL__TRY(make_kernels(s, prog));
+  MSOCL__TRY(msocl__energy_args(s));
   MSOCL__TRY(msocl__set_fixed(s));
   MSOCL__TRY(msocl__planes_rebuild(s, prog, 1));
   return rebound(s);

@@ -10,7 +10,7 @@
 /* Kernels the library's program holds; the enum indexes msocl__engine.k. */
 /* Beside the planes' kernels (planes.h), two read the float4 state the
  * host sees: the normals and the energy. */
-enum { MSOCL__K_NORMALS, MSOCL__K_ENERGY, MSOCL__K_COUNT };
+enum { MSOCL__K_NORMALS, MSOCL__K_ENERGY, MSOCL__K_ENERGY_POINTS, MSOCL__K_COUNT };
 
 typedef struct msocl__engine msocl__engine;
 
@@ -24,6 +24,7 @@ struct msocl__engine {
   cl_mem inv_mass, col, normal, tri_off, tri_ab;
   cl_mem backup_p, backup_v; /* last state that passed the blow-up check */
   cl_mem partial;         /* one float4 per work-group of reductions */
+  cl_mem parts;           /* the energy's per point, three planes */
   cl_kernel k[MSOCL__K_COUNT];
   int r;
   int damped;             /* dashpots: gathers read neighbours' velocities */
@@ -247,6 +248,8 @@ void msocl__mesh_cull(int mode);
  * kernel, a work-item a point, on CPU devices too (1), or not (0). */
 void msocl__mesh_per_point(int on);
 /* Energy of the engine's points (waits for the device). */
+int msocl__energy_stride(const msocl__engine *s);
+int msocl__energy_args(msocl__engine *s);
 int msocl__energy(msocl__engine *s, msocl_energy *e);
 /* Kernel k's argument that kernels/ names `name` (kernel_args.c; k made
  * by msocl__kernel_make): to size bytes at v, a buffer, a float, an int. */
