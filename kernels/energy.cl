@@ -6,6 +6,7 @@
  * gather sees it; a missing slot adds nothing, so every layout sums the
  * same terms in the same order. */
 #include "planes.h"
+#include "wide.h"
 #if defined(MSOCL_PLANES)
 
 #define MSOCL_ENERGY_GROUP 64
@@ -75,6 +76,67 @@ __kernel void msocl_energy_points(MSOCL_CONN, __global const float *p,
     parts[2 * stride + i] = e[2];
   }
 }
+
+#if defined(MSOCL_ROWS) && !defined(MSOCL_LAYOUT_GRID)
+/* msocl_energy_points on BUFFER's table in explicit vectors, sixteen
+ * points a work-item (on a CPU device, where PoCL leaves a table's gathers
+ * scalar): the same arithmetic lane by lane, a spilling point's springs
+ * past the table added after the table's, in order. */
+__kernel void msocl_energy_points_wide(MSOCL_CONN, __global const float *p,
+                                       __global const float *v,
+                                       __global const float *aux,
+                                       float4 gravity, __global float *parts,
+                                       int pitch, int slab, int plane,
+                                       int stride)
+{
+  MSOCL_WIDE_AT;
+  const msocl_rows_f px = MSOCL_ROWS_LOAD(p + a),
+                     py = MSOCL_ROWS_LOAD(p + plane + a),
+                     pz = MSOCL_ROWS_LOAD(p + 2 * plane + a),
+                     vx = MSOCL_ROWS_LOAD(v + a),
+                     vy = MSOCL_ROWS_LOAD(v + plane + a),
+                     vz = MSOCL_ROWS_LOAD(v + 2 * plane + a);
+  const msocl_rows_f m = 1.0f / MSOCL_ROWS_LOAD(aux + a);
+  msocl_rows_f es = 0.0f;
+  MSOCL_WIDE_SLOTS {
+    MSOCL_WIDE_SLOT;
+    const msocl_rows_f dx = MSOCL_WIDE_NB(p) - px,
+                       dy = MSOCL_WIDE_NB(p + plane) - py,
+                       dz = MSOCL_WIDE_NB(p + 2 * plane) - pz;
+    const msocl_rows_f stretch =
+        MSOCL_SQRT(dx * dx + dy * dy + dz * dz) - rest;
+    es += MSOCL_ROWS_SEL(there, 0.25f * kk * stretch * stretch, 0.0f);
+    (void)cc;
+  }
+#ifdef MSOCL_SPILL
+  float t[MSOCL_ROWS_W];
+  *(msocl_rows_any *)t = es;
+  for (int u = 0; u < MSOCL_ROWS_W && x0 + u < MSOCL_PLANES_NX; u++) {
+    const int x = x0 + u;
+    for (int o = spill[x]; o < spill[x + 1]; o++) {
+      int b;
+      float rest, kk, cc;
+      msocl_planes_spill_slot(MSOCL_CONN_ARGS, o, slab, &b, &rest, &kk, &cc);
+      const float *q = (const float *)&px;
+      const float *qy = (const float *)&py, *qz = (const float *)&pz;
+      const float dx = p[b] - q[u], dy = p[plane + b] - qy[u],
+                  dz = p[2 * plane + b] - qz[u];
+      const float stretch = MSOCL_SQRT(dx * dx + dy * dy + dz * dz) - rest;
+      t[u] += 0.25f * kk * stretch * stretch;
+      (void)cc;
+    }
+  }
+  es = MSOCL_ROWS_LOAD(t);
+#endif
+  const msocl_rows_f ek = 0.5f * m * (vx * vx + vy * vy + vz * vz),
+                     eg = -m * (gravity.x * px + gravity.y * py +
+                                gravity.z * pz);
+  msocl_wide_store(ek, parts, x0, MSOCL_PLANES_NX);
+  msocl_wide_store(es, parts + stride, x0, MSOCL_PLANES_NX);
+  msocl_wide_store(eg, parts + 2 * stride, x0, MSOCL_PLANES_NX);
+  (void)row;
+}
+#endif
 
 /* The points' parts summed in runs of 64 (in the model's order, whatever
  * the layout pads), run g from point first + 64 g, one after another into

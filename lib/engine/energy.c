@@ -3,6 +3,7 @@
  * finished on the host in double. */
 #include "config.h"
 #include "engine.h"
+#include "planes.h"
 
 #include <math.h>
 
@@ -14,12 +15,23 @@ int msocl__energy_stride(const msocl__engine *s)
   return (int)(read > (size_t)s->n ? read : (size_t)s->n);
 }
 
+/* Whether the points' parts take energy.cl's wide kernel: where the
+ * other passes take theirs (planes.c), on BUFFER's or EDGES's table. */
+static int wide(const msocl__engine *s)
+{
+  return (s->pl_wide & (1u << PL_VELOCITY)) &&
+         s->lay.kind != MSOCL_LAYOUT_GRID && s->pl_group % 16 == 0;
+}
+
 /* The energy kernels' arguments that hold for the engine's life: the
  * planes' connectivity and shape, the parts' planes (the state's buffers
- * are set each time). */
-int msocl__energy_args(msocl__engine *s)
+ * are set each time); the wide kernel made from prog where it applies. */
+int msocl__energy_args(msocl__engine *s, cl_program prog)
 {
-  cl_kernel k = s->k[MSOCL__K_ENERGY_POINTS];
+  msocl__kernel_free(s->dev, &s->k[MSOCL__K_ENERGY_WIDE]);
+  if (wide(s))
+    MSOCL__TRY(msocl__kernel_make(s->dev, prog, "msocl_energy_points_wide",
+                                  &s->k[MSOCL__K_ENERGY_WIDE]));
   const int stride = msocl__energy_stride(s), first = (int)s->offset,
             runs = (int)s->groups;
   const struct msocl__named fixed[] = {
@@ -32,14 +44,21 @@ int msocl__energy_args(msocl__engine *s)
       {"first", sizeof first, &first},
       {"runs", sizeof runs, &runs}};
   const int nf = (int)(sizeof fixed / sizeof fixed[0]);
-  MSOCL__TRY(msocl__layout_set_args(&s->pl_lay, s->dev, k));
-  MSOCL__TRY(msocl__args_named(s, k, fixed, nf));
-  return msocl__args_named(s, s->k[MSOCL__K_ENERGY], fixed, nf);
+  for (int q = MSOCL__K_ENERGY; q <= MSOCL__K_ENERGY_WIDE; q++) {
+    cl_kernel k = s->k[q];
+    if (!k)
+      continue;
+    if (q != MSOCL__K_ENERGY)
+      MSOCL__TRY(msocl__layout_set_args(&s->pl_lay, s->dev, k));
+    MSOCL__TRY(msocl__args_named(s, k, fixed, nf));
+  }
+  return MSOCL_OK;
 }
 
 int msocl__energy(msocl__engine *s, msocl_energy *e)
 {
-  cl_kernel k = s->k[MSOCL__K_ENERGY_POINTS];
+  const int w = s->k[MSOCL__K_ENERGY_WIDE] != NULL;
+  cl_kernel k = s->k[w ? MSOCL__K_ENERGY_WIDE : MSOCL__K_ENERGY_POINTS];
   /* the state in planes (where the steps leave it), not copied out */
   int rc = msocl__planes_enter(s);
   if (rc == MSOCL_OK)
@@ -49,10 +68,13 @@ int msocl__energy(msocl__engine *s, msocl_energy *e)
   if (rc != MSOCL_OK)
     return rc;
   /* each point's part over the planes as their passes run (the whole
-   * planes: a split's others are dropped), then sums in the model's order */
-  size_t group[3] = {s->pl_group, 1, 1};
+   * planes: a split's others are dropped; wide: 16 points a work-item),
+   * then sums in the model's order */
+  size_t group[3] = {s->pl_group / (w ? 16 : 1), 1, 1},
+         size[3] = {s->pl_global[0] / (w ? 16 : 1), s->pl_global[1],
+                    s->pl_global[2]};
   MSOCL__CL(clEnqueueNDRangeKernel(
-      s->dev->queue, k, 3, NULL, s->pl_global,
+      s->dev->queue, k, 3, NULL, size,
       s->dev->info.type == MSOCL_DEVICE_CPU ? group : NULL, 0, NULL, NULL));
   const size_t runs = (s->groups + 63) / 64 * 64;
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->k[MSOCL__K_ENERGY], 1,

@@ -184,13 +184,13 @@ out:
 }
 
 /* Kernels by enum index; the energy gathers. */
-static const char *const kernel_names[MSOCL__K_COUNT] = {
+static const char *const kernel_names[MSOCL__K_ENERGY_WIDE] = {
     "msocl_normals", "msocl_energy", "msocl_energy_points"};
 
 /* Creates the float4 state's kernels: the normals and the energy. */
 static int make_kernels(msocl__engine *s, cl_program prog)
 {
-  for (int q = 0; q < MSOCL__K_COUNT; q++)
+  for (int q = 0; q < MSOCL__K_ENERGY_WIDE; q++)
     MSOCL__TRY(msocl__kernel_make(s->dev, prog, kernel_names[q], &s->k[q]));
   return MSOCL_OK;
 }
@@ -269,7 +269,7 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
   if (rc == MSOCL_OK)
     rc = msocl__planes_create(s, prog);
   if (rc == MSOCL_OK)
-    rc = msocl__energy_args(s);
+    rc = msocl__energy_args(s, prog);
   if (rc == MSOCL_OK)
     rc = msocl__wind_create(s, m, prog);
   if (rc == MSOCL_OK)
@@ -369,7 +369,7 @@ int msocl__engine_terms(msocl__engine *s, int viscous, int air)
   for (int q = 0; q < MSOCL__K_COUNT; q++)
     msocl__kernel_free(s->dev, &s->k[q]);
   MSOCL__TRY(make_kernels(s, prog));
-  MSOCL__TRY(msocl__energy_args(s));
+  MSOCL__TRY(msocl__energy_args(s, prog));
   MSOCL__TRY(msocl__set_fixed(s));
   MSOCL__TRY(msocl__planes_rebuild(s, prog, 1));
   return rebound(s);

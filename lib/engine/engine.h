@@ -10,7 +10,11 @@
 /* Kernels the library's program holds; the enum indexes msocl__engine.k. */
 /* Beside the planes' kernels (planes.h), two read the float4 state the
  * host sees: the normals and the energy. */
-enum { MSOCL__K_NORMALS, MSOCL__K_ENERGY, MSOCL__K_ENERGY_POINTS, MSOCL__K_COUNT };
+enum {
+  MSOCL__K_NORMALS, MSOCL__K_ENERGY, MSOCL__K_ENERGY_POINTS,
+  MSOCL__K_ENERGY_WIDE, /* made by msocl__energy_args where it applies */
+  MSOCL__K_COUNT
+};
 
 typedef struct msocl__engine msocl__engine;
 
@@ -249,7 +253,7 @@ void msocl__mesh_cull(int mode);
 void msocl__mesh_per_point(int on);
 /* Energy of the engine's points (waits for the device). */
 int msocl__energy_stride(const msocl__engine *s);
-int msocl__energy_args(msocl__engine *s);
+int msocl__energy_args(msocl__engine *s, cl_program prog);
 int msocl__energy(msocl__engine *s, msocl_energy *e);
 /* Kernel k's argument that kernels/ names `name` (kernel_args.c; k made
  * by msocl__kernel_make): to size bytes at v, a buffer, a float, an int. */
