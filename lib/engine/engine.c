@@ -183,11 +183,13 @@ out:
   return rc;
 }
 
-/* Kernels by enum index; the energy gathers. */
+/* Kernels by enum index (the energy's wide twin is made by
+ * msocl__energy_args, where it applies). */
 static const char *const kernel_names[MSOCL__K_ENERGY_WIDE] = {
     "msocl_normals", "msocl_energy", "msocl_energy_points"};
 
-/* Creates the float4 state's kernels: the normals and the energy. */
+/* Creates the engine's own kernels: the normals (from the float4 state)
+ * and the energy's two (from the planes). */
 static int make_kernels(msocl__engine *s, cl_program prog)
 {
   for (int q = 0; q < MSOCL__K_ENERGY_WIDE; q++)
