@@ -23,7 +23,9 @@
  * neighbour's length is NaN, `len > 0` fails and its term is the zero
  * msocl_planes_force adds for it, with no edge test a slot. Same slot
  * order and arithmetic as msocl_planes_kick, so the result is bitwise
- * GRID's (tests/check_planes.c). */
+ * GRID's (tests/check_planes.c). msocl_planes_rows_steps runs several
+ * steps a launch, each a few rows behind the one before (temporal
+ * blocking): one launch's wait and pass over the planes for several. */
 #include "rows.h"
 #include "wind.h"
 
@@ -49,6 +51,10 @@
 #define MSOCL_ROWS_OFF(f, pitch)                                              \
   ((f) == 0 ? 1 : (f) == 1 ? (pitch) : (f) == 2 ? (pitch) - 1                \
    : (f) == 3 ? (pitch) + 1 : (f) == 4 ? 2 : 2 * (pitch))
+/* ... as a row above (0, 1 or 2) and a column offset */
+#define MSOCL_ROWS_DY(f) ((f) == 0 || (f) == 4 ? 0 : (f) == 5 ? 2 : 1)
+#define MSOCL_ROWS_DX(f)                                                      \
+  ((f) == 0 || (f) == 3 ? 1 : (f) == 2 ? -1 : (f) == 4 ? 2 : 0)
 #define MSOCL_ROWS_KIND(f) ((f) < 2 ? 0 : (f) < 4 ? 1 : 2)
 #define MSOCL_ROWS_REST(f)                                                    \
   ((f) == 0 ? grid_rest.s0 : (f) == 1 ? grid_rest.s1                         \
@@ -59,26 +65,29 @@
                                                                : grid_k.z)
 #define MSOCL_ROWS_HAS(f) ((MSOCL_GRID_KINDS >> MSOCL_ROWS_KIND(f)) & 1)
 
-/* Wind on the quads at row y's padded columns c.. (at a in the planes)
- * into ring row t (terms 6 and 7: A and B), from the velocities before
- * the step and the quads' edges (msocl_rows_springs' ex..ez: right,
- * above, -, above-right), as msocl_wind_quads computes them: zero where
- * the quad is not the model's (its padding corners hold NaN). */
+/* Wind on the quads at row y's padded columns c.. into ring row t
+ * (terms 6 and 7: A and B), from the velocities before the step in rows
+ * v0 (y) and v1 (y + 1), planes `ps` floats apart, and the quads' edges
+ * (msocl_rows_springs' ex..ez: right, above, -, above-right), as
+ * msocl_wind_quads computes them: zero where the quad is not the
+ * model's (its padding corners hold NaN). */
 static inline __attribute__((always_inline)) void
-msocl_rows_wind(MSOCL_CONN, __global const float *v, int pitch, int plane,
-                int y, int a, int c, const msocl_rows_f *ex,
-                const msocl_rows_f *ey, const msocl_rows_f *ez, float4 air,
-                float4 coef, __global float *t, int ring_w)
+msocl_rows_wind(MSOCL_CONN, __global const float *v0,
+                __global const float *v1, int ps, int y, int c,
+                const msocl_rows_f *ex, const msocl_rows_f *ey,
+                const msocl_rows_f *ez, float4 air, float4 coef,
+                __global float *t, int ring_w)
 {
-  const int q = plane;
+  const int q = ps;
   const msocl_rows_m x = MSOCL_ROWS_LANES + (c - 2);
   /* select reads a lane's sign bit: the row's test as -1 or 0 */
   const int row_real = -(int)(y >= 0 && y + 1 < grid_ny);
   const msocl_rows_m real = (x >= 0) & (x + 1 < grid_nx) & row_real;
-  /* the quad's corners a, a+1, a+pitch+1 (A) and a, a+pitch+1,
-   * a+pitch (B) */
-  const int r = a + 1, u = a + pitch + 1, l = a + pitch;
-#define V(o) MSOCL_ROWS_LOAD(v + (o))
+  /* the quad's corners (y, c), (y, c+1), (y+1, c+1) (A) and (y, c),
+   * (y+1, c+1), (y+1, c) (B) */
+  __global const float *a = v0 + c, *r = a + 1, *u = v1 + c + 1,
+                       *l = v1 + c;
+#define V(o) MSOCL_ROWS_LOAD(o)
   const msocl_rows_f v0x = V(a), v0y = V(q + a), v0z = V(2 * q + a);
   const msocl_rows_f vux = V(u), vuy = V(q + u), vuz = V(2 * q + u);
   MSOCL_WIND_FORCE(msocl_rows_f, MSOCL_ROWS_SEL, wa_, ex[0], ey[0], ez[0],
@@ -104,30 +113,32 @@ msocl_rows_wind(MSOCL_CONN, __global const float *v, int pitch, int plane,
  * nx) into ring row t: msocl_planes_pull's `on ? t * d : 0`, and with
  * dashpots its `onh ? u * d : 0` from the velocities before the step (a
  * backward one negates exactly: w and d both flip, w . d and len2 stay).
- * The last vector is moved back to end at column nx + 2, and overlaps the
- * one before it (the same terms again), so no load passes the planes. */
+ * Positions and velocities of rows y, y + 1, y + 2 at p0.., v0.. (column
+ * 0 is x = -2), planes `ps` floats apart. The last vector is moved back
+ * to end at column nx + 2, and overlaps the one before it (the same terms
+ * again), so no load passes the planes. */
 static inline __attribute__((always_inline)) void
-msocl_rows_springs(MSOCL_CONN, __global const float *p,
-                   __global const float *v, int pitch, int plane, int y,
+msocl_rows_springs(MSOCL_CONN, __global const float *p0,
+                   __global const float *p1, __global const float *p2,
+                   __global const float *v0, __global const float *v1,
+                   __global const float *v2, int ps, int y,
                    __global float *t, int ring_w, float4 air, float4 coef,
                    const int wind)
 {
-  __global const float *py_ = p + plane, *pz_ = py_ + plane;
 #ifdef MSOCL_DAMPING
-  __global const float *vy_ = v + plane, *vz_ = vy_ + plane;
   const float cc = MSOCL_GRID_C;
 #endif
-  (void)v;
-  const int row = (y + 2) * pitch, cols = grid_nx + 3;
+  (void)v2;
+  const int cols = grid_nx + 3;
   for (int c0 = 0; c0 < cols; c0 += MSOCL_ROWS_W) {
-    const int c = min(c0, cols - MSOCL_ROWS_W), a = row + c;
-    const msocl_rows_f px = MSOCL_ROWS_LOAD(p + a),
-                       py = MSOCL_ROWS_LOAD(py_ + a),
-                       pz = MSOCL_ROWS_LOAD(pz_ + a);
+    const int c = min(c0, cols - MSOCL_ROWS_W);
+    const msocl_rows_f px = MSOCL_ROWS_LOAD(p0 + c),
+                       py = MSOCL_ROWS_LOAD(p0 + ps + c),
+                       pz = MSOCL_ROWS_LOAD(p0 + 2 * ps + c);
 #ifdef MSOCL_DAMPING
-    const msocl_rows_f vx = MSOCL_ROWS_LOAD(v + a),
-                       vy = MSOCL_ROWS_LOAD(vy_ + a),
-                       vz = MSOCL_ROWS_LOAD(vz_ + a);
+    const msocl_rows_f vx = MSOCL_ROWS_LOAD(v0 + c),
+                       vy = MSOCL_ROWS_LOAD(v0 + ps + c),
+                       vz = MSOCL_ROWS_LOAD(v0 + 2 * ps + c);
 #endif
     /* wind's quad edges: springs 0, 3 and 1's (right, above-right,
      * above), the same bits as loading them again */
@@ -137,11 +148,14 @@ msocl_rows_springs(MSOCL_CONN, __global const float *p,
       const bool edge = wind && f < 4 && f != 2;
       if (!MSOCL_ROWS_HAS(f) && !edge)
         continue;
-      const int b = a + MSOCL_ROWS_OFF(f, pitch);
+      const int o_ = c + MSOCL_ROWS_DX(f);
+      __global const float *o = (MSOCL_ROWS_DY(f) == 0   ? p0
+                                 : MSOCL_ROWS_DY(f) == 1 ? p1
+                                                         : p2) + o_;
       const float kk = MSOCL_ROWS_K(f), rest = MSOCL_ROWS_REST(f);
-      const msocl_rows_f dx = MSOCL_ROWS_LOAD(p + b) - px,
-                         dy = MSOCL_ROWS_LOAD(py_ + b) - py,
-                         dz = MSOCL_ROWS_LOAD(pz_ + b) - pz;
+      const msocl_rows_f dx = MSOCL_ROWS_LOAD(o) - px,
+                         dy = MSOCL_ROWS_LOAD(o + ps) - py,
+                         dz = MSOCL_ROWS_LOAD(o + 2 * ps) - pz;
       if (edge) {
         ex[f] = dx;
         ey[f] = dy;
@@ -158,9 +172,12 @@ msocl_rows_springs(MSOCL_CONN, __global const float *p,
       MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dy, 0.0f), q + ring_w);
       MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dz, 0.0f), q + 2 * ring_w);
 #ifdef MSOCL_DAMPING
-      const msocl_rows_f wx = MSOCL_ROWS_LOAD(v + b) - vx,
-                         wy = MSOCL_ROWS_LOAD(vy_ + b) - vy,
-                         wz = MSOCL_ROWS_LOAD(vz_ + b) - vz;
+      __global const float *b = (MSOCL_ROWS_DY(f) == 0   ? v0
+                                 : MSOCL_ROWS_DY(f) == 1 ? v1
+                                                         : v2) + o_;
+      const msocl_rows_f wx = MSOCL_ROWS_LOAD(b) - vx,
+                         wy = MSOCL_ROWS_LOAD(b + ps) - vy,
+                         wz = MSOCL_ROWS_LOAD(b + 2 * ps) - vz;
       const msocl_rows_f u =
           cc * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
       const msocl_rows_m onh = len2 > 0.0f;
@@ -171,8 +188,8 @@ msocl_rows_springs(MSOCL_CONN, __global const float *p,
 #endif
     }
     if (wind)
-      msocl_rows_wind(MSOCL_CONN_ARGS, v, pitch, plane, y, a, c, ex, ey, ez,
-                      air, coef, t, ring_w);
+      msocl_rows_wind(MSOCL_CONN_ARGS, v0, v1, ps, y, c, ex, ey, ez, air,
+                      coef, t, ring_w);
   }
 }
 
@@ -221,38 +238,36 @@ msocl_rows_sum(__global const float *r0,
   return g;
 }
 
-/* Row y's kick and drift (msocl_planes_fused) from ring rows r0, r1, r2,
- * the velocities into v_out (v itself without wind or dashpots: only the
- * point reads its own). The last vector moves back to end at the row's
- * last point, over points the one before it has updated: its velocities
- * are read before that. */
+/* A row's kick and drift (msocl_planes_fused) from ring rows r0, r1, r2:
+ * positions and velocities read from rows pr, vr (column 0 is x = -2;
+ * planes `ps` floats apart), written to rows pw, vw (`pso` apart), the
+ * inverse masses and pins from row ar (`plane` apart); vw may be vr
+ * without wind or dashpots (only the point reads its own velocity). The
+ * last vector moves back to end at the row's last point, over points the
+ * one before it has updated: its velocities are read before that. */
 static inline __attribute__((always_inline)) void
-msocl_rows_kick(MSOCL_CONN, __global const float *p,
-                            __global const float *v, __global float *v_out,
-                            __global float *p_out,
-                            __global const float *aux,
-                            int pitch, int plane, float4 gravity,
-                            float viscous, float air, float dt,
-                            __constant const float *cf,
-                            __global const float *r0,
-                            __global const float *r1,
-                            __global const float *r2, int y, int ring_w,
-                            int wind, int still)
+msocl_rows_kick(MSOCL_CONN, __global const float *pr,
+                __global const float *vr, int ps, __global float *pw,
+                __global float *vw, int pso, __global const float *ar,
+                int plane, float4 gravity, float viscous, float air,
+                float dt, __constant const float *cf,
+                __global const float *r0, __global const float *r1,
+                __global const float *r2, int ring_w, int wind, int still)
 {
-  const int row = (y + 2) * pitch + 2, tail = grid_nx - MSOCL_ROWS_W;
-  const msocl_rows_f tx = MSOCL_ROWS_LOAD(v + row + tail),
-                     ty = MSOCL_ROWS_LOAD(v + plane + row + tail),
-                     tz = MSOCL_ROWS_LOAD(v + 2 * plane + row + tail);
-  for (int x0 = 0; x0 < grid_nx; x0 += MSOCL_ROWS_W) {
+  const int tail = grid_nx - MSOCL_ROWS_W + 2;
+  const msocl_rows_f tx = MSOCL_ROWS_LOAD(vr + tail),
+                     ty = MSOCL_ROWS_LOAD(vr + ps + tail),
+                     tz = MSOCL_ROWS_LOAD(vr + 2 * ps + tail);
+  for (int x0 = 2; x0 < grid_nx + 2; x0 += MSOCL_ROWS_W) {
     const bool last = x0 >= tail;
-    const int x = last ? tail : x0, a = row + x, c = x + 2;
+    const int c = last ? tail : x0;
     const msocl_rows_f fx0 = msocl_rows_sum(r0, r1, r2, 0, c, ring_w),
                        fy0 = msocl_rows_sum(r0, r1, r2, 1, c, ring_w),
                        fz0 = msocl_rows_sum(r0, r1, r2, 2, c, ring_w);
-    msocl_rows_f ux = last ? tx : MSOCL_ROWS_LOAD(v + a),
-                 uy = last ? ty : MSOCL_ROWS_LOAD(v + plane + a),
-                 uz = last ? tz : MSOCL_ROWS_LOAD(v + 2 * plane + a);
-    const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
+    msocl_rows_f ux = last ? tx : MSOCL_ROWS_LOAD(vr + c),
+                 uy = last ? ty : MSOCL_ROWS_LOAD(vr + ps + c),
+                 uz = last ? tz : MSOCL_ROWS_LOAD(vr + 2 * ps + c);
+    const msocl_rows_f im = MSOCL_ROWS_LOAD(ar + c);
     if (wind) {
       /* the six triangles' thirds in triangle order, then the velocity
        * change, as msocl_wind_quad_points and msocl_wind_kick */
@@ -269,7 +284,7 @@ msocl_rows_kick(MSOCL_CONN, __global const float *p,
       W(r2, 7, c);
 #undef W
 #ifdef MSOCL_PINS
-      const msocl_rows_m held = MSOCL_ROWS_LOAD(aux + plane + a) != 0.0f;
+      const msocl_rows_m held = MSOCL_ROWS_LOAD(ar + plane + c) != 0.0f;
       const msocl_rows_f s = MSOCL_ROWS_SEL(held, 0.0f, dt * im);
 #else
       const msocl_rows_f s = dt * im;
@@ -278,15 +293,15 @@ msocl_rows_kick(MSOCL_CONN, __global const float *p,
       uy += s * wy;
       uz += s * wz;
     }
-    const msocl_rows_f px = MSOCL_ROWS_LOAD(p + a),
-                       py = MSOCL_ROWS_LOAD(p + plane + a),
-                       pz = MSOCL_ROWS_LOAD(p + 2 * plane + a);
+    const msocl_rows_f px = MSOCL_ROWS_LOAD(pr + c),
+                       py = MSOCL_ROWS_LOAD(pr + ps + c),
+                       pz = MSOCL_ROWS_LOAD(pr + 2 * ps + c);
     msocl_rows_f vx, vy, vz;
     msocl_rows_velocity(fx0, fy0, fz0, ux, uy, uz, im, px, py, pz, gravity,
                         viscous, air, dt, cf, still, &vx, &vy, &vz);
     msocl_rows_f qx = px + dt * vx, qy = py + dt * vy, qz = pz + dt * vz;
 #ifdef MSOCL_PINS
-    const msocl_rows_m pinned = MSOCL_ROWS_LOAD(aux + plane + a) != 0.0f;
+    const msocl_rows_m pinned = MSOCL_ROWS_LOAD(ar + plane + c) != 0.0f;
     vx = MSOCL_ROWS_SEL(pinned, 0.0f, vx);
     vy = MSOCL_ROWS_SEL(pinned, 0.0f, vy);
     vz = MSOCL_ROWS_SEL(pinned, 0.0f, vz);
@@ -294,12 +309,12 @@ msocl_rows_kick(MSOCL_CONN, __global const float *p,
     qy = MSOCL_ROWS_SEL(pinned, py, qy);
     qz = MSOCL_ROWS_SEL(pinned, pz, qz);
 #endif
-    MSOCL_ROWS_STORE(vx, v_out + a);
-    MSOCL_ROWS_STORE(vy, v_out + plane + a);
-    MSOCL_ROWS_STORE(vz, v_out + 2 * plane + a);
-    MSOCL_ROWS_STORE(qx, p_out + a);
-    MSOCL_ROWS_STORE(qy, p_out + plane + a);
-    MSOCL_ROWS_STORE(qz, p_out + 2 * plane + a);
+    MSOCL_ROWS_STORE(vx, vw + c);
+    MSOCL_ROWS_STORE(vy, vw + pso + c);
+    MSOCL_ROWS_STORE(vz, vw + 2 * pso + c);
+    MSOCL_ROWS_STORE(qx, pw + c);
+    MSOCL_ROWS_STORE(qy, pw + pso + c);
+    MSOCL_ROWS_STORE(qz, pw + 2 * pso + c);
   }
 }
 
@@ -336,18 +351,22 @@ msocl_rows_step(MSOCL_ROWS_PARAMS, int still)
   for (int y = y0 - 2; y < y1; y++) {
     /* the windless loop apart, specialised */
     __global float *t = mine + (size_t)((y + 3) % 3) * one;
+    const int row = (y + 2) * pitch;
+    __global const float *pr = p + row, *vr = v + row;
     if (wind && y >= y0 - 1)
-      msocl_rows_springs(MSOCL_CONN_ARGS, p, v, pitch, plane, y, t, rw,
+      msocl_rows_springs(MSOCL_CONN_ARGS, pr, pr + pitch, pr + 2 * pitch, vr,
+                         vr + pitch, vr + 2 * pitch, plane, y, t, rw,
                          wind_air, wind_coef, 1);
     else
-      msocl_rows_springs(MSOCL_CONN_ARGS, p, v, pitch, plane, y, t, rw,
+      msocl_rows_springs(MSOCL_CONN_ARGS, pr, pr + pitch, pr + 2 * pitch, vr,
+                         vr + pitch, vr + 2 * pitch, plane, y, t, rw,
                          wind_air, wind_coef, 0);
     if (y >= y0)
-      msocl_rows_kick(MSOCL_CONN_ARGS, p, v, v_out, p_out, aux, pitch, plane,
-                      gravity, viscous, air, dt, cf,
-                      mine + (size_t)((y + 1) % 3) * one,
+      msocl_rows_kick(MSOCL_CONN_ARGS, pr, v + row, plane, p_out + row,
+                      v_out + row, plane, aux + row, plane, gravity, viscous,
+                      air, dt, cf, mine + (size_t)((y + 1) % 3) * one,
                       mine + (size_t)((y + 2) % 3) * one,
-                      mine + (size_t)((y + 3) % 3) * one, y, rw, wind, still);
+                      mine + (size_t)((y + 3) % 3) * one, rw, wind, still);
   }
 }
 
@@ -362,6 +381,90 @@ __kernel void msocl_planes_rows(MSOCL_ROWS_PARAMS)
 __kernel void msocl_planes_rows_still(MSOCL_ROWS_PARAMS)
 {
   msocl_rows_step(MSOCL_ROWS_ARGS, 1);
+}
+
+/* Steps a launch of msocl_planes_rows_steps at most (planes_rows.c's
+ * ROWS_STEPS) */
+#define MSOCL_ROWS_STEPS 4
+
+/* Row r of a middle state in its ring `m` (three rows, then one of NaN
+ * for rows off the grid), each `slot` floats: positions then velocities,
+ * planes `pitch` floats apart. */
+static inline __global float *msocl_rows_mid(__global float *m, int r,
+                                             int slot, int ny)
+{
+  return m + (size_t)(r < 0 || r >= ny ? 3 : r % 3) * slot;
+}
+
+/* `steps` steps (at most MSOCL_ROWS_STEPS) in one launch, with colliders
+ * at rest (engine/planes_rows.c): work-item b moves rows [y0, y1) by
+ * `steps` steps. Step j runs two rows behind step j - 1 and covers
+ * 2 (steps - 1 - j) rows more on each side than the block, recomputed as
+ * the neighbouring blocks compute them; each step but the last writes
+ * its rows into a ring of three in `mid`, which the next reads. The same
+ * arithmetic in the same order as one launch a step, so the same bits,
+ * with fewer launches and passes over the planes. */
+__kernel void msocl_planes_rows_steps(MSOCL_ROWS_PARAMS, __global float *mid,
+                                      int steps)
+{
+#ifdef MSOCL_ROWS_RING_W
+  const int rw = MSOCL_ROWS_RING_W;
+  (void)ring_w;
+#else
+  const int rw = ring_w;
+#endif
+  const int b = get_global_id(0), nb = get_global_size(0);
+  const int y0 = (int)((long)grid_ny * b / nb),
+            y1 = (int)((long)grid_ny * (b + 1) / nb);
+  const size_t one = (size_t)MSOCL_ROWS_TERMS * rw;
+  const int slot = 6 * pitch, vs = 3 * pitch;
+  /* a block's rings of terms and middle states, a step each */
+  __global float *rings = ring + (size_t)b * MSOCL_ROWS_STEPS * 3 * one;
+  __global float *mids =
+      mid + (size_t)b * (MSOCL_ROWS_STEPS * (4 * slot + MSOCL_ROWS_W)) +
+      MSOCL_ROWS_W;
+  __constant const float *cf = (__constant const float *)col;
+  const int last = 2 * (steps - 1);
+  for (int y = max(y0 - last, 0) - 2; y < y1 + last; y++) {
+    for (int j = 0; j < steps; j++) {
+      /* step j's row z and the rows it kicks, [k0, k1) */
+      const int z = y - 2 * j, h = last - 2 * j;
+      const int k0 = max(y0 - h, 0), k1 = min(y1 + h, grid_ny);
+      if (z < k0 - 2 || z >= k1)
+        continue;
+      __global float *ts = rings + (size_t)j * 3 * one;
+      __global float *t = ts + (size_t)((z + 3) % 3) * one;
+      /* its input: the planes, or the ring step j - 1 writes */
+      __global float *mi =
+          mids + (size_t)max(j - 1, 0) * (4 * slot + MSOCL_ROWS_W);
+      const int row = (z + 2) * pitch, in = j == 0 ? plane : pitch;
+      __global const float *p0 = j == 0 ? p + row : msocl_rows_mid(mi, z, slot, grid_ny),
+                           *p1 = j == 0 ? p0 + pitch : msocl_rows_mid(mi, z + 1, slot, grid_ny),
+                           *p2 = j == 0 ? p0 + 2 * pitch : msocl_rows_mid(mi, z + 2, slot, grid_ny);
+      __global const float *v0 = j == 0 ? v + row : p0 + vs,
+                           *v1 = j == 0 ? v0 + pitch : p1 + vs,
+                           *v2 = j == 0 ? v0 + 2 * pitch : p2 + vs;
+      if (wind && z >= k0 - 1)
+        msocl_rows_springs(MSOCL_CONN_ARGS, p0, p1, p2, v0, v1, v2, in, z, t,
+                           rw, wind_air, wind_coef, 1);
+      else
+        msocl_rows_springs(MSOCL_CONN_ARGS, p0, p1, p2, v0, v1, v2, in, z, t,
+                           rw, wind_air, wind_coef, 0);
+      if (z < k0)
+        continue;
+      /* its output: the planes, or its own ring */
+      __global float *mo =
+          mids + (size_t)min(j, MSOCL_ROWS_STEPS - 1) * (4 * slot + MSOCL_ROWS_W);
+      __global float *pw = j == steps - 1 ? p_out + row
+                                          : msocl_rows_mid(mo, z, slot, grid_ny);
+      __global float *vw = j == steps - 1 ? v_out + row : pw + vs;
+      msocl_rows_kick(MSOCL_CONN_ARGS, p0, v0, in, pw, vw,
+                      j == steps - 1 ? plane : pitch, aux + row, plane,
+                      gravity, viscous, air, dt, cf,
+                      ts + (size_t)((z + 1) % 3) * one,
+                      ts + (size_t)((z + 2) % 3) * one, t, rw, wind, 1);
+    }
+  }
 }
 
 #endif

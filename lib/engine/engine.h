@@ -85,8 +85,11 @@ struct msocl__engine {
   unsigned pl_wide;       /* 1 << q: planes kernel q is planes_wide.cl's
                              (planes.c) */
   cl_kernel pl_rows, pl_rows_still; /* and with colliders at rest */
+  cl_kernel pl_rows_steps; /* several steps a launch (planes_rows.c) */
   cl_mem pl_ring;         /* its work-items' rings of spring terms */
+  cl_mem pl_mid;          /* its middle states' rows */
   size_t pl_blocks;       /* its work-items: blocks of rows */
+  size_t pl_steps_blocks; /* and pl_rows_steps' */
   int pl_rows_wind;       /* it blows wind on the quads (wind.c) */
   /* wind on the triangles (wind.c, kernels/wind.cl) */
   int wind_on, wind_ntri, wind_nspill;

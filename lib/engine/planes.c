@@ -251,6 +251,8 @@ int msocl__pl_forces(msocl__engine *s)
 {
   for (int q = 0; q < PL_COUNT; q++)
     TRY(forces(s, s->pl_k[q]));
+  if (s->pl_rows_steps)
+    TRY(forces(s, s->pl_rows_steps));
   return s->pl_rows ? forces(s, s->pl_rows) : MSOCL_OK;
 }
 

@@ -2,14 +2,20 @@
  * spring computed once (kernels/planes_rows.cl), where it applies: a CPU
  * device, a cloth (not a lattice), no strain limit or Provot's (whose
  * sweeps follow the step's two passes, so the sweep's end), rows of at
- * least one vector. Elsewhere planes.c's passes run. */
+ * least one vector. Elsewhere planes.c's passes run. Where nothing acts
+ * between steps (no collider moving, no field, soft pins or wind of
+ * wind.c's own), up to ROWS_STEPS steps run in one launch. */
 #include "config.h"
 #include "planes.h"
+#include "schedule.h"
 
 #include <math.h>
 
 /* points a vector of the kernel's (MSOCL_ROWS_W) */
 #define ROWS_W 16
+/* steps a launch at most, rings of terms and middle states a block
+ * (MSOCL_ROWS_STEPS) */
+#define ROWS_STEPS 4
 
 /* Work-items a CPU compute unit: blocks of rows, each sweeping two rows
  * more than its own, handed to the device's threads as they come free. */
@@ -73,6 +79,10 @@ static int sweep_kernel(msocl__engine *s, cl_program prog)
   const int ring_w = ring_width(s);
   for (int q = 0; q < 2; q++)
     MSOCL__TRY(fixed_args(s, q ? s->pl_rows_still : s->pl_rows, ring_w));
+  MSOCL__TRY(msocl__kernel_make(s->dev, prog, "msocl_planes_rows_steps",
+                                &s->pl_rows_steps));
+  MSOCL__TRY(fixed_args(s, s->pl_rows_steps, ring_w));
+  MSOCL__TRY(msocl__arg_mem(s, s->pl_rows_steps, "mid", s->pl_mid));
   return msocl__pl_rows_wind(s, NULL, 0.0f, 0.0f);
 }
 
@@ -82,11 +92,15 @@ int msocl__pl_rows_rebuild(msocl__engine *s, cl_program prog)
     return MSOCL_OK;
   msocl__kernel_free(s->dev, &s->pl_rows);
   msocl__kernel_free(s->dev, &s->pl_rows_still);
+  msocl__kernel_free(s->dev, &s->pl_rows_steps);
   if (applies(s))
     return sweep_kernel(s, prog);
   /* a capsule or box: the other planes kernels from now on */
   clReleaseMemObject(s->pl_ring);
   s->pl_ring = NULL;
+  if (s->pl_mid)
+    clReleaseMemObject(s->pl_mid);
+  s->pl_mid = NULL;
   s->pl_rows_wind = 0;
   return MSOCL_OK;
 }
@@ -102,11 +116,18 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   if (blocks > (size_t)s->lay.grid_ny)
     blocks = (size_t)s->lay.grid_ny;
   s->pl_blocks = blocks;
+  /* several steps a launch: a block a unit, as a block's first steps
+   * sweep rows of its neighbours' too */
+  s->pl_steps_blocks = (blocks + BLOCKS_PER_UNIT - 1) / BLOCKS_PER_UNIT;
+  const size_t rings = s->pl_steps_blocks * ROWS_STEPS > blocks
+                           ? s->pl_steps_blocks * ROWS_STEPS
+                           : blocks;
   /* a ring row: 24 terms (springs' 18, wind's 6), with dashpots 18 more
    * (the kernel's MSOCL_ROWS_TERMS), of ring_width columns */
   const int ring_w = ring_width(s);
   const size_t terms = s->damped ? 42 : 24;
-  const size_t bytes = blocks * 3 * terms * (size_t)ring_w * sizeof(float);
+  /* a ring a block, or a step a block */
+  const size_t bytes = rings * 3 * terms * (size_t)ring_w * sizeof(float);
   s->pl_ring = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes, NULL, &e);
   if (e != CL_SUCCESS)
     return msocl__fail(e, "clCreateBuffer(%zu bytes of rings): %s", bytes,
@@ -114,6 +135,19 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   /* NaN in the positions' padding: the kernel's missing neighbours (the
    * other planes kernels test the grid's edges and ignore it) */
   const float nan = NAN;
+  /* the middle states of several steps a launch: four rows of six planes
+   * a step a block (the kernel's msocl_rows_mid), NaN where the kernel
+   * never writes */
+  const size_t mid = s->pl_steps_blocks * ROWS_STEPS *
+                         (4 * 6 * (size_t)s->pl_pitch + ROWS_W) +
+                     ROWS_W;
+  s->pl_mid = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE,
+                             mid * sizeof(float), NULL, &e);
+  if (e != CL_SUCCESS)
+    return msocl__fail(e, "clCreateBuffer(%zu bytes of middle rows): %s",
+                       mid * sizeof(float), msocl_err_name(e));
+  MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->pl_mid, &nan, sizeof nan,
+                                0, mid * sizeof(float), 0, NULL, NULL));
   for (int q = 0; q < 2; q++)
     MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->pl_p[q], &nan, sizeof nan,
                                   0, 3 * (size_t)s->pl_plane * sizeof(float),
@@ -128,8 +162,8 @@ int msocl__pl_rows_wind(msocl__engine *s, const float air[3], float kd,
                         air ? air[2] : 0.0f, 0.0f}},
                   c = {{kd, kl, 0.0f, 0.0f}};
   const int on = air != NULL;
-  for (int q = 0; q < 2; q++) {
-    cl_kernel k = q ? s->pl_rows_still : s->pl_rows;
+  for (int q = 0; q < 3; q++) {
+    cl_kernel k = q == 2 ? s->pl_rows_steps : q ? s->pl_rows_still : s->pl_rows;
     MSOCL__TRY(msocl__arg(s, k, "wind_air", sizeof w, &w));
     MSOCL__TRY(msocl__arg(s, k, "wind_coef", sizeof c, &c));
     MSOCL__TRY(msocl__arg_int(s, k, "wind", on));
@@ -160,10 +194,35 @@ int msocl__pl_rows_step(msocl__engine *s, int r, int w)
   return MSOCL_OK;
 }
 
+int msocl__pl_rows_steps(msocl__engine *s, int n, int *done)
+{
+  *done = 0;
+  /* wind the sweep does not blow (wind.c's kernels) runs between steps */
+  if (n < 2 || !s->pl_rows_steps || s->pl_col_moving ||
+      (s->wind_on && !s->pl_rows_wind) || s->field_on || s->soft_m != 0 ||
+      s->o.strain != MSOCL_STRAIN_NONE)
+    return MSOCL_OK;
+  const int r = s->pl_set, w = 1 - r, k = n < ROWS_STEPS ? n : ROWS_STEPS;
+  cl_kernel kk = s->pl_rows_steps;
+  MSOCL__TRY(msocl__arg_mem(s, kk, "p", s->pl_p[r]));
+  MSOCL__TRY(msocl__arg_mem(s, kk, "v", s->pl_v[r]));
+  MSOCL__TRY(msocl__arg_mem(s, kk, "p_out", s->pl_p[w]));
+  MSOCL__TRY(msocl__arg_mem(s, kk, "v_out", s->pl_v[w]));
+  MSOCL__TRY(msocl__arg_int(s, kk, "steps", k));
+  const size_t one = 1;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, kk, 1, NULL,
+                                   &s->pl_steps_blocks, &one, 0, NULL, NULL));
+  *done = k;
+  return MSOCL_OK;
+}
+
 void msocl__pl_rows_release(msocl__engine *s)
 {
   msocl__kernel_free(s->dev, &s->pl_rows);
   msocl__kernel_free(s->dev, &s->pl_rows_still);
+  msocl__kernel_free(s->dev, &s->pl_rows_steps);
   if (s->pl_ring)
     clReleaseMemObject(s->pl_ring);
+  if (s->pl_mid)
+    clReleaseMemObject(s->pl_mid);
 }

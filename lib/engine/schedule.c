@@ -135,17 +135,24 @@ int msocl__integrate(msocl__engine *s, int n)
     return MSOCL_OK;
   TRY(msocl__planes_enter(s));
   const int phases = msocl__phase_count(s);
-  for (int q = 0; q < n; q++) {
-    TRY(msocl__wind_pass(s));
-    TRY(msocl__field_pass(s));
-    TRY(msocl__soft_pass(s));
-    for (int ph = 0; ph < phases; ph++) {
-      unsigned x;
-      TRY(msocl__phase(s, ph, &x));
+  for (int q = 0; q < n;) {
+    /* several steps a launch: one set flip, as it writes the other set */
+    int done;
+    TRY(msocl__pl_rows_steps(s, n - q, &done));
+    if (done == 0) {
+      TRY(msocl__wind_pass(s));
+      TRY(msocl__field_pass(s));
+      TRY(msocl__soft_pass(s));
+      for (int ph = 0; ph < phases; ph++) {
+        unsigned x;
+        TRY(msocl__phase(s, ph, &x));
+      }
+      done = 1;
     }
     msocl__step_done(s);
-    if ((q + 1) % 64 == 0)
+    if (q / 64 != (q + done) / 64)
       MSOCL__CL(clFlush(s->dev->queue));
+    q += done;
   }
   return MSOCL_OK;
 }

@@ -55,6 +55,11 @@ const struct msocl__schedule *msocl__schedule_of(const msocl_sim_options *o);
 /* Each engine's pass p on its current state in the planes (planes.c).
  * MSOCL__P_CG is the walker's own. */
 int msocl__planes_pass(msocl__engine *s, enum msocl__pass p);
+/* Up to n steps as one launch where planes_rows.c's sweep can (no
+ * collider moving, no wind it does not blow, no field, soft pins or
+ * strain limit, n >= 2): from the current plane set into the other,
+ * which then holds the state *done steps on; *done = 0 where it cannot. */
+int msocl__pl_rows_steps(msocl__engine *s, int n, int *done);
 
 /* The CG's operations on one engine (planes_implicit.c). rhs, apply, step (given alpha): queue the
  * kernel and the partials of its dot product, added up by collect;
