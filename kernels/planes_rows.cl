@@ -328,24 +328,30 @@ msocl_rows_kick(MSOCL_CONN, __global const float *pr,
   MSOCL_CONN_ARGS, p, v, p_out, aux, pitch, plane, gravity, viscous, air, dt, \
       col, ring, ring_w, v_out, wind_air, wind_coef, wind
 
+/* A sweeping work-item's ring row width rw - a build constant where the
+ * host gives one, so that the ring's term rows sit at fixed offsets from
+ * three pointers, not a pointer each that spills - its block of rows
+ * [y0, y1) (work-item b of nb), and a ring row's floats `one`. */
+#ifdef MSOCL_ROWS_RING_W
+#define MSOCL_ROWS_RW MSOCL_ROWS_RING_W
+#else
+#define MSOCL_ROWS_RW ring_w
+#endif
+#define MSOCL_ROWS_BLOCK                                                      \
+  const int rw = MSOCL_ROWS_RW;                                               \
+  const int b = get_global_id(0), nb = get_global_size(0);                    \
+  const int y0 = (int)((long)grid_ny * b / nb),                               \
+            y1 = (int)((long)grid_ny * (b + 1) / nb);                         \
+  const size_t one = (size_t)MSOCL_ROWS_TERMS * rw;                           \
+  (void)ring_w
+
 /* One step, work-item b of B sweeping rows [ny b / B, ny (b + 1) / B)
  * with its own ring of three rows: the two rows below the block first,
  * for its first rows' backward springs. */
 static inline __attribute__((always_inline)) void
 msocl_rows_step(MSOCL_ROWS_PARAMS, int still)
 {
-#ifdef MSOCL_ROWS_RING_W
-  /* a constant: the ring's term rows at fixed offsets from three
-   * pointers, not a pointer each that spills (the host's ring_w) */
-  const int rw = MSOCL_ROWS_RING_W;
-  (void)ring_w;
-#else
-  const int rw = ring_w;
-#endif
-  const int b = get_global_id(0), nb = get_global_size(0);
-  const int y0 = (int)((long)grid_ny * b / nb),
-            y1 = (int)((long)grid_ny * (b + 1) / nb);
-  const size_t one = (size_t)MSOCL_ROWS_TERMS * rw;
+  MSOCL_ROWS_BLOCK;
   __global float *mine = ring + (size_t)b * 3 * one;
   __constant const float *cf = (__constant const float *)col;
   for (int y = y0 - 2; y < y1; y++) {
@@ -407,16 +413,7 @@ static inline __global float *msocl_rows_mid(__global float *m, int r,
 __kernel void msocl_planes_rows_steps(MSOCL_ROWS_PARAMS, __global float *mid,
                                       int steps)
 {
-#ifdef MSOCL_ROWS_RING_W
-  const int rw = MSOCL_ROWS_RING_W;
-  (void)ring_w;
-#else
-  const int rw = ring_w;
-#endif
-  const int b = get_global_id(0), nb = get_global_size(0);
-  const int y0 = (int)((long)grid_ny * b / nb),
-            y1 = (int)((long)grid_ny * (b + 1) / nb);
-  const size_t one = (size_t)MSOCL_ROWS_TERMS * rw;
+  MSOCL_ROWS_BLOCK;
   const int slot = 6 * pitch, vs = 3 * pitch;
   /* a block's rings of terms and middle states, a step each */
   __global float *rings = ring + (size_t)b * MSOCL_ROWS_STEPS * 3 * one;
