@@ -985,7 +985,9 @@ END_TEST
  * narrower than a vector, which the planes passes run. colliders: 1
  * table, 2 sphere, 4 plane; pins: 1 two corners, 2 also edge
  * midpoints; 8 a capsule, 16 a turned box (the sweep's vector gaps,
- * bitwise the passes' scalar ones). */
+ * bitwise the passes' scalar ones). Calls of many steps run up to four
+ * a launch (blocks that recompute their neighbours' rows), bitwise calls
+ * of one step. */
 static const struct {
   int nx, ny, colliders, pins;
 } rows_cases[] = {{16, 16, 1, 0}, {17, 9, 7, 2},   {47, 3, 4, 1},
@@ -1062,6 +1064,11 @@ START_TEST(rows_bitwise)
   assert_bitwise(&bu, &gr, what);
   struct state bub = run(m, 1, 1, MSOCL_MATH_PRECISE, dt, 1, 399);
   assert_bitwise(&bub, &fu, what);
+  /* calls of one step: one launch a step, where the calls above ran up
+   * to four a launch */
+  struct state one = run(m, 0, 1, MSOCL_MATH_PRECISE, dt, 400, 1);
+  assert_bitwise(&one, &gr, what);
+  state_free(&one);
   double far = 0.0;
   for (int i = 0; i < bu.n; i++)
     far = fmax(far, fabs(bu.vel[3 * i + 1]));
