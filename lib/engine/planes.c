@@ -620,9 +620,15 @@ int msocl__pl_launch(msocl__engine *s, int k)
   size_t off[3], size[3];
   own_part(s, k, off, size);
   if (s->pl_wide & (1u << k)) {
-    /* MSOCL_ROWS_W points a work-item (planes_wide.cl) */
+    /* MSOCL_ROWS_W points a work-item (planes_wide.cl), and rows enough
+     * for 16 work-items a group where the rows divide evenly: PoCL's cost
+     * a work-group outweighed a narrow row's 1-4 work-items */
     size[0] /= 16;
     local[0] = s->pl_group / 16;
+    size_t rows = 16 / local[0];
+    while (rows > 1 && size[1] % rows != 0)
+      rows--;
+    local[1] = rows;
   }
   MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, s->pl_k[k], 3, off, size,
                                    group, 0, NULL, NULL));
