@@ -435,9 +435,11 @@ __kernel void msocl_planes_rows_steps(MSOCL_ROWS_PARAMS, __global float *mid,
       __global float *mi =
           mids + (size_t)max(j - 1, 0) * (4 * slot + MSOCL_ROWS_W);
       const int row = (z + 2) * pitch, in = j == 0 ? plane : pitch;
-      __global const float *p0 = j == 0 ? p + row : msocl_rows_mid(mi, z, slot, grid_ny),
-                           *p1 = j == 0 ? p0 + pitch : msocl_rows_mid(mi, z + 1, slot, grid_ny),
-                           *p2 = j == 0 ? p0 + 2 * pitch : msocl_rows_mid(mi, z + 2, slot, grid_ny);
+      __global const float
+          *p0 = j == 0 ? p + row : msocl_rows_mid(mi, z, slot, grid_ny),
+          *p1 = j == 0 ? p0 + pitch : msocl_rows_mid(mi, z + 1, slot, grid_ny),
+          *p2 = j == 0 ? p0 + 2 * pitch
+                       : msocl_rows_mid(mi, z + 2, slot, grid_ny);
       __global const float *v0 = j == 0 ? v + row : p0 + vs,
                            *v1 = j == 0 ? v0 + pitch : p1 + vs,
                            *v2 = j == 0 ? v0 + 2 * pitch : p2 + vs;
@@ -450,10 +452,10 @@ __kernel void msocl_planes_rows_steps(MSOCL_ROWS_PARAMS, __global float *mid,
       if (z < k0)
         continue;
       /* its output: the planes, or its own ring */
-      __global float *mo =
-          mids + (size_t)min(j, MSOCL_ROWS_STEPS - 1) * (4 * slot + MSOCL_ROWS_W);
-      __global float *pw = j == steps - 1 ? p_out + row
-                                          : msocl_rows_mid(mo, z, slot, grid_ny);
+      __global float *mo = mids + (size_t)min(j, MSOCL_ROWS_STEPS - 1) *
+                                      (4 * slot + MSOCL_ROWS_W);
+      __global float *pw =
+          j == steps - 1 ? p_out + row : msocl_rows_mid(mo, z, slot, grid_ny);
       __global float *vw = j == steps - 1 ? v_out + row : pw + vs;
       msocl_rows_kick(MSOCL_CONN_ARGS, p0, v0, in, pw, vw,
                       j == steps - 1 ? plane : pitch, aux + row, plane,
