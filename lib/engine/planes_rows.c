@@ -172,19 +172,28 @@ int msocl__pl_rows_wind(msocl__engine *s, const float air[3], float kd,
   return MSOCL_OK;
 }
 
+/* Sweep kernel k from plane set r into set w (its velocities into set
+ * out), over `blocks` work-items of one. */
+static int sweep(msocl__engine *s, cl_kernel k, int r, int w, int out,
+                 size_t blocks)
+{
+  MSOCL__TRY(msocl__arg_mem(s, k, "p", s->pl_p[r]));
+  MSOCL__TRY(msocl__arg_mem(s, k, "v", s->pl_v[r]));
+  MSOCL__TRY(msocl__arg_mem(s, k, "p_out", s->pl_p[w]));
+  MSOCL__TRY(msocl__arg_mem(s, k, "v_out", s->pl_v[out]));
+  const size_t one = 1;
+  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL, &blocks, &one,
+                                   0, NULL, NULL));
+  return MSOCL_OK;
+}
+
 int msocl__pl_rows_step(msocl__engine *s, int r, int w)
 {
   /* without wind or dashpots the velocities move in place; with them,
    * into set w, as they read the neighbours' velocities before the step */
   const int out = s->pl_rows_wind || s->damped ? w : r;
   cl_kernel k = s->pl_col_moving ? s->pl_rows : s->pl_rows_still;
-  MSOCL__TRY(msocl__arg_mem(s, k, "p", s->pl_p[r]));
-  MSOCL__TRY(msocl__arg_mem(s, k, "v", s->pl_v[r]));
-  MSOCL__TRY(msocl__arg_mem(s, k, "p_out", s->pl_p[w]));
-  MSOCL__TRY(msocl__arg_mem(s, k, "v_out", s->pl_v[out]));
-  const size_t one = 1;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, k, 1, NULL,
-                                   &s->pl_blocks, &one, 0, NULL, NULL));
+  MSOCL__TRY(sweep(s, k, r, w, out, s->pl_blocks));
   if (out == r) {
     /* moved in place: set w's velocities are now that buffer */
     const cl_mem t = s->pl_v[r];
@@ -203,15 +212,8 @@ int msocl__pl_rows_steps(msocl__engine *s, int n, int *done)
       s->o.strain != MSOCL_STRAIN_NONE)
     return MSOCL_OK;
   const int r = s->pl_set, w = 1 - r, k = n < ROWS_STEPS ? n : ROWS_STEPS;
-  cl_kernel kk = s->pl_rows_steps;
-  MSOCL__TRY(msocl__arg_mem(s, kk, "p", s->pl_p[r]));
-  MSOCL__TRY(msocl__arg_mem(s, kk, "v", s->pl_v[r]));
-  MSOCL__TRY(msocl__arg_mem(s, kk, "p_out", s->pl_p[w]));
-  MSOCL__TRY(msocl__arg_mem(s, kk, "v_out", s->pl_v[w]));
-  MSOCL__TRY(msocl__arg_int(s, kk, "steps", k));
-  const size_t one = 1;
-  MSOCL__CL(clEnqueueNDRangeKernel(s->dev->queue, kk, 1, NULL,
-                                   &s->pl_steps_blocks, &one, 0, NULL, NULL));
+  MSOCL__TRY(msocl__arg_int(s, s->pl_rows_steps, "steps", k));
+  MSOCL__TRY(sweep(s, s->pl_rows_steps, r, w, w, s->pl_steps_blocks));
   *done = k;
   return MSOCL_OK;
 }
