@@ -408,68 +408,114 @@ static MSOCL_PLANES_INLINE void msocl_planes_pull(__global const float *p,
 }
 
 #ifdef MSOCL_SPILL
-/* msocl_planes_pull of the spill's springs o .. o_end - 1, summed into f
- * in their order: eight springs' terms at a time as vectors (the same
- * roundings as one at a time), then added lane by lane, so the sums are
- * bitwise the scalar loop's. A hub (a solid's centre: 40 955 springs
- * for the ball of `msocl-bench meshes`) ran them scalar in one
- * work-item while the device's other threads waited. */
+/* A point's springs from the MSOCL_SPILL_SEQ-th on (a hub's) are summed
+ * in eight running sums, spring 64 + 8 m + u into sum u, which are then
+ * added in order; the springs before it one after another in their order.
+ * The order is the same for every table width, so a point's force is
+ * bitwise the same however much of it spills. */
+#define MSOCL_SPILL_SEQ 64
+
+/* Eight of the spill's springs from entry o (entries past `end` repeat
+ * the last): msocl_planes_pull's spring terms in t[0..2] and dashpot
+ * terms in t[3..5] (zero without dashpots), as float8 (square root and
+ * division round as one at a time). */
+static MSOCL_PLANES_INLINE void
+msocl_planes_spill8(MSOCL_CONN, __global const float *p,
+                    __global const float *v, int plane, int slab,
+                    const float *q, int o, int end, float8 *t)
+{
+  float r[8], k[8], c[8], nx[8], ny[8], nz[8];
+#ifdef MSOCL_DAMPING
+  float wx[8], wy[8], wz[8];
+#endif
+  (void)c; (void)v; /* read by dashpots */
+#pragma unroll
+  for (int u = 0; u < 8; u++) {
+    int b;
+    msocl_planes_spill_slot(MSOCL_CONN_ARGS, min(o + u, end - 1), slab, &b,
+                            &r[u], &k[u], &c[u]);
+    nx[u] = p[b];
+    ny[u] = p[plane + b];
+    nz[u] = p[2 * plane + b];
+#ifdef MSOCL_DAMPING
+    wx[u] = v[b];
+    wy[u] = v[plane + b];
+    wz[u] = v[2 * plane + b];
+#endif
+  }
+  const float8 dx = vload8(0, nx) - q[0], dy = vload8(0, ny) - q[1],
+               dz = vload8(0, nz) - q[2];
+  const float8 len2 = dx * dx + dy * dy + dz * dz;
+  const float8 len = MSOCL_SQRT(len2);
+  const float8 tt = vload8(0, k) * MSOCL_DIV(len - vload8(0, r), len);
+  const int8 on = len > 0.0f;
+  t[0] = select((float8)(0.0f), tt * dx, on);
+  t[1] = select((float8)(0.0f), tt * dy, on);
+  t[2] = select((float8)(0.0f), tt * dz, on);
+#ifdef MSOCL_DAMPING
+  const float8 ux = vload8(0, wx) - q[3], uy = vload8(0, wy) - q[4],
+               uz = vload8(0, wz) - q[5];
+  const float8 h =
+      vload8(0, c) * MSOCL_DIV(ux * dx + uy * dy + uz * dz, len2);
+  const int8 onh = len2 > 0.0f;
+  t[3] = select((float8)(0.0f), h * dx, onh);
+  t[4] = select((float8)(0.0f), h * dy, onh);
+  t[5] = select((float8)(0.0f), h * dz, onh);
+#else
+  t[3] = t[4] = t[5] = 0.0f;
+#endif
+}
+
+/* msocl_planes_pull of the spill's springs o .. o_end - 1 (the point's
+ * springs from MSOCL_SLOTS on), summed into f in MSOCL_SPILL_SEQ's
+ * order, eight springs' terms at a time. A hub (a solid's centre: 40 955
+ * springs in the ball of `msocl-bench meshes`) ran them scalar, one
+ * addition after another, in one work-item while the device's other
+ * threads waited. */
 static MSOCL_PLANES_INLINE void
 msocl_planes_spill_pull(MSOCL_CONN, __global const float *p,
                         __global const float *v, int plane, int slab,
                         const float *q, int o, int o_end, float *f)
 {
-  for (; o < o_end; o += 8) {
-    float r[8], k[8], c[8], nx[8], ny[8], nz[8];
-#ifdef MSOCL_DAMPING
-    float wx[8], wy[8], wz[8];
-#endif
-    (void)c; /* read by dashpots */
+  const int seq = min(o_end, o + max(MSOCL_SPILL_SEQ - MSOCL_SLOTS, 0));
+  float8 t[6];
+  float l[6][8];
+  for (; o < seq; o += 8) {
+    msocl_planes_spill8(MSOCL_CONN_ARGS, p, v, plane, slab, q, o, seq, t);
 #pragma unroll
-    for (int u = 0; u < 8; u++) {
-      int b;
-      msocl_planes_spill_slot(MSOCL_CONN_ARGS, min(o + u, o_end - 1), slab,
-                              &b, &r[u], &k[u], &c[u]);
-      nx[u] = p[b];
-      ny[u] = p[plane + b];
-      nz[u] = p[2 * plane + b];
+    for (int c = 0; c < 6; c++)
+      vstore8(t[c], 0, l[c]);
+    for (int u = 0; u < 8 && o + u < seq; u++) {
+      f[0] += l[0][u];
+      f[1] += l[1][u];
+      f[2] += l[2][u];
 #ifdef MSOCL_DAMPING
-      wx[u] = v[b];
-      wy[u] = v[plane + b];
-      wz[u] = v[2 * plane + b];
-#endif
-    }
-    const float8 dx = vload8(0, nx) - q[0], dy = vload8(0, ny) - q[1],
-                 dz = vload8(0, nz) - q[2];
-    const float8 len2 = dx * dx + dy * dy + dz * dz;
-    const float8 len = MSOCL_SQRT(len2);
-    const float8 t = vload8(0, k) * MSOCL_DIV(len - vload8(0, r), len);
-    const int8 on = len > 0.0f;
-    vstore8(select((float8)(0.0f), t * dx, on), 0, nx);
-    vstore8(select((float8)(0.0f), t * dy, on), 0, ny);
-    vstore8(select((float8)(0.0f), t * dz, on), 0, nz);
-#ifdef MSOCL_DAMPING
-    const float8 ux = vload8(0, wx) - q[3], uy = vload8(0, wy) - q[4],
-                 uz = vload8(0, wz) - q[5];
-    const float8 h =
-        vload8(0, c) * MSOCL_DIV(ux * dx + uy * dy + uz * dz, len2);
-    const int8 onh = len2 > 0.0f;
-    vstore8(select((float8)(0.0f), h * dx, onh), 0, wx);
-    vstore8(select((float8)(0.0f), h * dy, onh), 0, wy);
-    vstore8(select((float8)(0.0f), h * dz, onh), 0, wz);
-#endif
-    for (int u = 0; u < 8 && o + u < o_end; u++) {
-      f[0] += nx[u];
-      f[1] += ny[u];
-      f[2] += nz[u];
-#ifdef MSOCL_DAMPING
-      f[0] += wx[u];
-      f[1] += wy[u];
-      f[2] += wz[u];
+      f[0] += l[3][u];
+      f[1] += l[4][u];
+      f[2] += l[5][u];
 #endif
     }
   }
-  (void)v;
+  if (seq >= o_end)
+    return;
+  float8 sum[3] = {0.0f, 0.0f, 0.0f};
+  for (o = seq; o < o_end; o += 8) {
+    msocl_planes_spill8(MSOCL_CONN_ARGS, p, v, plane, slab, q, o, o_end, t);
+    const int8 in = (int8)(0, 1, 2, 3, 4, 5, 6, 7) + o < o_end;
+#pragma unroll
+    for (int c = 0; c < 3; c++) {
+      sum[c] += select((float8)(0.0f), t[c], in);
+#ifdef MSOCL_DAMPING
+      sum[c] += select((float8)(0.0f), t[3 + c], in);
+#endif
+    }
+  }
+#pragma unroll
+  for (int c = 0; c < 3; c++) {
+    vstore8(sum[c], 0, l[c]);
+    for (int u = 0; u < 8; u++)
+      f[c] += l[c][u];
+  }
 }
 #endif
 
