@@ -337,9 +337,10 @@ static MSOCL_PLANES_INLINE void msocl_planes_spill_slot(MSOCL_CONN, int o, int s
  * for a point with springs past the table, and over just those points
  * (pass 1, the kernel's _spill twin), their springs past the table
  * summed after the table's one at a time, in the order a table long
- * enough for all would sum them. A loop of run-time length in the first would stop PoCL
- * vectorising it; `pass` is a constant in each, so the loop below
- * folds away in the first. */
+ * enough for all would sum them (the force gathers: in
+ * MSOCL_SPILL_SEQ's order). A loop of run-time length in the first
+ * would stop PoCL vectorising it; `pass` is a constant in each, so the
+ * loop below folds away in the first. */
 #define MSOCL_PLANES_SPILLS                                                   \
   for (int o = pass ? spill[x] : 0, o_end = pass ? spill[x + 1] : 0;        \
        o < o_end; o++)
