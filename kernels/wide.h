@@ -69,9 +69,17 @@ msocl_wide_gather(__global const float *q, const int *j)
 #define MSOCL_WIDE_DZ(s) 0
 #define MSOCL_WIDE_IN_Z(s) true
 #endif
+/* The slots unrolled where a vector's values fit the registers: a
+ * cloth's 12, or a lattice's 32 with AVX-512's 32 registers; a lattice's
+ * unrolled on AVX2 (16) spilled, 15 000 stack references a kernel */
+#if defined(MSOCL_GRID_3D) && defined(__x86_64__) && !defined(__AVX512F__)
+#define MSOCL_WIDE_UNROLL _Pragma("unroll 1")
+#else
+#define MSOCL_WIDE_UNROLL _Pragma("unroll")
+#endif
 #define MSOCL_WIDE_SLOTS                                                      \
   (void)slab; (void)z;                                                       \
-  _Pragma("unroll") for (int s = 0; s < MSOCL_TABLE_SLOTS; s++)              \
+  MSOCL_WIDE_UNROLL for (int s = 0; s < MSOCL_TABLE_SLOTS; s++)              \
     if (!MSOCL_PLANES_SKIP(s))
 #define MSOCL_WIDE_SLOT                                                       \
   const int b_ =                                                             \
