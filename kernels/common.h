@@ -18,9 +18,8 @@
  *   MSOCL_PINS             pinned points
  *   MSOCL_PLANE, MSOCL_SPHERE, MSOCL_TABLE   collider kinds present
  *   MSOCL_RELAXED          native functions (with -cl-fast-relaxed-math)
- * The steps and the energy run on planes (planes.cl, energy.cl); the
- * float4 state the host reads and writes (pos.w = 1 marks a pinned point)
- * feeds the normals. */
+ * The steps, the energy and the normals run on the state's planes
+ * (planes.cl, energy.cl, normals.cl). */
 
 /* Precise mode forbids fused multiply-add so every layout, and every device
  * split, sums in exactly the same arithmetic (bitwise-equal results). */

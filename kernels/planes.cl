@@ -1,7 +1,6 @@
 /* The planes kernels: symplectic Euler's two passes (or fused), explicit
- * Euler, velocity Verlet's and RK4's stages, both strain limits' sweeps
- * and the copies in and out of the float4 state (planes.h says how the
- * planes are laid out, and why). */
+ * Euler, velocity Verlet's and RK4's stages and both strain limits'
+ * sweeps (planes.h says how the planes are laid out, and why). */
 #include "planes.h"
 
 #if defined(MSOCL_PLANES)
@@ -454,49 +453,6 @@ MSOCL_PLANES_GATHER(msocl_planes_strain_v,
     v_out[plane + a] = pinned ? 0.0f : wy;
     v_out[2 * plane + a] = pinned ? 0.0f : wz;
   }
-}
-
-/* The copy kernels run over the planes' range too: point
- * i = (z ny + y) nx + x of an nx-wide grid (n points; ny the range's
- * second size), at a in a plane - no division a point. */
-#define MSOCL_PLANES_POINT                                                    \
-  MSOCL_PLANES_XYZ;                                                          \
-  const int i = (z * (int)get_global_size(1) + y) * nx + x;                  \
-  const int a = MSOCL_PLANES_AT(x, y, z);                                    \
-  (void)slab;                                                                \
-  if (x >= nx || i >= n)                                                     \
-    return
-
-/* The engine's float4 state into planes. */
-__kernel void msocl_planes_pack(__global const float4 *pos,
-                                __global const float4 *vel,
-                                __global const float *inv_mass,
-                                __global float *p, __global float *v,
-                                __global float *aux, int nx, int pitch,
-                                int slab, int plane, int n)
-{
-  MSOCL_PLANES_POINT;
-  const float4 q = pos[i], w = vel[i];
-  p[a] = q.x;
-  p[plane + a] = q.y;
-  p[2 * plane + a] = q.z;
-  v[a] = w.x;
-  v[plane + a] = w.y;
-  v[2 * plane + a] = w.z;
-  aux[a] = inv_mass[i];
-  aux[plane + a] = q.w;
-}
-
-/* And back: pos.w as packed; vel.w 0, as the velocity pass writes it. */
-__kernel void msocl_planes_unpack(__global const float *p,
-                                  __global const float *v,
-                                  __global const float *aux,
-                                  __global float4 *pos, __global float4 *vel,
-                                  int nx, int pitch, int slab, int plane, int n)
-{
-  MSOCL_PLANES_POINT;
-  pos[i] = (float4)(p[a], p[plane + a], p[2 * plane + a], aux[plane + a]);
-  vel[i] = (float4)(v[a], v[plane + a], v[2 * plane + a], 0.0f);
 }
 
 #endif

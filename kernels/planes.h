@@ -16,14 +16,12 @@
  *
  * Every layout sums a point's springs slot by slot in the same order, so
  * that layouts and device splits agree bitwise (tests/check_planes.c,
- * check_multidevice.c). The state stays in the planes between calls
- * (lib/engine/planes.c): msocl_planes_pack copies it in after the engine's
- * float4 buffers were written, msocl_planes_unpack back before they are
- * read.
+ * check_multidevice.c). The state lives in the planes; the host reads
+ * and writes slices of them (lib/engine/state.c).
  *
  * Point (x, y) sits at (y + 2) * pitch + x + 2 of each plane; p holds the
  * x, y, z planes `plane` floats apart (v likewise); aux holds the inverse
- * masses, then pos.w (pinned); col the colliders, a float4 a value
+ * masses, then the pin flags; col the colliders, a float4 a value
  * (MSOCL_PLANES_COL). MSOCL_NCOL: the model's colliders, known
  * when the program is built so that their loop unrolls (a loop of run-time
  * length inside would stop the vectorizer); MSOCL_GRID_KINDS: a bit for

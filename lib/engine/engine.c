@@ -99,87 +99,46 @@ static cl_mem buffer(msocl__engine *s, cl_mem_flags flags, size_t bytes,
   return b;
 }
 
-/* State, masses, colliders and the normals' triangle lists. */
+/* Masses, colliders and the reductions' buffers (the state and the
+ * normals' lists: state.c, once the planes exist). */
 static int make_buffers(msocl__engine *s, const msocl_model *m)
 {
   const size_t n = (size_t)m->n;
   int rc = MSOCL_OK;
   float *inv = malloc(n * sizeof *inv);
   float col[2 * 4 * MSOCL__MAX_COLLIDERS + 4] = {0};
-  int *off = calloc(n + 1, sizeof *off);
-  int *ab = malloc((size_t)(2 * 3 * m->nt + 2) * sizeof *ab);
-  if (!inv || !off || !ab) {
+  if (!inv) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation staging");
     goto out;
   }
-  for (size_t i = 0; i < n; i++) {
-    s->stage[4 * i] = m->pos[3 * i];
-    s->stage[4 * i + 1] = m->pos[3 * i + 1];
-    s->stage[4 * i + 2] = m->pos[3 * i + 2];
-    s->stage[4 * i + 3] = m->pinned[i] ? 1.0f : 0.0f;
+  for (size_t i = 0; i < n; i++)
     inv[i] = 1.0f / m->mass[i];
-  }
   for (int c = 0; c < m->ncol; c++) {
     col[8 * c] = (float)m->col[c].kind;
     col[8 * c + 1] = m->col[c].friction;
     memcpy(col + 8 * c + 4, m->col[c].p, 4 * sizeof(float));
     memcpy(s->pl_colx + 8 * c, m->col[c].x, sizeof m->col[c].x);
   }
-  /* Each triangle (a, b, c) lists (b, c) at a, (c, a) at b, (a, b) at c:
-   * the same winding at every corner. */
-  for (int t = 0; t < m->nt; t++)
-    for (int k = 0; k < 3; k++)
-      off[m->tri[3 * t + k] + 1]++;
-  for (size_t i = 0; i < n; i++)
-    off[i + 1] += off[i];
-  int *fill = calloc(n, sizeof *fill);
-  if (!fill) {
-    rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation staging");
-    goto out;
-  }
-  for (int t = 0; t < m->nt; t++)
-    for (int k = 0; k < 3; k++) {
-      int a = m->tri[3 * t + k];
-      int at = off[a] + fill[a]++;
-      ab[2 * at] = m->tri[3 * t + (k + 1) % 3];
-      ab[2 * at + 1] = m->tri[3 * t + (k + 2) % 3];
-    }
-  free(fill);
-
-  const size_t state = 4 * n * sizeof(float);
-  for (int k = 0; k < 2; k++) {
-    s->pos[k] = buffer(s, CL_MEM_READ_WRITE, state, s->stage, &rc);
-    s->vel[k] = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
-  }
-  s->inv_mass = buffer(s, CL_MEM_READ_ONLY, n * sizeof *inv, inv, &rc);
   s->col = buffer(s, CL_MEM_READ_ONLY, sizeof col, col, &rc);
-  s->normal = buffer(s, CL_MEM_WRITE_ONLY, state, NULL, &rc);
-  s->tri_off = buffer(s, CL_MEM_READ_ONLY, (n + 1) * sizeof *off, off, &rc);
-  s->tri_ab = buffer(s, CL_MEM_READ_ONLY,
-                     (size_t)(2 * 3 * m->nt + 2) * sizeof *ab, ab, &rc);
-  if (s->o.check_every > 0) {
-    s->backup_p = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
-    s->backup_v = buffer(s, CL_MEM_READ_WRITE, state, NULL, &rc);
-  }
   s->partial = buffer(s, CL_MEM_READ_WRITE, s->groups * sizeof(cl_float4),
                       NULL, &rc);
   s->parts = buffer(s, CL_MEM_READ_WRITE,
                     3 * (size_t)msocl__energy_stride(s) * sizeof(float),
                     NULL, &rc);
-  if (rc == MSOCL_OK) {
-    /* Velocities start at zero: a pattern fill, no host transfer. */
-    float zero = 0.0f;
-    for (int k = 0; k < 2 && rc == MSOCL_OK; k++) {
-      cl_int e = clEnqueueFillBuffer(s->dev->queue, s->vel[k], &zero,
-                                     sizeof zero, 0, state, 0, NULL, NULL);
-      if (e != CL_SUCCESS)
-        rc = msocl__fail(e, "clEnqueueFillBuffer: %s", msocl_err_name(e));
-    }
-  }
 out:
   s->inv_host = inv; /* soft pins' stiffness check reads it */
-  free(off);
-  free(ab);
+  return rc;
+}
+
+/* The blow-up check's copy of the state, planes as the state's. */
+static int backups(msocl__engine *s)
+{
+  int rc = MSOCL_OK;
+  const size_t bytes = 3 * (size_t)s->pl_plane * sizeof(float);
+  if (s->o.check_every > 0) {
+    s->backup_p = buffer(s, CL_MEM_READ_WRITE, bytes, NULL, &rc);
+    s->backup_v = buffer(s, CL_MEM_READ_WRITE, bytes, NULL, &rc);
+  }
   return rc;
 }
 
@@ -188,8 +147,7 @@ out:
 static const char *const kernel_names[MSOCL__K_ENERGY_WIDE] = {
     "msocl_normals", "msocl_energy", "msocl_energy_points"};
 
-/* Creates the engine's own kernels: the normals (from the float4 state)
- * and the energy's two (from the planes). */
+/* Creates the engine's own kernels: the normals and the energy's two. */
 static int make_kernels(msocl__engine *s, cl_program prog)
 {
   for (int q = 0; q < MSOCL__K_ENERGY_WIDE; q++)
@@ -237,10 +195,9 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     goto fail;
   for (int i = 0; m->damp && i < m->ns && !s->damped; i++)
     s->damped = m->damp[i] != 0.0f;
-  s->stage = malloc(4 * (size_t)m->n * sizeof(float));
   s->partial_host =
       malloc((s->full_global / 64 + 1) * sizeof *s->partial_host);
-  if (!s->stage || !s->partial_host) {
+  if (!s->partial_host) {
     rc = msocl__fail(MSOCL_ERR_NO_MEMORY, "simulation");
     goto fail;
   }
@@ -270,6 +227,10 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
     rc = make_kernels(s, prog);
   if (rc == MSOCL_OK)
     rc = msocl__planes_create(s, prog);
+  if (rc == MSOCL_OK)
+    rc = backups(s);
+  if (rc == MSOCL_OK)
+    rc = msocl__state_init(s, m);
   if (rc == MSOCL_OK)
     rc = msocl__energy_args(s, prog);
   if (rc == MSOCL_OK)
@@ -303,10 +264,8 @@ void msocl__engine_destroy(msocl__engine *s)
     clFinish(s->dev->queue);
   for (int q = 0; q < MSOCL__K_COUNT; q++)
     msocl__kernel_free(s->dev, &s->k[q]);
-  cl_mem mems[] = {s->pos[0],   s->pos[1],    s->vel[0],    s->vel[1],
-                   s->inv_mass, s->col,       s->normal,    s->tri_off,
-                   s->tri_ab,   s->backup_p,  s->backup_v,
-                   s->partial,  s->parts};
+  cl_mem mems[] = {s->col,      s->normal,   s->tri_ab,  s->tri_off,
+                   s->backup_p, s->backup_v, s->partial, s->parts};
   for (size_t q = 0; q < sizeof mems / sizeof mems[0]; q++)
     if (mems[q])
       clReleaseMemObject(mems[q]);
@@ -315,7 +274,6 @@ void msocl__engine_destroy(msocl__engine *s)
   msocl__field_release(s);
   msocl__soft_release(s);
   msocl__layout_release(&s->lay);
-  free(s->stage);
   free(s->partial_host);
   free(s->inv_host);
   free(s);

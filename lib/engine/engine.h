@@ -8,8 +8,7 @@
 #include "layout.h"
 
 /* Kernels the library's program holds; the enum indexes msocl__engine.k. */
-/* Beside the planes' kernels (planes.h), two read the float4 state the
- * host sees: the normals and the energy. */
+/* Beside the planes' kernels (planes.h): the normals and the energy. */
 enum {
   MSOCL__K_NORMALS, MSOCL__K_ENERGY, MSOCL__K_ENERGY_POINTS,
   MSOCL__K_ENERGY_WIDE, /* made by msocl__energy_args where it applies */
@@ -23,14 +22,12 @@ struct msocl__engine {
   msocl_sim_options o;
   int n;
   struct msocl__layout lay;
-  cl_mem pos[2], vel[2];  /* the state as the host reads and writes it,
-                             float4 a point: [r] is current */
-  cl_mem inv_mass, col, normal, tri_off, tri_ab;
-  cl_mem backup_p, backup_v; /* last state that passed the blow-up check */
+  cl_mem col, normal, tri_ab, tri_off;
+  cl_mem backup_p, backup_v; /* last state that passed the blow-up check,
+                                planes as pl_p and pl_v */
   cl_mem partial;         /* one float4 per work-group of reductions */
   cl_mem parts;           /* the energy's per point, three planes */
   cl_kernel k[MSOCL__K_COUNT];
-  int r;
   int damped;             /* dashpots: gathers read neighbours' velocities */
   int lo, hi;             /* the points this engine advances */
   size_t offset, global;  /* its launches: from lo, (hi - lo) work-items
@@ -49,13 +46,12 @@ struct msocl__engine {
   cl_float4 gravity;
   float viscous, air;
   int ncol;
-  float *stage;           /* 4n floats, the initial upload */
   cl_float4 *partial_host;
   float *inv_host; /* the points' inverse masses, in the engine's order */
   /* the engine's state (planes.c, kernels/planes.cl): x, y, z planes of
    * floats, rows padded on GRID, kept there between calls */
-  int pl_valid;           /* the planes hold the current state */
-  int pl_ahead;           /* ... and the float4 buffers are behind */
+  int pl_valid;           /* what the planes' state implies is computed
+                             (Verlet's acceleration) */
   int pl_set;             /* the plane set that holds it */
   cl_mem pl_p[2], pl_v[2], pl_aux; /* ping-pong like pos and vel */
   cl_mem pl_a;            /* Verlet: the acceleration */
@@ -76,8 +72,8 @@ struct msocl__engine {
   cl_mem pl_table[4];     /* that copy's nbr, rk, dashpots, spill (owned) */
   cl_mem pl_list;         /* BUFFER with a spill: the points that spill */
   int pl_nspill;          /* ... and how many */
-  cl_kernel pl_ks[20];    /* the gathering kernels' _spill twins */
-  cl_kernel pl_k[20];     /* planes.c's kernels (planes.h) */
+  cl_kernel pl_ks[18];    /* the gathering kernels' _spill twins */
+  cl_kernel pl_k[18];     /* planes.c's kernels (planes.h) */
   int pl_pitch, pl_slab, pl_plane; /* floats a row, a layer, a plane */
   size_t pl_global[3];    /* the passes' range: rows padded to a group */
   size_t pl_group;        /* a work-group's points (CPU devices) */
@@ -153,16 +149,26 @@ int msocl__planes_fit(const msocl__engine *s);
  * (msocl.h's formula). */
 size_t msocl__planes_bytes(const msocl_model *m, const msocl_sim_options *o);
 int msocl__planes_create(msocl__engine *s, cl_program prog);
-/* enter: before a run of steps, the state into the planes unless they
- * hold it; step_done: ends a step, from one plane set into the other. */
+/* enter: before a run of steps, computes what the state implies
+ * (Verlet's acceleration) unless it is; step_done: ends a step, from one
+ * plane set into the other; written: after anything wrote the state. */
 int msocl__planes_enter(msocl__engine *s);
 void msocl__planes_step_done(msocl__engine *s);
-/* The state stays in the planes between calls. current: brings the
- * engine's float4 buffers up to date before anything reads them (a copy
- * back only when the planes are ahead); written: after anything writes
- * them, the planes are stale (copied in again at the next step). */
-int msocl__planes_current(msocl__engine *s);
 void msocl__planes_written(msocl__engine *s);
+/* The state between host and planes (state.c), the engine's points
+ * [lo, hi), 3 floats a point: read, write (positions or velocities; the
+ * caller says msocl__planes_written where the state changed); a point's
+ * pin flag; init: the model's positions, masses and pins after
+ * msocl__planes_create; backup: the current state into the blow-up
+ * check's copy, or back; normals: every point's, from the positions. */
+int msocl__state_read(msocl__engine *s, int velocities, int lo, int hi,
+                      float *xyz);
+int msocl__state_write(msocl__engine *s, int velocities, int lo, int hi,
+                       const float *xyz);
+int msocl__state_pin(msocl__engine *s, int k, int pinned);
+int msocl__state_init(msocl__engine *s, const msocl_model *m);
+int msocl__state_backup(msocl__engine *s, int to_backup);
+int msocl__state_normals(msocl__engine *s, float *xyz);
 void msocl__planes_release(msocl__engine *s);
 /* The planes kernels' gravity, viscous damping and air resistance
  * arguments again, from s->gravity, viscous and air (a live change). */
@@ -275,8 +281,8 @@ struct msocl__named {
 };
 int msocl__args_named(msocl__engine *s, cl_kernel k,
                       const struct msocl__named *vals, int n);
-/* Sets every argument of the float4 kernels (s->k) that holds a value
- * fixed for the engine's life (inv_mass, n, ...). */
+/* Sets every argument of the engine's own kernels (s->k: normals,
+ * energy) that holds a value fixed for the engine's life (n, ...). */
 int msocl__set_fixed(msocl__engine *s);
 /* Implicit Euler: the new velocities of one step's CG (cg.c) over
  * `parts` engines, into the other plane set, where

@@ -35,12 +35,11 @@ int msocl__args_named(msocl__engine *s, cl_kernel k,
   return MSOCL_OK;
 }
 
-/* The values the float4 kernels' arguments hold for the engine's whole
- * life: everything but the state buffers. */
+/* The values the engine's own kernels' (s->k) arguments hold for its
+ * whole life: everything but the state buffers. */
 int msocl__set_fixed(msocl__engine *s)
 {
   const struct msocl__named fixed[] = {
-      {"inv_mass", sizeof s->inv_mass, &s->inv_mass},
       {"gravity", sizeof s->gravity, &s->gravity},
       {"n", sizeof s->n, &s->n},
       {"end", sizeof s->hi, &s->hi},

@@ -3,10 +3,8 @@
  * floats - GRID's padded rows, or BUFFER's, EDGES's and IMAGE2D's points
  * in index order, their neighbours found through the layout's own
  * connectivity - which PoCL's CPU device runs eight or sixteen points to
- * an instruction. The state is copied into the planes at the first step and stays there between calls;
- * whatever reads the engine's float4 buffers (reads, energy, normals, the
- * blow-up check's saved state) first calls msocl__planes_current, and
- * whatever writes them msocl__planes_written. */
+ * an instruction. The state lives in the planes (state.c moves it to
+ * and from the host); whatever writes it calls msocl__planes_written. */
 #include "config.h"
 #include "planes.h"
 #include "schedule.h"
@@ -27,8 +25,8 @@ _Static_assert(PL_COUNT == sizeof ((msocl__engine *)0)->pl_ks /
                "msocl__engine.pl_ks holds every twin");
 
 static const char *const names[PL_COUNT] = {
-    "msocl_planes_velocity", "msocl_planes_position", "msocl_planes_pack",
-    "msocl_planes_unpack",   "msocl_planes_fused",    "msocl_planes_drift",
+    "msocl_planes_velocity", "msocl_planes_position", "msocl_planes_fused",
+    "msocl_planes_drift",
     "msocl_planes_vkick",
     "msocl_planes_rk4_first", "msocl_planes_rk4_middle",
     "msocl_planes_rk4_last", "msocl_planes_strain", "msocl_planes_commit",
@@ -267,7 +265,6 @@ int msocl__pl_fixed(msocl__engine *s, cl_kernel k)
       {"dt", sizeof(float), &s->o.dt},
       {"col", sizeof s->pl_col, &s->pl_col},
       {"limit", sizeof(float), &s->o.strain_limit},
-      {"inv_mass", sizeof s->inv_mass, &s->inv_mass},
       {"n", sizeof(int), &s->n},
       {"sum_p", sizeof s->pl_sum[0], &s->pl_sum[0]},
       {"sum_v", sizeof s->pl_sum[1], &s->pl_sum[1]},
@@ -581,10 +578,8 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
  * and never read: what others read of them arrives by the exchange, and
  * a row two spans share is computed twice alike (every pass a span runs
  * writes out of place, but Verlet's drift: exchange_plan.c cuts spans at
- * msocl__planes_unit). The copies in and out of the planes cover
- * everything. */
-static void own_part(const msocl__engine *s, int k, size_t off[3],
-                     size_t size[3])
+ * msocl__planes_unit). */
+static void own_part(const msocl__engine *s, size_t off[3], size_t size[3])
 {
   for (int d = 0; d < 3; d++) {
     off[d] = 0;
@@ -593,7 +588,7 @@ static void own_part(const msocl__engine *s, int k, size_t off[3],
   const int span = s->run_offset != s->offset || s->run_global != s->global;
   const size_t lo = span ? s->run_offset : (size_t)s->lo,
                hi = span ? s->run_offset + s->run_global : (size_t)s->hi;
-  if ((lo == 0 && hi == (size_t)s->n) || k == PL_PACK || k == PL_UNPACK)
+  if (lo == 0 && hi == (size_t)s->n)
     return;
   const int grid = s->lay.kind == MSOCL_LAYOUT_GRID,
             dim = !grid ? 0 : s->lay.grid_nz > 0 ? 2 : 1;
@@ -618,7 +613,7 @@ int msocl__pl_launch(msocl__engine *s, int k)
   size_t local[3] = {s->pl_group, 1, 1};
   const size_t *group = s->dev->info.type == MSOCL_DEVICE_CPU ? local : NULL;
   size_t off[3], size[3];
-  own_part(s, k, off, size);
+  own_part(s, off, size);
   if (s->pl_wide & (1u << k)) {
     /* MSOCL_ROWS_W points a work-item (planes_wide.cl), and rows enough
      * for 16 work-items a group where the rows divide evenly: PoCL's cost
@@ -638,21 +633,6 @@ int msocl__pl_launch(msocl__engine *s, int k)
                                      &spilled, NULL, 0, NULL, NULL));
   }
   return MSOCL_OK;
-}
-
-/* pack (to_planes) or unpack planes set `set` and the current state. */
-static int copy(msocl__engine *s, int set, int to_planes)
-{
-  cl_kernel k = s->pl_k[to_planes ? PL_PACK : PL_UNPACK];
-  cl_mem f4[2] = {s->pos[s->r], s->vel[s->r]},
-         pl[2] = {s->pl_p[set], s->pl_v[set]};
-  const struct msocl__named bufs[4] = {{"pos", sizeof f4[0], &f4[0]},
-                                       {"vel", sizeof f4[1], &f4[1]},
-                                       {"p", sizeof pl[0], &pl[0]},
-                                       {"v", sizeof pl[1], &pl[1]}};
-  for (int q = 0; q < 4; q++)
-    TRY(msocl__arg(s, k, bufs[q].name, bufs[q].size, bufs[q].v));
-  return launch(s, to_planes ? PL_PACK : PL_UNPACK);
 }
 
 /* Sets planes kernel k's ping-pong arguments names[q] to bufs[q] (q < n). */
@@ -779,33 +759,30 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
   return msocl__fail(MSOCL_ERR_INVALID_ARG, "no planes pass %d", (int)pass);
 }
 
-/* Verlet's first acceleration, from the state just copied into set 0:
- * the kick with dt 0, its velocities into set 1, which every step
- * writes before it reads. */
+/* Verlet's first acceleration, from the current set's state: the kick
+ * with dt 0, its velocities into the other set, which every step writes
+ * before it reads. */
 static int first_acceleration(msocl__engine *s)
 {
   const float zero = 0.0f;
+  const int r = s->pl_set;
   cl_kernel k = s->pl_k[PL_KICK];
-  TRY(msocl__pl_mem(s, k, "p", s->pl_p[0]));
-  TRY(msocl__pl_mem(s, k, "v", s->pl_v[0]));
-  TRY(msocl__pl_mem(s, k, "v_out", s->pl_v[1]));
+  TRY(msocl__pl_mem(s, k, "p", s->pl_p[r]));
+  TRY(msocl__pl_mem(s, k, "v", s->pl_v[r]));
+  TRY(msocl__pl_mem(s, k, "v_out", s->pl_v[1 - r]));
   TRY(msocl__pl_arg(s, k, "dt", sizeof zero, &zero));
   TRY(launch(s, PL_KICK));
   return msocl__pl_arg(s, k, "dt", sizeof(float), &s->o.dt);
 }
 
-/* The state is copied into the planes at the first step after the float4
- * buffers were written (or created), and stays there: a frame loop that
- * steps once a call pays for no copies unless it reads the state, and
- * then for one copy back. */
+/* The state lives in the planes; what it implies (Verlet's acceleration)
+ * is computed again at the first step after anything wrote it. */
 int msocl__planes_enter(msocl__engine *s)
 {
   if (s->pl_valid)
     return MSOCL_OK;
-  TRY(copy(s, 0, 1));
   if (s->o.integrator == MSOCL_VERLET)
     TRY(first_acceleration(s));
-  s->pl_set = 0;
   s->pl_valid = 1;
   return MSOCL_OK;
 }
@@ -813,22 +790,11 @@ int msocl__planes_enter(msocl__engine *s)
 void msocl__planes_step_done(msocl__engine *s)
 {
   s->pl_set = 1 - s->pl_set;
-  s->pl_ahead = 1;
-}
-
-int msocl__planes_current(msocl__engine *s)
-{
-  if (!s->pl_ahead)
-    return MSOCL_OK;
-  TRY(copy(s, s->pl_set, 0));
-  s->pl_ahead = 0;
-  return MSOCL_OK;
 }
 
 void msocl__planes_written(msocl__engine *s)
 {
   s->pl_valid = 0;
-  s->pl_ahead = 0;
 }
 
 void msocl__planes_release(msocl__engine *s)

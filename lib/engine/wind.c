@@ -93,7 +93,7 @@ static int fixed_args(msocl__engine *s, int nt, int nspill)
 
 /* The corners as addresses (a zero-force triangle, all corners at 0, at
  * index wind_ntri and after it up to a whole 64), each point's triangles
- * in its slots (in triangle order, as engine.c fills tri_off's CSR), the
+ * in its slots (in triangle order, as state.c fills tri_off's CSR), the
  * points with more listed for the spill kernel, and the fixed arguments;
  * once, at the first wind. */
 /* The quads' planes (zero, so the padding adds nothing) and the quad

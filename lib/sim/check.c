@@ -70,22 +70,8 @@ int msocl__check_baseline(msocl_sim *s)
 /* Saves (to_backup) or restores each engine's whole state. */
 int msocl__check_backup(msocl_sim *s, int to_backup)
 {
-  for (int d = 0; d < s->nparts; d++) {
-    msocl__engine *e = s->part[d];
-    const size_t bytes = 4 * (size_t)e->n * sizeof(float);
-    cl_mem st[2] = {e->pos[e->r], e->vel[e->r]}, bk[2] = {e->backup_p,
-                                                          e->backup_v};
-    int rc = to_backup ? msocl__planes_current(e) : MSOCL_OK;
-    if (rc != MSOCL_OK)
-      return rc;
-    for (int k = 0; k < 2; k++)
-      MSOCL__CL(clEnqueueCopyBuffer(e->dev->queue, to_backup ? st[k] : bk[k],
-                                    to_backup ? bk[k] : st[k], 0, 0, bytes,
-                                    0, NULL, NULL));
-    if (!to_backup) {
-      msocl__planes_written(e);
-    }
-  }
+  for (int d = 0; d < s->nparts; d++)
+    MSOCL__TRY(msocl__state_backup(s->part[d], to_backup));
   return MSOCL_OK;
 }
 

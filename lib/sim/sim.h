@@ -92,7 +92,7 @@ struct msocl_sim {
   struct msocl__exchange x;
   struct msocl__workers *workers; /* a host thread per engine */
   int *perm;              /* point k is the model's perm[k]; NULL: same */
-  float *stage;           /* 4n floats for reads and writes */
+  float *stage;           /* 3n floats for reads and writes */
   unsigned char *pinned;  /* writes keep pos.w */
   long long steps;
   int e0_valid;           /* baseline energy of the blow-up check */

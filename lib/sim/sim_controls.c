@@ -77,16 +77,14 @@ int msocl__sim_index(msocl_sim *s, int i, int *k)
 }
 
 /* The engines' kernels take the changed gravity, viscosity or air factor;
- * Verlet's stored acceleration held the old forces, so its state is
- * copied out of the planes and in again, which recomputes it. */
+ * Verlet's stored acceleration held the old forces, so it is computed
+ * again at the next step. */
 static int apply(msocl_sim *s)
 {
   for (int d = 0; d < s->nparts; d++) {
     msocl__engine *e = s->part[d];
-    if (e->o.integrator == MSOCL_VERLET) {
-      MSOCL__TRY(msocl__planes_current(e));
+    if (e->o.integrator == MSOCL_VERLET)
       msocl__planes_written(e);
-    }
     MSOCL__TRY(msocl__set_fixed(e));
     MSOCL__TRY(msocl__planes_forces(e));
   }
@@ -191,18 +189,13 @@ int msocl_sim_pin(msocl_sim *s, int count, const int *idx, int pinned)
                            "msocl_sim_pin: point %d has a target for the "
                            "next call and cannot be unpinned before it",
                            idx[q]);
-  const float w = pinned ? 1.0f : 0.0f;
   for (int d = 0; d < s->nparts; d++) {
     msocl__engine *e = s->part[d];
-    MSOCL__TRY(msocl__planes_current(e));
     for (int q = 0; q < count; q++) {
       int k;
       MSOCL__TRY(msocl__sim_index(s, idx[q], &k));
-      MSOCL__CL(clEnqueueWriteBuffer(e->dev->queue, e->pos[e->r], CL_FALSE,
-                                     (4 * (size_t)k + 3) * sizeof(float),
-                                     sizeof w, &w, 0, NULL, NULL));
+      MSOCL__TRY(msocl__state_pin(e, k, pinned));
     }
-    MSOCL__CL(clFinish(e->dev->queue)); /* w lives on this stack */
     msocl__planes_written(e);
   }
   for (int q = 0; q < count; q++) {

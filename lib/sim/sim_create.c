@@ -343,7 +343,7 @@ int msocl_sim_create(msocl_sim **out, msocl_runtime *rt,
   s->nparts = t->ndevices < 0 ? rt->ndev - t->device
                               : t->ndevices == 0 ? 1 : t->ndevices;
   scene_scale(s, m);
-  s->stage = malloc(4 * (size_t)m->n * sizeof(float));
+  s->stage = malloc(3 * (size_t)m->n * sizeof(float));
   s->pinned = malloc((size_t)m->n);
   if (!s->stage || !s->pinned) {
     msocl_model_destroy(renumbered);

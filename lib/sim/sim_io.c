@@ -7,13 +7,24 @@
 #include <math.h>
 #include <string.h>
 
-/* Staged float4s (the simulation's numbering) to the caller's xyz (the
+/* Staged points (the simulation's numbering) to the caller's xyz (the
  * model's numbering). */
 static void unstage(const msocl_sim *s, float *xyz)
 {
   for (int i = 0; i < s->n; i++)
-    memcpy(xyz + 3 * (s->perm ? s->perm[i] : i), s->stage + 4 * i,
+    memcpy(xyz + 3 * (s->perm ? s->perm[i] : i), s->stage + 3 * i,
            3 * sizeof(float));
+}
+
+/* Every engine's own range into s->stage. */
+static int read_stage(msocl_sim *s, int velocities)
+{
+  for (int d = 0; d < s->nparts; d++) {
+    msocl__engine *e = s->part[d];
+    MSOCL__TRY(msocl__state_read(e, velocities, e->lo, e->hi,
+                                 s->stage + 3 * (size_t)e->lo));
+  }
+  return MSOCL_OK;
 }
 
 static int read_state(msocl_sim *s, int velocities, float *xyz)
@@ -22,24 +33,13 @@ static int read_state(msocl_sim *s, int velocities, float *xyz)
   if (!s || !xyz)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
                        s ? "output array" : "sim");
-  for (int d = 0; d < s->nparts; d++) {
-    msocl__engine *e = s->part[d];
-    int rc = msocl__planes_current(e);
-    if (rc != MSOCL_OK)
-      return rc;
-    cl_mem b = velocities ? e->vel[e->r] : e->pos[e->r];
-    MSOCL__CL(clEnqueueReadBuffer(e->dev->queue, b, CL_TRUE,
-                                  (size_t)e->lo * 4 * sizeof(float),
-                                  (size_t)(e->hi - e->lo) * 4 * sizeof(float),
-                                  s->stage + 4 * (size_t)e->lo, 0, NULL,
-                                  NULL));
-  }
+  MSOCL__TRY(read_stage(s, velocities));
   unstage(s, xyz);
   return MSOCL_OK;
 }
 
-/* The whole state into every engine's current copy; w carries the pin
- * flag for positions, 0 for velocities. */
+/* The whole state into every engine's current plane set (the pins stay
+ * in their own plane). */
 static int write_state(msocl_sim *s, int velocities, const float *xyz)
 {
   msocl__clear_error();
@@ -54,22 +54,12 @@ static int write_state(msocl_sim *s, int velocities, const float *xyz)
   int rc = msocl__check_write(s); /* the blow-up check's part */
   if (rc != MSOCL_OK)
     return rc;
-  for (int i = 0; i < s->n; i++) {
-    memcpy(s->stage + 4 * i, xyz + 3 * (s->perm ? s->perm[i] : i),
+  for (int i = 0; i < s->n; i++)
+    memcpy(s->stage + 3 * i, xyz + 3 * (s->perm ? s->perm[i] : i),
            3 * sizeof(float));
-    s->stage[4 * i + 3] = !velocities && s->pinned[i] ? 1.0f : 0.0f;
-  }
   for (int d = 0; d < s->nparts; d++) {
-    msocl__engine *e = s->part[d];
-    /* the half not written must be current where it is copied from */
-    rc = msocl__planes_current(e);
-    if (rc != MSOCL_OK)
-      return rc;
-    MSOCL__CL(clEnqueueWriteBuffer(e->dev->queue,
-                                   velocities ? e->vel[e->r] : e->pos[e->r],
-                                   CL_TRUE, 0, 4 * (size_t)s->n * sizeof(float),
-                                   s->stage, 0, NULL, NULL));
-    msocl__planes_written(e);
+    MSOCL__TRY(msocl__state_write(s->part[d], velocities, 0, s->n, s->stage));
+    msocl__planes_written(s->part[d]);
   }
   return MSOCL_OK;
 }
@@ -103,25 +93,13 @@ int msocl_sim_read_normals(msocl_sim *s, float *xyz)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
                        s ? "output array" : "sim");
   msocl__engine *e = s->part[0];
-  int rc0 = msocl__planes_current(e);
-  if (rc0 != MSOCL_OK)
-    return rc0;
   if (s->nparts > 1) {
-    int rc = read_state(s, 0, xyz);
-    if (rc != MSOCL_OK)
-      return rc; /* s->stage now holds every position with its pin flag */
-    MSOCL__CL(clEnqueueWriteBuffer(e->dev->queue, e->pos[e->r], CL_TRUE, 0,
-                                   4 * (size_t)s->n * sizeof(float),
-                                   s->stage, 0, NULL, NULL));
+    MSOCL__TRY(read_stage(s, 0));
+    for (int d = 1; d < s->nparts; d++)
+      MSOCL__TRY(msocl__state_write(e, 0, s->part[d]->lo, s->part[d]->hi,
+                                    s->stage + 3 * (size_t)s->part[d]->lo));
   }
-  int rc = msocl__arg_mem(e, e->k[MSOCL__K_NORMALS], "pos", e->pos[e->r]);
-  if (rc == MSOCL_OK)
-    rc = msocl__launch_all(e, MSOCL__K_NORMALS);
-  if (rc != MSOCL_OK)
-    return rc;
-  MSOCL__CL(clEnqueueReadBuffer(e->dev->queue, e->normal, CL_TRUE, 0,
-                                4 * (size_t)s->n * sizeof(float), s->stage, 0,
-                                NULL, NULL));
+  MSOCL__TRY(msocl__state_normals(e, s->stage));
   unstage(s, xyz);
   return MSOCL_OK;
 }

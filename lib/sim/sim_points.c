@@ -1,9 +1,9 @@
 /* Partial state access: the positions or velocities of an index range or
  * list of points, read or written without moving the whole state between
- * host and device (each run of consecutive points is one copy) and without
- * touching any other point. A write, like msocl_sim_write_positions, keeps
- * the pins and counts as a write for the blow-up check; in planes the
- * state is copied out of the planes and in again on the device. */
+ * host and device (each run of consecutive points one copy a plane) and
+ * without touching any other point. A write, like
+ * msocl_sim_write_positions, keeps the pins and counts as a write for the
+ * blow-up check. */
 #include "config.h"
 #include "sim.h"
 
@@ -20,11 +20,11 @@ static int numbers(msocl_sim *s, int first, int count, const int *idx,
   return MSOCL_OK;
 }
 
-/* Reads (or writes) the float4s at the simulation's points k[0..count)
- * of engine e's current buffer b into (from) f4, a copy for each run of
- * consecutive points; reads only those of the engine's own range. */
-static int copy_runs(msocl__engine *e, cl_mem b, int write, const int *k,
-                     int count, cl_float4 *f4)
+/* Reads (or writes) the simulation's points k[0..count) of engine e's
+ * current state into (from) xyz, a copy for each run of consecutive
+ * points; reads only those of the engine's own range. */
+static int copy_runs(msocl__engine *e, int velocities, int write,
+                     const int *k, int count, float *xyz)
 {
   for (int q = 0; q < count;) {
     int r = q + 1;
@@ -35,15 +35,11 @@ static int copy_runs(msocl__engine *e, cl_mem b, int write, const int *k,
       q++;
       continue;
     }
-    const size_t off = (size_t)k[q] * sizeof(cl_float4),
-                 len = (size_t)(r - q) * sizeof(cl_float4);
-    MSOCL__CL(write ? clEnqueueWriteBuffer(e->dev->queue, b, CL_FALSE, off,
-                                           len, f4 + q, 0, NULL, NULL)
-                    : clEnqueueReadBuffer(e->dev->queue, b, CL_FALSE, off,
-                                          len, f4 + q, 0, NULL, NULL));
+    const int lo = k[q], hi = k[r - 1] + 1;
+    MSOCL__TRY(write ? msocl__state_write(e, velocities, lo, hi, xyz + 3 * q)
+                     : msocl__state_read(e, velocities, lo, hi, xyz + 3 * q));
     q = r;
   }
-  MSOCL__CL(clFinish(e->dev->queue));
   return MSOCL_OK;
 }
 
@@ -80,31 +76,24 @@ static int points_io(msocl_sim *s, int velocities, int write, int list,
   if (count == 0)
     return MSOCL_OK;
   int *k = malloc((size_t)count * sizeof *k);
-  cl_float4 *f4 = malloc((size_t)count * sizeof *f4);
-  int rc = k && f4 ? numbers(s, first, count, idx, k)
-                   : msocl__fail(MSOCL_ERR_NO_MEMORY, "%s of %d points",
-                                 what, count);
+  float *xyz = malloc(3 * (size_t)count * sizeof *xyz);
+  int rc = k && xyz ? numbers(s, first, count, idx, k)
+                    : msocl__fail(MSOCL_ERR_NO_MEMORY, "%s of %d points",
+                                  what, count);
   if (rc == MSOCL_OK && write) {
     rc = msocl__check_write(s);
-    for (int q = 0; q < count; q++) {
-      memcpy(f4[q].s, in + 3 * q, 3 * sizeof(float));
-      f4[q].s[3] = !velocities && s->pinned[k[q]] ? 1.0f : 0.0f;
-    }
+    memcpy(xyz, in, 3 * (size_t)count * sizeof *xyz);
   }
   for (int d = 0; rc == MSOCL_OK && d < s->nparts; d++) {
     msocl__engine *e = s->part[d];
-    rc = msocl__planes_current(e);
-    if (rc == MSOCL_OK)
-      rc = copy_runs(e, velocities ? e->vel[e->r] : e->pos[e->r], write, k,
-                     count, f4);
-    if (rc == MSOCL_OK && write) {
+    rc = copy_runs(e, velocities, write, k, count, xyz);
+    if (rc == MSOCL_OK && write)
       msocl__planes_written(e);
-    }
   }
-  for (int q = 0; rc == MSOCL_OK && !write && q < count; q++)
-    memcpy(out + 3 * q, f4[q].s, 3 * sizeof(float));
+  if (rc == MSOCL_OK && !write)
+    memcpy(out, xyz, 3 * (size_t)count * sizeof *xyz);
   free(k);
-  free(f4);
+  free(xyz);
   return rc;
 }
 
