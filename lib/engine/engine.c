@@ -275,6 +275,7 @@ void msocl__engine_destroy(msocl__engine *s)
   msocl__soft_release(s);
   msocl__layout_release(&s->lay);
   free(s->partial_host);
+  free(s->host);
   free(s->inv_host);
   free(s);
 }

@@ -47,6 +47,8 @@ struct msocl__engine {
   float viscous, air;
   int ncol;
   cl_float4 *partial_host;
+  float *host;            /* state.c's slices of the planes */
+  size_t host_cap;        /* ... its floats */
   float *inv_host; /* the points' inverse masses, in the engine's order */
   /* the engine's state (planes.c, kernels/planes.cl): x, y, z planes of
    * floats, rows padded on GRID, kept there between calls */

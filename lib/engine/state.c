@@ -14,53 +14,56 @@ static cl_mem current(const msocl__engine *s, int velocities)
   return velocities ? s->pl_v[s->pl_set] : s->pl_p[s->pl_set];
 }
 
-/* a[i - lo]: where points lo .. hi - 1 sit in a plane, less the first's;
- * a grid walked row by row (no division a point) */
-static void addresses(const msocl__engine *s, int lo, int hi, size_t *a)
+/* Points [lo, hi)'s coordinates from t, the three planes' slices over
+ * them (`floats` apart, the first point at 0), into out; or, out NULL,
+ * from in into t: a run of points consecutive in a plane at a time (a
+ * grid's row). */
+static void interleave(const msocl__engine *s, int lo, int hi, float *t,
+                       size_t floats, float *out, const float *in)
 {
+  const int grid = s->lay.kind == MSOCL_LAYOUT_GRID;
   const size_t first = (size_t)msocl__pl_address(s, lo);
-  if (s->lay.kind != MSOCL_LAYOUT_GRID) {
-    for (int i = lo; i < hi; i++)
-      a[i - lo] = (size_t)i - first;
-    return;
-  }
-  const int nx = s->lay.grid_nx;
-  int x = lo % nx;
-  size_t at = 0;
-  for (int i = lo; i < hi; i++) {
-    a[i - lo] = at;
-    if (++x < nx) {
-      at++;
-    } else {
-      /* the next row, or the next layer's first */
-      x = 0;
-      at = (size_t)msocl__pl_address(s, i + 1 < hi ? i + 1 : i) - first;
+  for (int i = lo; i < hi;) {
+    const int nx = grid ? s->lay.grid_nx : hi, x = grid ? i % nx : 0;
+    const int end = hi - i < nx - x ? hi : i + (nx - x);
+    const size_t a = (size_t)msocl__pl_address(s, i) - first;
+    for (int c = 0; c < 3; c++) {
+      float *q = t + c * floats + a;
+      const size_t at = 3 * (size_t)(i - lo) + (size_t)c;
+      if (out)
+        for (int j = 0; j < end - i; j++)
+          out[at + 3 * (size_t)j] = q[j];
+      else
+        for (int j = 0; j < end - i; j++)
+          q[j] = in[at + 3 * (size_t)j];
     }
+    i = end;
   }
 }
 
-/* Points [lo, hi) of plane set b: each plane's slice into t (3 len bytes)
- * or out of it, and their addresses in a slice into *a. */
+/* Points [lo, hi) of plane set b: each plane's slice into the engine's
+ * host scratch (*t, `floats` a plane), or out of it. */
 static int slices(msocl__engine *s, cl_mem b, int write, int lo, int hi,
-                  float **t, size_t **a, size_t *len)
+                  float **t, size_t *floats)
 {
-  size_t off[3];
-  msocl__exchange_slices(s, lo, hi, off, len);
-  const size_t floats = *len / sizeof(float);
-  if (!write) {
-    *t = malloc(3 * *len);
-    *a = malloc((size_t)(hi - lo) * sizeof **a);
-    if (!*t || !*a)
+  size_t off[3], len;
+  msocl__exchange_slices(s, lo, hi, off, &len);
+  *floats = len / sizeof(float);
+  if (3 * *floats > s->host_cap) {
+    float *grown = realloc(s->host, 3 * len);
+    if (!grown)
       return msocl__fail(MSOCL_ERR_NO_MEMORY, "state of %d points",
                          hi - lo);
-    addresses(s, lo, hi, *a);
+    s->host = grown;
+    s->host_cap = 3 * *floats;
   }
+  *t = s->host;
   for (int c = 0; c < 3; c++)
     MSOCL__CL(write ? clEnqueueWriteBuffer(s->dev->queue, b, CL_FALSE,
-                                           off[c], *len, *t + c * floats, 0,
+                                           off[c], len, *t + c * *floats, 0,
                                            NULL, NULL)
                     : clEnqueueReadBuffer(s->dev->queue, b, CL_FALSE, off[c],
-                                          *len, *t + c * floats, 0, NULL,
+                                          len, *t + c * *floats, 0, NULL,
                                           NULL));
   MSOCL__CL(clFinish(s->dev->queue));
   return MSOCL_OK;
@@ -71,16 +74,11 @@ int msocl__state_read(msocl__engine *s, int velocities, int lo, int hi,
 {
   if (lo >= hi)
     return MSOCL_OK;
-  float *t = NULL;
-  size_t *a = NULL, len = 0;
-  int rc = slices(s, current(s, velocities), 0, lo, hi, &t, &a, &len);
-  const size_t floats = len / sizeof(float);
-  for (int i = 0; rc == MSOCL_OK && i < hi - lo; i++)
-    for (int c = 0; c < 3; c++)
-      xyz[3 * i + c] = t[c * floats + a[i]];
-  free(t);
-  free(a);
-  return rc;
+  float *t;
+  size_t floats;
+  MSOCL__TRY(slices(s, current(s, velocities), 0, lo, hi, &t, &floats));
+  interleave(s, lo, hi, t, floats, xyz, NULL);
+  return MSOCL_OK;
 }
 
 int msocl__state_write(msocl__engine *s, int velocities, int lo, int hi,
@@ -90,19 +88,11 @@ int msocl__state_write(msocl__engine *s, int velocities, int lo, int hi,
     return MSOCL_OK;
   /* the slices read first: their padding stays as it is */
   const cl_mem b = current(s, velocities);
-  float *t = NULL;
-  size_t *a = NULL, len = 0;
-  int rc = slices(s, b, 0, lo, hi, &t, &a, &len);
-  const size_t floats = len / sizeof(float);
-  if (rc == MSOCL_OK) {
-    for (int i = 0; i < hi - lo; i++)
-      for (int c = 0; c < 3; c++)
-        t[c * floats + a[i]] = xyz[3 * i + c];
-    rc = slices(s, b, 1, lo, hi, &t, &a, &len);
-  }
-  free(t);
-  free(a);
-  return rc;
+  float *t;
+  size_t floats;
+  MSOCL__TRY(slices(s, b, 0, lo, hi, &t, &floats));
+  interleave(s, lo, hi, t, floats, NULL, xyz);
+  return slices(s, b, 1, lo, hi, &t, &floats);
 }
 
 int msocl__state_pin(msocl__engine *s, int k, int pinned)
