@@ -1,15 +1,14 @@
 /* What a frame loop pays for the state: the device memory a simulation
  * holds, and the time to step once and read the positions and normals.
  * A cloth of N x N points (GRID under AUTO), symplectic Euler. Public API
- * only, so it links against any build:
+ * only, so it links against any build (bench/state_io.sh builds it
+ * against two and runs them alternately):
  *
- *   cc -std=c99 -O2 -Ilib bench/state_io.c -L.libs -lmsocl -ldl \
- *      -Wl,-rpath,$PWD/.libs -o state_io
- *   cc -O2 -shared -fPIC bench/clmem.c -o clmem.so -ldl
- *   LD_PRELOAD=$PWD/clmem.so ./state_io N frames check_every
+ *   state_io N frames check_every
  *
- * With clmem.so preloaded it prints the bytes of the OpenCL buffers the
- * second simulation created (the first builds the kernels); without, 0.
+ * With state_io.sh's shim preloaded it prints the bytes of the OpenCL
+ * buffers the second simulation created (the first builds the kernels);
+ * without, 0.
  * Results: docs/PERFORMANCE.md ("The state in the planes alone"). */
 #define _GNU_SOURCE /* RTLD_DEFAULT, clock_gettime */
 #include "msocl.h"
@@ -27,7 +26,7 @@ static double now(void)
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* clmem.so's count of live buffer bytes, where it is loaded */
+/* the shim's count of live buffer bytes (state_io.sh), where loaded */
 static size_t cl_bytes(void)
 {
   size_t (*f)(void);
