@@ -97,10 +97,12 @@ int msocl__state_write(msocl__engine *s, int velocities, int lo, int hi,
 
 int msocl__state_pin(msocl__engine *s, int k, int pinned)
 {
-  const float w = pinned ? 1.0f : 0.0f;
+  /* static: the write needs no wait, however many points a call pins */
+  static const float flag[2] = {0.0f, 1.0f};
   const size_t at = (size_t)s->pl_plane + (size_t)msocl__pl_address(s, k);
-  MSOCL__CL(clEnqueueWriteBuffer(s->dev->queue, s->pl_aux, CL_TRUE,
-                                 at * sizeof w, sizeof w, &w, 0, NULL, NULL));
+  MSOCL__CL(clEnqueueWriteBuffer(s->dev->queue, s->pl_aux, CL_FALSE,
+                                 at * sizeof *flag, sizeof *flag,
+                                 &flag[pinned != 0], 0, NULL, NULL));
   return MSOCL_OK;
 }
 
