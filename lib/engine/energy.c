@@ -20,7 +20,7 @@ int msocl__energy_stride(const msocl__engine *s)
 static int wide(const msocl__engine *s)
 {
   return (s->pl_wide & (1u << PL_VELOCITY)) &&
-         s->lay.kind != MSOCL_LAYOUT_GRID && s->pl_group % 16 == 0;
+         s->lay.kind != MSOCL_LAYOUT_GRID && s->pl_group % MSOCL__WIDE_W == 0;
 }
 
 /* The energy kernels' arguments that hold for the engine's life: the
@@ -68,11 +68,12 @@ int msocl__energy(msocl__engine *s, msocl_energy *e)
   if (rc != MSOCL_OK)
     return rc;
   /* each point's part over the planes as their passes run (the whole
-   * planes: a split's others are dropped; wide: 16 points a work-item),
+   * planes: a split's others are dropped; wide: MSOCL__WIDE_W points a
+   * work-item),
    * then sums in the model's order */
-  size_t group[3] = {s->pl_group / (w ? 16 : 1), 1, 1},
-         size[3] = {s->pl_global[0] / (w ? 16 : 1), s->pl_global[1],
-                    s->pl_global[2]};
+  const size_t per = w ? MSOCL__WIDE_W : 1;
+  size_t group[3] = {s->pl_group / per, 1, 1},
+         size[3] = {s->pl_global[0] / per, s->pl_global[1], s->pl_global[2]};
   MSOCL__CL(clEnqueueNDRangeKernel(
       s->dev->queue, k, 3, NULL, size,
       s->dev->info.type == MSOCL_DEVICE_CPU ? group : NULL, 0, NULL, NULL));

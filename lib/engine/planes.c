@@ -433,7 +433,7 @@ static int padded_table(msocl__engine *s)
  * on a CPU device, where PoCL may leave the scalar kernels unvectorised;
  * one engine (they launch over every point), precise math (bitwise the
  * scalar kernels'); BUFFER's or EDGES's table, or a cloth grid or lattice
- * whose rows come in work-groups of 16 points or more (16 a work-item). */
+ * whose rows come in work-groups of a work-item's points or more. */
 static int wide(const msocl__engine *s)
 {
   if (s->dev->info.type != MSOCL_DEVICE_CPU || s->lo != 0 ||
@@ -441,7 +441,7 @@ static int wide(const msocl__engine *s)
     return 0;
   return s->lay.kind == MSOCL_LAYOUT_BUFFER ||
          s->lay.kind == MSOCL_LAYOUT_EDGES ||
-         (s->lay.kind == MSOCL_LAYOUT_GRID && s->pl_group >= 16);
+         (s->lay.kind == MSOCL_LAYOUT_GRID && s->pl_group >= MSOCL__WIDE_W);
 }
 
 /* Planes kernel q's twin in explicit vectors (planes_wide.cl,
@@ -615,12 +615,12 @@ int msocl__pl_launch(msocl__engine *s, int k)
   size_t off[3], size[3];
   own_part(s, off, size);
   if (s->pl_wide & (1u << k)) {
-    /* MSOCL_ROWS_W points a work-item (planes_wide.cl), and rows enough
-     * for 16 work-items a group where the rows divide evenly: PoCL's cost
-     * a work-group outweighed a narrow row's 1-4 work-items */
-    size[0] /= 16;
-    local[0] = s->pl_group / 16;
-    size_t rows = 16 / local[0];
+    /* MSOCL__WIDE_W points a work-item, and rows enough for
+     * MSOCL__WIDE_GROUP work-items a group where the rows divide evenly:
+     * PoCL's cost a work-group outweighed a narrow row's 1-4 work-items */
+    size[0] /= MSOCL__WIDE_W;
+    local[0] = s->pl_group / MSOCL__WIDE_W;
+    size_t rows = MSOCL__WIDE_GROUP / local[0];
     while (rows > 1 && size[1] % rows != 0)
       rows--;
     local[1] = rows;

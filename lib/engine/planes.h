@@ -5,6 +5,12 @@
 
 #include "engine.h"
 
+/* Points a work-item of the explicit-vector kernels (planes_wide.cl,
+ * planes_rows.cl, energy.cl: kernels/rows.h's MSOCL_ROWS_W), and their
+ * work-items a CPU work-group where the rows allow (planes.c's launch) */
+#define MSOCL__WIDE_W 16
+#define MSOCL__WIDE_GROUP 16
+
 enum {
   PL_VELOCITY, PL_POSITION, PL_FUSED, PL_DRIFT, PL_KICK,
   PL_RK4, PL_RK4_MID, PL_RK4_LAST, PL_STRAIN, PL_COMMIT,

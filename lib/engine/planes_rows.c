@@ -11,8 +11,7 @@
 
 #include <math.h>
 
-/* points a vector of the kernel's (MSOCL_ROWS_W) */
-#define ROWS_W 16
+#define ROWS_W MSOCL__WIDE_W
 /* steps a launch at most, rings of terms and middle states a block
  * (MSOCL_ROWS_STEPS) */
 #define ROWS_STEPS 4
