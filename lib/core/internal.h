@@ -255,6 +255,13 @@ void msocl__program_cache_free(struct msocl__device *dev);
 /* Programs in the device's cache (the tests count them). */
 int msocl__program_cache_size(struct msocl__device *dev);
 
+/* A buffer on dev (buffer.c), filled from host where host is not NULL;
+ * nothing where *rc already holds an error, so a run of them needs one
+ * check; on failure *rc names `what`, the size and the device. */
+cl_mem msocl__buffer(struct msocl__device *dev, cl_mem_flags flags,
+                     size_t bytes, const void *host, const char *what,
+                     int *rc);
+
 /* Kernels by name (kernel_names.c). make: kernel `name` of prog, its
  * arguments' names remembered; free: forgets and releases it (NULL: no-op)
  * and sets *k NULL; arg: sets k's argument `name` (MSOCL_ERR_INVALID_ARG

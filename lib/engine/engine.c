@@ -84,21 +84,6 @@ static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
   return MSOCL_OK;
 }
 
-static cl_mem buffer(msocl__engine *s, cl_mem_flags flags, size_t bytes,
-                     void *host, int *rc)
-{
-  if (*rc != MSOCL_OK)
-    return NULL;
-  cl_int e;
-  cl_mem b = clCreateBuffer(s->dev->ctx, flags | (host ? CL_MEM_COPY_HOST_PTR
-                                                       : 0),
-                            bytes, host, &e);
-  if (e != CL_SUCCESS)
-    *rc = msocl__fail(e, "clCreateBuffer(%zu bytes) on %s: %s", bytes,
-                      s->dev->info.name, msocl_err_name(e));
-  return b;
-}
-
 /* Masses, colliders and the reductions' buffers (the state and the
  * normals' lists: state.c, once the planes exist). */
 static int make_buffers(msocl__engine *s, const msocl_model *m)
@@ -119,12 +104,14 @@ static int make_buffers(msocl__engine *s, const msocl_model *m)
     memcpy(col + 8 * c + 4, m->col[c].p, 4 * sizeof(float));
     memcpy(s->pl_colx + 8 * c, m->col[c].x, sizeof m->col[c].x);
   }
-  s->col = buffer(s, CL_MEM_READ_ONLY, sizeof col, col, &rc);
-  s->partial = buffer(s, CL_MEM_READ_WRITE, s->groups * sizeof(cl_float4),
-                      NULL, &rc);
-  s->parts = buffer(s, CL_MEM_READ_WRITE,
-                    3 * (size_t)msocl__energy_stride(s) * sizeof(float),
-                    NULL, &rc);
+  s->col = msocl__buffer(s->dev, CL_MEM_READ_ONLY, sizeof col, col,
+                         "colliders", &rc);
+  s->partial = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                             s->groups * sizeof(cl_float4), NULL,
+                             "partial sums", &rc);
+  s->parts = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                           3 * (size_t)msocl__energy_stride(s) * sizeof(float),
+                           NULL, "energy parts", &rc);
 out:
   s->inv_host = inv; /* soft pins' stiffness check reads it */
   return rc;
@@ -136,8 +123,10 @@ static int backups(msocl__engine *s)
   int rc = MSOCL_OK;
   const size_t bytes = 3 * (size_t)s->pl_plane * sizeof(float);
   if (s->o.check_every > 0) {
-    s->backup_p = buffer(s, CL_MEM_READ_WRITE, bytes, NULL, &rc);
-    s->backup_v = buffer(s, CL_MEM_READ_WRITE, bytes, NULL, &rc);
+    s->backup_p = msocl__buffer(s->dev, CL_MEM_READ_WRITE, bytes, NULL,
+                                "the check's positions", &rc);
+    s->backup_v = msocl__buffer(s->dev, CL_MEM_READ_WRITE, bytes, NULL,
+                                "the check's velocities", &rc);
   }
   return rc;
 }

@@ -54,16 +54,13 @@ int msocl__field_set(msocl__engine *s, const float *xyz, int forces)
   if (!acc)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "the field's planes");
   int rc = fill(s, xyz, forces, acc);
-  cl_int e = CL_SUCCESS;
-  if (rc == MSOCL_OK && !s->field_acc) {
-    s->field_acc = clCreateBuffer(s->dev->ctx, CL_MEM_READ_ONLY, bytes, NULL,
-                                  &e);
-    if (e != CL_SUCCESS)
-      rc = msocl__fail(e, "clCreateBuffer(the field): %s", msocl_err_name(e));
-  }
+  if (!s->field_acc)
+    s->field_acc = msocl__buffer(s->dev, CL_MEM_READ_ONLY, bytes, NULL,
+                                 "the field", &rc);
   if (rc == MSOCL_OK) {
-    e = clEnqueueWriteBuffer(s->dev->queue, s->field_acc, CL_TRUE, 0, bytes,
-                             acc, 0, NULL, NULL);
+    const cl_int e = clEnqueueWriteBuffer(s->dev->queue, s->field_acc,
+                                          CL_TRUE, 0, bytes, acc, 0, NULL,
+                                          NULL);
     if (e != CL_SUCCESS)
       rc = msocl__fail(e, "writing the field: %s", msocl_err_name(e));
   }

@@ -53,18 +53,6 @@ static int has_damping(const msocl_model *m)
   return 0;
 }
 
-static cl_mem make_buffer(struct msocl__device *dev, size_t bytes,
-                          void *host, int *rc)
-{
-  cl_int e;
-  cl_mem b = clCreateBuffer(dev->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                            bytes, host, &e);
-  if (e != CL_SUCCESS)
-    *rc = msocl__fail(e, "clCreateBuffer(%zu bytes): %s", bytes,
-                      msocl_err_name(e));
-  return b;
-}
-
 static cl_mem make_image(struct msocl__device *dev, int w, int h, void *host,
                          int *rc)
 {
@@ -253,17 +241,24 @@ static int build_buffers(struct msocl__device *dev, const msocl_model *m,
       if (damped)
         dmp[at] = m->damp[sp];
     }
-  l->con = make_buffer(dev, total * sizeof *nbr, nbr, &rc);
-  if (rc == MSOCL_OK && values)
-    l->rk = make_buffer(dev, 2 * total * sizeof *rk, rk, &rc);
-  if (rc == MSOCL_OK && values)
-    l->damp = make_buffer(dev, (damped ? total : 1) * sizeof *dmp, dmp, &rc);
-  if (rc == MSOCL_OK && !values)
-    l->rk = make_buffer(dev, total, cls, &rc);
-  if (rc == MSOCL_OK && !values)
-    l->damp = make_buffer(dev, (size_t)l->classes * sizeof *tab, tab, &rc);
-  if (rc == MSOCL_OK && spill[n] > 0)
-    l->spill = make_buffer(dev, (n + 1) * sizeof *spill, spill, &rc);
+  l->con = msocl__buffer(dev, CL_MEM_READ_ONLY, total * sizeof *nbr, nbr,
+                         "the connectivity", &rc);
+  if (values) {
+    l->rk = msocl__buffer(dev, CL_MEM_READ_ONLY, 2 * total * sizeof *rk, rk,
+                          "the springs' values", &rc);
+    l->damp = msocl__buffer(dev, CL_MEM_READ_ONLY,
+                            (damped ? total : 1) * sizeof *dmp, dmp,
+                            "the dashpots", &rc);
+  } else {
+    l->rk = msocl__buffer(dev, CL_MEM_READ_ONLY, total, cls,
+                          "the springs' classes", &rc);
+    l->damp = msocl__buffer(dev, CL_MEM_READ_ONLY,
+                            (size_t)l->classes * sizeof *tab, tab,
+                            "the classes' values", &rc);
+  }
+  if (spill[n] > 0)
+    l->spill = msocl__buffer(dev, CL_MEM_READ_ONLY, (n + 1) * sizeof *spill,
+                             spill, "the spill", &rc);
 out:
   free(spill);
   free(nbr);

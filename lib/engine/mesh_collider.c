@@ -85,19 +85,6 @@ struct msocl__mesh_dev {
   int g[3];
 };
 
-static cl_mem buffer(msocl__engine *s, size_t bytes, void *host, int *rc)
-{
-  cl_int e;
-  cl_mem b = clCreateBuffer(s->dev->ctx,
-                            CL_MEM_READ_WRITE |
-                                (host ? CL_MEM_COPY_HOST_PTR : 0),
-                            bytes, host, &e);
-  if (e != CL_SUCCESS && *rc == MSOCL_OK)
-    *rc = msocl__fail(e, "clCreateBuffer(%zu bytes for a mesh collider): %s",
-                      bytes, msocl_err_name(e));
-  return e == CL_SUCCESS ? b : NULL;
-}
-
 static int cmp_u64(const void *x, const void *y)
 {
   const uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
@@ -234,10 +221,16 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
     for (int q = 0; q < 3; q++)
       planes[(size_t)q * d->nt + t] = d->tri[3 * t + q];
   if (rc == MSOCL_OK) {
-    d->dtri = buffer(s, 3 * (size_t)d->nt * sizeof(int), planes, &rc);
-    d->drim = buffer(s, (size_t)d->nt * sizeof(int), rim, &rc);
-    d->vert[0] = buffer(s, nv3 * sizeof(float), NULL, &rc);
-    d->vert[1] = buffer(s, nv3 * sizeof(float), NULL, &rc);
+    d->dtri = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                            3 * (size_t)d->nt * sizeof(int), planes,
+                            "a mesh collider's triangles", &rc);
+    d->drim = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                            (size_t)d->nt * sizeof(int), rim,
+                            "a mesh collider's rims", &rc);
+    d->vert[0] = msocl__buffer(s->dev, CL_MEM_READ_WRITE, nv3 * sizeof(float),
+                               NULL, "a mesh collider's vertices", &rc);
+    d->vert[1] = msocl__buffer(s->dev, CL_MEM_READ_WRITE, nv3 * sizeof(float),
+                               NULL, "a mesh collider's vertices", &rc);
   }
   free(rim);
   free(planes);
@@ -255,7 +248,9 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   TRY(msocl__kernel_make(s->dev, s->prog, name, &d->k));
   TRY(msocl__kernel_make(s->dev, s->prog, "msocl_mesh_place", &d->place));
   int rc2 = MSOCL_OK;
-  d->cur = buffer(s, 32 * (size_t)d->nt * sizeof(float), NULL, &rc2);
+  d->cur = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                         32 * (size_t)d->nt * sizeof(float), NULL,
+                         "a mesh collider's placed triangles", &rc2);
   TRY(rc2);
   TRY(msocl__arg_mem(s, d->place, "tri", d->dtri));
   TRY(msocl__arg_mem(s, d->place, "cur", d->cur));
@@ -266,7 +261,8 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   d->nlive = -1;
   TRY(msocl__arg_mem(s, d->k, "cur", d->cur));
   const cl_int zero = 0;
-  d->esc = buffer(s, sizeof zero, (void *)&zero, &rc2);
+  d->esc = msocl__buffer(s->dev, CL_MEM_READ_WRITE, sizeof zero, &zero,
+                         "a mesh collider's flag", &rc2);
   TRY(rc2);
   TRY(msocl__arg_mem(s, d->k, "esc", d->esc));
   { /* CPUs: work-items a compute unit, each taking every B-th run */
@@ -289,10 +285,14 @@ int msocl__mesh_create(msocl__engine *s, const struct msocl__mesh_collider *c,
   d->hbounds = malloc(8 * runs * sizeof *d->hbounds);
   if (!d->hbounds)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "mesh collider");
-  d->dbounds = buffer(s, 8 * runs * sizeof *d->hbounds, NULL, &rc2);
+  d->dbounds = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                             8 * runs * sizeof *d->hbounds, NULL,
+                             "the cloth's bounds", &rc2);
   TRY(rc2);
   TRY(msocl__arg_mem(s, d->bounds, "esc", d->esc));
-  d->prev = buffer(s, 3 * (size_t)s->pl_plane * sizeof(float), NULL, &rc2);
+  d->prev = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                          3 * (size_t)s->pl_plane * sizeof(float), NULL,
+                          "the previous positions", &rc2);
   TRY(rc2);
   const cl_float nil = 0;
   MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, d->prev, &nil, sizeof nil, 0,
@@ -337,7 +337,8 @@ static int room(msocl__engine *s, cl_mem *b, size_t *cap, size_t need)
     clReleaseMemObject(*b);
   *cap = need + need / 2 + 64;
   int rc = MSOCL_OK;
-  *b = buffer(s, *cap * sizeof(int), NULL, &rc);
+  *b = msocl__buffer(s->dev, CL_MEM_READ_WRITE, *cap * sizeof(int), NULL,
+                     "a mesh collider's grid", &rc);
   return rc;
 }
 

@@ -305,26 +305,10 @@ static int collider_table(msocl__engine *s)
       spread[4 * (MSOCL__COL_VALUES * c + k)] = packed[8 * c + k];
       spread[4 * (MSOCL__COL_VALUES * c + 8 + k)] = s->pl_colx[8 * c + k];
     }
-  cl_int e;
-  s->pl_col = clCreateBuffer(s->dev->ctx, CL_MEM_READ_ONLY |
-                                              CL_MEM_COPY_HOST_PTR,
-                             sizeof spread, spread, &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateBuffer(colliders): %s", msocl_err_name(e));
-  return MSOCL_OK;
-}
-
-/* A device buffer of `bytes` from host memory, into *out. */
-static int upload(msocl__engine *s, const void *host, size_t bytes,
-                  cl_mem *out)
-{
-  cl_int e;
-  *out = clCreateBuffer(s->dev->ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                        bytes, (void *)host, &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateBuffer(planes' slot table): %s",
-                       msocl_err_name(e));
-  return MSOCL_OK;
+  int rc = MSOCL_OK;
+  s->pl_col = msocl__buffer(s->dev, CL_MEM_READ_ONLY, sizeof spread, spread,
+                            "colliders", &rc);
+  return rc;
 }
 
 /* The spill's offsets, padded to the plane (a padding point spills
@@ -350,9 +334,12 @@ static int spill_list(msocl__engine *s, size_t n, size_t P, int *nsp)
         list[nl++] = (int)i;
     *nsp = off[n];
     s->pl_nspill = nl;
-    rc = upload(s, off, (P + 1) * sizeof *off, &s->pl_table[3]);
-    if (rc == MSOCL_OK)
-      rc = upload(s, list, (size_t)nl * sizeof *list, &s->pl_list);
+    s->pl_table[3] = msocl__buffer(s->dev, CL_MEM_READ_ONLY,
+                                   (P + 1) * sizeof *off, off,
+                                   "planes' spill", &rc);
+    s->pl_list = msocl__buffer(s->dev, CL_MEM_READ_ONLY,
+                               (size_t)nl * sizeof *list, list,
+                               "planes' spill", &rc);
   }
   free(off);
   free(list);
@@ -413,7 +400,9 @@ static int padded_table(msocl__engine *s)
     }
     if (rc == MSOCL_OK) {
       memcpy(out + S * P * z, in + S * n * z, sp * z);
-      rc = upload(s, out, (S * P + sp) * z, &s->pl_table[q]);
+      s->pl_table[q] = msocl__buffer(s->dev, CL_MEM_READ_ONLY,
+                                     (S * P + sp) * z, out,
+                                     "planes' slot table", &rc);
     }
     free(in);
     free(out);
@@ -556,12 +545,10 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
     /* the padding is read (and its terms discarded): zeros, not garbage */
     const size_t bytes =
         (q == 4 ? 2 : 3) * (size_t)s->pl_plane * sizeof(float);
-    cl_int e;
-    *bufs[q] = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes, NULL,
-                              &e);
-    if (e != CL_SUCCESS)
-      return msocl__fail(e, "clCreateBuffer(%zu bytes of planes): %s", bytes,
-                         msocl_err_name(e));
+    int rc = MSOCL_OK;
+    *bufs[q] = msocl__buffer(s->dev, CL_MEM_READ_WRITE, bytes, NULL,
+                             "planes", &rc);
+    TRY(rc);
     const float zero = 0.0f;
     MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, *bufs[q], &zero, sizeof zero,
                                   0, bytes, 0, NULL, NULL));

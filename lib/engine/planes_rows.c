@@ -108,7 +108,6 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
 {
   if (!applies(s))
     return MSOCL_OK;
-  cl_int e;
   size_t blocks = BLOCKS_PER_UNIT * (size_t)(s->dev->info.compute_units
                                                  ? s->dev->info.compute_units
                                                  : 1);
@@ -127,10 +126,9 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   const size_t terms = s->damped ? 42 : 24;
   /* a ring a block, or a step a block */
   const size_t bytes = rings * 3 * terms * (size_t)ring_w * sizeof(float);
-  s->pl_ring = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes, NULL, &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateBuffer(%zu bytes of rings): %s", bytes,
-                       msocl_err_name(e));
+  int rc = MSOCL_OK;
+  s->pl_ring = msocl__buffer(s->dev, CL_MEM_READ_WRITE, bytes, NULL, "rings",
+                             &rc);
   /* NaN in the positions' padding: the kernel's missing neighbours (the
    * other planes kernels test the grid's edges and ignore it) */
   const float nan = NAN;
@@ -140,11 +138,9 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   const size_t mid = s->pl_steps_blocks * ROWS_STEPS *
                          (4 * 6 * (size_t)s->pl_pitch + ROWS_W) +
                      ROWS_W;
-  s->pl_mid = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE,
-                             mid * sizeof(float), NULL, &e);
-  if (e != CL_SUCCESS)
-    return msocl__fail(e, "clCreateBuffer(%zu bytes of middle rows): %s",
-                       mid * sizeof(float), msocl_err_name(e));
+  s->pl_mid = msocl__buffer(s->dev, CL_MEM_READ_WRITE, mid * sizeof(float),
+                            NULL, "middle rows", &rc);
+  MSOCL__TRY(rc);
   MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->pl_mid, &nan, sizeof nan,
                                 0, mid * sizeof(float), 0, NULL, NULL));
   for (int q = 0; q < 2; q++)

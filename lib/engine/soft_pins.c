@@ -29,11 +29,10 @@ static int buffers(msocl__engine *s, int m)
   for (int q = 0; q < 3; q++) {
     if (*b[q])
       clReleaseMemObject(*b[q]);
-    cl_int e;
-    *b[q] = clCreateBuffer(s->dev->ctx, CL_MEM_READ_WRITE, bytes[q], NULL, &e);
-    if (e != CL_SUCCESS)
-      return msocl__fail(e, "clCreateBuffer(soft pins): %s",
-                         msocl_err_name(e));
+    int rc = MSOCL_OK;
+    *b[q] = msocl__buffer(s->dev, CL_MEM_READ_WRITE, bytes[q], NULL,
+                          "soft pins", &rc);
+    TRY(rc);
   }
   s->soft_cap = m;
   return MSOCL_OK;

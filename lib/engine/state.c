@@ -106,19 +106,6 @@ int msocl__state_pin(msocl__engine *s, int k, int pinned)
   return MSOCL_OK;
 }
 
-static cl_mem upload(msocl__engine *s, size_t bytes, void *host, int *rc)
-{
-  cl_int e;
-  cl_mem b = clCreateBuffer(s->dev->ctx,
-                            host ? CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR
-                                 : CL_MEM_WRITE_ONLY,
-                            bytes, host, &e);
-  if (e != CL_SUCCESS && *rc == MSOCL_OK)
-    *rc = msocl__fail(e, "clCreateBuffer(%zu bytes) on %s: %s", bytes,
-                      s->dev->info.name, msocl_err_name(e));
-  return b;
-}
-
 /* The normals' lists: each triangle (a, b, c) lists (b, c) at a, (c, a)
  * at b, (a, b) at c - the same winding at every corner - as where b and
  * c sit in a plane; a point's list starts at tri_off (wind's spill reads
@@ -142,9 +129,13 @@ static int normals_lists(msocl__engine *s, const msocl_model *m)
       bc[2 * at + 1] = msocl__pl_address(s, m->tri[3 * t + (k + 2) % 3]);
     }
   if (rc == MSOCL_OK) {
-    s->tri_off = upload(s, (n + 1) * sizeof *off, off, &rc);
-    s->tri_ab = upload(s, (size_t)(2 * 3 * m->nt + 2) * sizeof *bc, bc, &rc);
-    s->normal = upload(s, 3 * n * sizeof(float), NULL, &rc);
+    s->tri_off = msocl__buffer(s->dev, CL_MEM_READ_ONLY, (n + 1) * sizeof *off,
+                               off, "the normals' lists", &rc);
+    s->tri_ab = msocl__buffer(s->dev, CL_MEM_READ_ONLY,
+                              (size_t)(2 * 3 * m->nt + 2) * sizeof *bc, bc,
+                              "the normals' lists", &rc);
+    s->normal = msocl__buffer(s->dev, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float),
+                              NULL, "the normals", &rc);
   }
   free(off);
   free(fill);

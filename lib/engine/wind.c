@@ -49,19 +49,6 @@ int msocl__wind_create(msocl__engine *s, const msocl_model *m, cl_program prog)
   return MSOCL_OK;
 }
 
-static cl_mem upload(msocl__engine *s, size_t bytes, void *host, int *rc)
-{
-  cl_int e;
-  cl_mem b = clCreateBuffer(s->dev->ctx,
-                            CL_MEM_READ_WRITE |
-                                (host ? CL_MEM_COPY_HOST_PTR : 0),
-                            bytes, host, &e);
-  if (e != CL_SUCCESS && *rc == MSOCL_OK)
-    *rc = msocl__fail(e, "clCreateBuffer(%zu bytes for wind): %s", bytes,
-                      msocl_err_name(e));
-  return b;
-}
-
 /* The wind kernels' arguments that stay (by name, where each has them):
  * the planes' shape, the tables, nt triangles (whole 64s) of which
  * wind_ntri are the model's, nspill points listed for the spill kernel. */
@@ -102,7 +89,8 @@ static int quad_buffers(msocl__engine *s)
 {
   int rc = MSOCL_OK;
   const size_t bytes = 6 * (size_t)s->pl_plane * sizeof(float);
-  s->wind_third = upload(s, bytes, NULL, &rc);
+  s->wind_third = msocl__buffer(s->dev, CL_MEM_READ_WRITE, bytes, NULL,
+                                "wind's quads", &rc);
   TRY(rc);
   const float zero = 0.0f;
   MSOCL__CL(clEnqueueFillBuffer(s->dev->queue, s->wind_third, &zero,
@@ -152,12 +140,21 @@ static int buffers(msocl__engine *s)
       slot[(size_t)c * P + (size_t)a] = corner[off[i] + c];
   }
   if (rc == MSOCL_OK) {
-    s->wind_tri = upload(s, 3 * (size_t)nt * sizeof *tri, tri, &rc);
-    s->wind_slot = upload(s, SLOTS * P * sizeof *slot, slot, &rc);
-    s->wind_third = upload(s, 3 * (size_t)nt * sizeof(float), NULL, &rc);
+    s->wind_tri = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                                3 * (size_t)nt * sizeof *tri, tri, "wind",
+                                &rc);
+    s->wind_slot = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                                 SLOTS * P * sizeof *slot, slot, "wind", &rc);
+    s->wind_third = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                                  3 * (size_t)nt * sizeof(float), NULL, "wind",
+                                  &rc);
     if (nspill > 0) {
-      s->wind_corner = upload(s, 3 * (size_t)nt * sizeof *corner, corner, &rc);
-      s->wind_list = upload(s, 2 * (size_t)nspill * sizeof *list, list, &rc);
+      s->wind_corner = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                                     3 * (size_t)nt * sizeof *corner, corner,
+                                     "wind", &rc);
+      s->wind_list = msocl__buffer(s->dev, CL_MEM_READ_WRITE,
+                                   2 * (size_t)nspill * sizeof *list, list,
+                                   "wind", &rc);
     }
   }
   s->wind_nspill = nspill;

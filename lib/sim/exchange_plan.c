@@ -74,11 +74,10 @@ static int plan_copies(msocl_sim *s, int d, size_t bytes)
   for (int k = 0; k < MSOCL__X_SLOTS; k++) {
     cl_mem *b[2] = {&x->send[d][k], &x->recv[d][k]};
     for (int q = 0; q < 2; q++) {
-      *b[q] = clCreateBuffer(dev->ctx, CL_MEM_READ_WRITE, bytes, NULL, &err);
-      if (err != CL_SUCCESS)
-        return msocl__fail(err, "halo buffer (%zu bytes) on %s: %s (%d)",
-                           bytes, dev->info.name, msocl_err_name(err),
-                           (int)err);
+      int rc = MSOCL_OK;
+      *b[q] = msocl__buffer(dev, CL_MEM_READ_WRITE, bytes, NULL, "halo",
+                            &rc);
+      MSOCL__TRY(rc);
     }
   }
   return MSOCL_OK;

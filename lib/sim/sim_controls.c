@@ -226,13 +226,12 @@ static int pin_buffers(msocl__engine *e, struct msocl__controls *c, int m)
   for (int q = 0; q < 3; q++) {
     if (*b[q])
       clReleaseMemObject(*b[q]);
-    cl_int err;
-    *b[q] = clCreateBuffer(e->dev->ctx, CL_MEM_READ_WRITE, bytes[q], NULL,
-                           &err);
-    if (err != CL_SUCCESS) {
+    int rc = MSOCL_OK;
+    *b[q] = msocl__buffer(e->dev, CL_MEM_READ_WRITE, bytes[q], NULL,
+                          "pin targets", &rc);
+    if (rc != MSOCL_OK) {
       c->cap = 0;
-      return msocl__fail(err, "clCreateBuffer(pin targets): %s",
-                         msocl_err_name(err));
+      return rc;
     }
   }
   int *h = realloc(c->at_host, (size_t)m * sizeof *h);
