@@ -23,7 +23,8 @@
 /* The new velocities of points x0 .. x0 + W - 1 (msocl_planes_kick's),
  * their positions in *px.., and whether each is pinned. */
 static MSOCL_WIDE_INLINE void
-msocl_wide_kick(MSOCL_CONN, __global const float *p, __global const float *v,
+msocl_wide_kick(MSOCL_CONN, __global const float4 *p4,
+                __global const float *p, __global const float *v,
                 __global const float *aux, int slab, int plane, float4 gravity,
                 float viscous, float air, float dt, __constant const float *cf,
                 int pitch, int x0, int y, int z, int a, msocl_rows_f *px,
@@ -31,8 +32,8 @@ msocl_wide_kick(MSOCL_CONN, __global const float *p, __global const float *v,
                 msocl_rows_f *vy_out, msocl_rows_f *vz_out, msocl_rows_m *held)
 {
   msocl_rows_f q[3], u[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, z, q,
-                   u, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, p4, p, v, pitch, slab, plane, x0, y, z,
+                   q, u, f);
   *px = q[0];
   *py = q[1];
   *pz = q[2];
@@ -50,14 +51,15 @@ msocl_wide_kick(MSOCL_CONN, __global const float *p, __global const float *v,
   MSOCL_WIDE_AT;                                                             \
   msocl_rows_f px, py, pz, vx, vy, vz;                                       \
   msocl_rows_m held;                                                         \
-  msocl_wide_kick(MSOCL_CONN_ARGS, p, v, aux, slab, plane, gravity, viscous, \
-                  air, dt, (__constant const float *)col, pitch, x0, y, z, a,\
-                  &px, &py, &pz, &vx, &vy, &vz, &held);                      \
+  msocl_wide_kick(MSOCL_CONN_ARGS, MSOCL_P4_ARG, p, v, aux, slab, plane,    \
+                  gravity, viscous, air, dt, (__constant const float *)col,  \
+                  pitch, x0, y, z, a, &px, &py, &pz, &vx, &vy, &vz, &held);  \
   MSOCL_WIDE_PUT(vx, v_out);                                                 \
   MSOCL_WIDE_PUT(vy, v_out + plane);                                         \
   MSOCL_WIDE_PUT(vz, v_out + 2 * plane)
 
-__kernel void msocl_planes_wide_velocity(MSOCL_CONN, __global const float *p,
+__kernel void msocl_planes_wide_velocity(MSOCL_CONN MSOCL_P4,
+                                         __global const float *p,
                                          __global const float *v,
                                          __global float *v_out,
                                          MSOCL_PLANES_ARGS)
@@ -65,11 +67,11 @@ __kernel void msocl_planes_wide_velocity(MSOCL_CONN, __global const float *p,
   MSOCL_WIDE_KICK;
 }
 
-__kernel void msocl_planes_wide_fused(MSOCL_CONN, __global const float *p,
+__kernel void msocl_planes_wide_fused(MSOCL_CONN MSOCL_P4,
+                                      __global const float *p,
                                       __global const float *v,
                                       __global float *v_out,
-                                      __global float *p_out,
-                                      MSOCL_PLANES_ARGS)
+                                      __global float *p_out, MSOCL_PLANES_ARGS)
 {
   MSOCL_WIDE_KICK;
   MSOCL_WIDE_PUT(MSOCL_ROWS_SEL(held, px, px + dt * vx), p_out);
@@ -79,7 +81,8 @@ __kernel void msocl_planes_wide_fused(MSOCL_CONN, __global const float *p,
 
 /* Velocity Verlet's kick on BUFFER's table (msocl_planes_vkick's
  * arithmetic): a' = a(p', v+), v' = v+ + dt/2 a', a' kept. */
-__kernel void msocl_planes_wide_vkick(MSOCL_CONN, __global const float *p,
+__kernel void msocl_planes_wide_vkick(MSOCL_CONN MSOCL_P4,
+                                      __global const float *p,
                                       __global const float *v,
                                       __global float *v_out,
                                       __global float *acc_out,
@@ -87,8 +90,8 @@ __kernel void msocl_planes_wide_vkick(MSOCL_CONN, __global const float *p,
 {
   MSOCL_WIDE_AT;
   msocl_rows_f q[3], u[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, z, q,
-                   u, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, MSOCL_P4_ARG, p, v, pitch, slab, plane, x0,
+                   y, z, q, u, f);
   const msocl_rows_f fx = msocl_wide_viscous(f[0], u[0], viscous),
                      fy = msocl_wide_viscous(f[1], u[1], viscous),
                      fz = msocl_wide_viscous(f[2], u[2], viscous);
@@ -146,8 +149,8 @@ msocl_wide_rk4(MSOCL_CONN, __global const float *p0, __global const float *v0,
 {
   MSOCL_WIDE_AT;
   msocl_rows_f q[3], k[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, x0, y, z, q,
-                   k, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, 0, sp, sv, pitch, slab, plane, x0, y, z,
+                   q, k, f);
   const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
   const float g[3] = {gravity.x, gravity.y, gravity.z};
   const msocl_rows_m held = msocl_wide_pinned(aux, plane, a);
@@ -251,8 +254,8 @@ __kernel void msocl_planes_wide_rk4_last(
 {
   MSOCL_WIDE_AT;
   msocl_rows_f q[3], k[3], f[3], e[3], w[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, sp, sv, pitch, slab, plane, x0, y, z, q,
-                   k, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, 0, sp, sv, pitch, slab, plane, x0, y, z,
+                   q, k, f);
   const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
   const float g[3] = {gravity.x, gravity.y, gravity.z};
   const float h = dt / 6.0f;
@@ -283,16 +286,16 @@ __kernel void msocl_planes_wide_rk4_last(
 /* Forward Euler (msocl_planes_euler's arithmetic): p' = p + dt v,
  * v' = v + dt a(p, v), air resistance, the projection out of the
  * colliders; pinned points stay. */
-__kernel void msocl_planes_wide_euler(MSOCL_CONN, __global const float *p,
+__kernel void msocl_planes_wide_euler(MSOCL_CONN MSOCL_P4,
+                                      __global const float *p,
                                       __global const float *v,
                                       __global float *v_out,
-                                      __global float *p_out,
-                                      MSOCL_PLANES_ARGS)
+                                      __global float *p_out, MSOCL_PLANES_ARGS)
 {
   MSOCL_WIDE_AT;
   msocl_rows_f q[3], u[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, z, q,
-                   u, f);
+  msocl_wide_force(MSOCL_CONN_ARGS, MSOCL_P4_ARG, p, v, pitch, slab, plane, x0,
+                   y, z, q, u, f);
   const msocl_rows_f im = MSOCL_ROWS_LOAD(aux + a);
   const float g[3] = {gravity.x, gravity.y, gravity.z};
   msocl_rows_f e[3], w[3];
@@ -361,6 +364,43 @@ __kernel void msocl_planes_wide_drift(__global const float *p,
                      p_out + d * plane + row, x0, nx);
     msocl_wide_store(MSOCL_ROWS_SEL(held, 0.0f, u[d]), v + d * plane + row,
                      x0, nx);
+  }
+}
+#endif
+
+#if defined(MSOCL_GATHER4) && MSOCL_ROWS_W == 16
+/* The positions' float4 copy that the force kernels gather (wide.h's
+ * p4), 16 points a work-item over the planes' range: the gather's
+ * transpose backwards, q[c]'s block b is point 4b + c. */
+__kernel void msocl_planes_pack4(__global const float *p,
+                                 __global float4 *p4, int plane)
+{
+  const int a = get_global_id(0) * 16;
+  const float16 x = vload16(0, p + a), y = vload16(0, p + plane + a),
+                z = vload16(0, p + 2 * plane + a), o = 0.0f;
+  const float16 t0 = __builtin_shufflevector(x, y, 0, 16, 1, 17, 4, 20, 5, 21,
+                                             8, 24, 9, 25, 12, 28, 13, 29),
+                t1 = __builtin_shufflevector(x, y, 2, 18, 3, 19, 6, 22, 7, 23,
+                                             10, 26, 11, 27, 14, 30, 15, 31),
+                t2 = __builtin_shufflevector(z, o, 0, 16, 1, 17, 4, 20, 5, 21,
+                                             8, 24, 9, 25, 12, 28, 13, 29),
+                t3 = __builtin_shufflevector(z, o, 2, 18, 3, 19, 6, 22, 7, 23,
+                                             10, 26, 11, 27, 14, 30, 15, 31);
+  float16 q[4];
+  q[0] = __builtin_shufflevector(t0, t2, 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24,
+                                 25, 12, 13, 28, 29);
+  q[1] = __builtin_shufflevector(t0, t2, 2, 3, 18, 19, 6, 7, 22, 23, 10, 11,
+                                 26, 27, 14, 15, 30, 31);
+  q[2] = __builtin_shufflevector(t1, t3, 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24,
+                                 25, 12, 13, 28, 29);
+  q[3] = __builtin_shufflevector(t1, t3, 2, 3, 18, 19, 6, 7, 22, 23, 10, 11,
+                                 26, 27, 14, 15, 30, 31);
+#pragma unroll
+  for (int c = 0; c < 4; c++) {
+    p4[a + c] = q[c].s0123;
+    p4[a + 4 + c] = q[c].s4567;
+    p4[a + 8 + c] = q[c].s89ab;
+    p4[a + 12 + c] = q[c].scdef;
   }
 }
 #endif

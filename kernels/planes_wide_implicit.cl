@@ -43,7 +43,7 @@ __kernel void msocl_planes_wide_ie_rhs(
 {
   MSOCL_WIDE_AT;
   msocl_rows_f q[3], u[3], f[3];
-  msocl_wide_force(MSOCL_CONN_ARGS, p, v, pitch, slab, plane, x0, y, z, q,
+  msocl_wide_force(MSOCL_CONN_ARGS, 0, p, v, pitch, slab, plane, x0, y, z, q,
                    u, f);
   __global const float *py_ = p + plane, *pz_ = py_ + plane;
   __global const float *vy_ = v + plane, *vz_ = vy_ + plane;

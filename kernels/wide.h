@@ -39,6 +39,19 @@ msocl_wide_store(msocl_rows_f v, __global float *q, int x0, int n)
 #define MSOCL_WIDE_PUT(val, q)                                                \
   msocl_wide_store((val), (q) + row, x0, MSOCL_PLANES_NX)
 
+/* BUFFER on a CPU (-DMSOCL_GATHER4): the positions also as a float4 a
+ * point (p4, packed before each pass that gathers them), so that a
+ * neighbour is one 16-byte load where the planes take three scalar loads
+ * and three inserts (planes_pack.c). The force kernels that read it take
+ * it as their argument p4 (MSOCL_P4); the others pass 0. */
+#ifdef MSOCL_GATHER4
+#define MSOCL_P4 , __global const float4 *p4
+#define MSOCL_P4_ARG p4
+#else
+#define MSOCL_P4
+#define MSOCL_P4_ARG 0
+#endif
+
 #ifndef MSOCL_LAYOUT_GRID
 /* q at the lanes' indices j */
 static MSOCL_WIDE_INLINE msocl_rows_f
@@ -49,6 +62,51 @@ msocl_wide_gather(__global const float *q, const int *j)
   for (int u = 0; u < MSOCL_ROWS_W; u++)
     t[u] = q[j[u]];
   return MSOCL_ROWS_LOAD(t);
+}
+
+/* The float4s p4[j] as three vectors: four points a 16-lane vector, then
+ * a 4x4 transpose in each 128-bit block (lane b of block c is point
+ * 4b + c when vector c holds points c, c + 4, c + 8, c + 12). */
+static MSOCL_WIDE_INLINE void
+msocl_wide_gather4(__global const float4 *p4, const int *j, msocl_rows_f *x,
+                   msocl_rows_f *y, msocl_rows_f *z)
+{
+#if MSOCL_ROWS_W == 16
+  float16 a[4];
+#pragma unroll
+  for (int c = 0; c < 4; c++)
+    a[c] = (float16)(p4[j[c]], p4[j[c + 4]], p4[j[c + 8]], p4[j[c + 12]]);
+  const float16 t0 = __builtin_shufflevector(a[0], a[1], 0, 16, 1, 17, 4, 20,
+                                             5, 21, 8, 24, 9, 25, 12, 28, 13,
+                                             29),
+                t1 = __builtin_shufflevector(a[0], a[1], 2, 18, 3, 19, 6, 22,
+                                             7, 23, 10, 26, 11, 27, 14, 30,
+                                             15, 31),
+                t2 = __builtin_shufflevector(a[2], a[3], 0, 16, 1, 17, 4, 20,
+                                             5, 21, 8, 24, 9, 25, 12, 28, 13,
+                                             29),
+                t3 = __builtin_shufflevector(a[2], a[3], 2, 18, 3, 19, 6, 22,
+                                             7, 23, 10, 26, 11, 27, 14, 30,
+                                             15, 31);
+  *x = __builtin_shufflevector(t0, t2, 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24,
+                               25, 12, 13, 28, 29);
+  *y = __builtin_shufflevector(t0, t2, 2, 3, 18, 19, 6, 7, 22, 23, 10, 11,
+                               26, 27, 14, 15, 30, 31);
+  *z = __builtin_shufflevector(t1, t3, 0, 1, 16, 17, 4, 5, 20, 21, 8, 9, 24,
+                               25, 12, 13, 28, 29);
+#else
+  float tx[MSOCL_ROWS_W], ty[MSOCL_ROWS_W], tz[MSOCL_ROWS_W];
+#pragma unroll
+  for (int u = 0; u < MSOCL_ROWS_W; u++) {
+    const float4 w = p4[j[u]];
+    tx[u] = w.x;
+    ty[u] = w.y;
+    tz[u] = w.z;
+  }
+  *x = MSOCL_ROWS_LOAD(tx);
+  *y = MSOCL_ROWS_LOAD(ty);
+  *z = MSOCL_ROWS_LOAD(tz);
+#endif
 }
 #endif
 
@@ -95,6 +153,12 @@ msocl_wide_gather(__global const float *q, const int *j)
                      kk = (msocl_rows_f)k_, cc = (msocl_rows_f)MSOCL_GRID_C; \
   (void)kk; (void)cc
 #define MSOCL_WIDE_NB(q) MSOCL_ROWS_LOAD((q) + b_)
+#define MSOCL_WIDE_SKIP_FREE
+#define MSOCL_WIDE_NB_P(p4, px, py, pz, nx, ny, nz)                           \
+  (void)(p4);                                                                \
+  nx = MSOCL_WIDE_NB(px);                                                    \
+  ny = MSOCL_WIDE_NB(py);                                                    \
+  nz = MSOCL_WIDE_NB(pz)
 #else
 #define MSOCL_WIDE_SLOTS                                                      \
   (void)pitch; (void)z;                                                      \
@@ -105,6 +169,24 @@ msocl_wide_gather(__global const float *q, const int *j)
   const msocl_rows_m there =                                                 \
       msocl_wide_slot(MSOCL_CONN_ARGS, s, slab, x0, j_, &rest, &kk, &cc)
 #define MSOCL_WIDE_NB(q) msocl_wide_gather((q), j_)
+/* A slot past MSOCL_WIDE_DENSE (the most springs a point in the table
+ * has, less the few points that spill) that no lane fills is skipped:
+ * its + 0 terms leave a sum begun at +0 as it is (it is never -0). */
+#ifndef MSOCL_WIDE_DENSE
+#define MSOCL_WIDE_DENSE MSOCL_TABLE_SLOTS
+#endif
+#define MSOCL_WIDE_SKIP_FREE                                                  \
+  if (s >= MSOCL_WIDE_DENSE && !any(there))                                  \
+  continue
+/* the neighbours' positions, from p4 where a kernel has it */
+#define MSOCL_WIDE_NB_P(p4, px, py, pz, nx, ny, nz)                           \
+  if (p4) {                                                                  \
+    msocl_wide_gather4((p4), j_, &(nx), &(ny), &(nz));                       \
+  } else {                                                                   \
+    nx = MSOCL_WIDE_NB(px);                                                  \
+    ny = MSOCL_WIDE_NB(py);                                                  \
+    nz = MSOCL_WIDE_NB(pz);                                                  \
+  }
 
 /* Slot s of the W points from x0 in BUFFER's table: their neighbours in
  * j, the springs' values, and whether each has one (a free slot holds the
@@ -180,7 +262,8 @@ msocl_wide_pull(msocl_rows_f nx, msocl_rows_f ny, msocl_rows_f nz,
  * velocities u. GRID: each neighbour a fixed offset away, one vector load;
  * BUFFER: the table's, gathered lane by lane. */
 static MSOCL_WIDE_INLINE void
-msocl_wide_force(MSOCL_CONN, __global const float *p, __global const float *v,
+msocl_wide_force(MSOCL_CONN, __global const float4 *p4,
+                 __global const float *p, __global const float *v,
                  int pitch, int slab, int plane, int x0, int y, int z,
                  msocl_rows_f q_out[3], msocl_rows_f u_out[3],
                  msocl_rows_f f_out[3])
@@ -198,14 +281,16 @@ msocl_wide_force(MSOCL_CONN, __global const float *p, __global const float *v,
   msocl_rows_f wx = 0.0f, wy = 0.0f, wz = 0.0f;
   MSOCL_WIDE_SLOTS {
     MSOCL_WIDE_SLOT;
+    MSOCL_WIDE_SKIP_FREE;
 #ifdef MSOCL_DAMPING
     wx = MSOCL_WIDE_NB(v);
     wy = MSOCL_WIDE_NB(vy_);
     wz = MSOCL_WIDE_NB(vz_);
 #endif
-    msocl_wide_pull(MSOCL_WIDE_NB(p), MSOCL_WIDE_NB(py_), MSOCL_WIDE_NB(pz_),
-                    wx, wy, wz, qx, qy, qz, ux, uy, uz, there, rest, kk, cc,
-                    &fx, &fy, &fz);
+    msocl_rows_f nx, ny, nz;
+    MSOCL_WIDE_NB_P(p4, p, py_, pz_, nx, ny, nz);
+    msocl_wide_pull(nx, ny, nz, wx, wy, wz, qx, qy, qz, ux, uy, uz, there,
+                    rest, kk, cc, &fx, &fy, &fz);
   }
   q_out[0] = qx;
   q_out[1] = qy;

@@ -42,7 +42,9 @@ static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
   clGetDeviceInfo(s->dev->id, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp,
                   NULL);
   /* the planes' kernels, with the colliders' loop unrolled */
-  char planes[112];
+  char planes[112], gather4[64];
+  snprintf(gather4, sizeof gather4,
+           " -DMSOCL_GATHER4 -DMSOCL_WIDE_DENSE=%d", s->lay.dense);
   const int ring_w = msocl__pl_rows_ring_w(s);
   int at = snprintf(planes, sizeof planes,
                     " -DMSOCL_PLANES -DMSOCL_NCOL=%d -DMSOCL_GRID_KINDS=%d",
@@ -53,7 +55,8 @@ static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
 #define KIND(k) (kinds & (1u << (k)))
   /* EDGES holds BUFFER's table (layout.c) */
   int len = snprintf(
-      buf, cap, "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s%s%s%s",
+      buf, cap,
+      "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s%s%s%s%s",
       s->lay.kind == MSOCL_LAYOUT_IMAGE2D ? "-DMSOCL_LAYOUT_IMAGE2D"
       : s->lay.kind == MSOCL_LAYOUT_GRID
           ? (s->lay.grid_nz > 0 ? "-DMSOCL_LAYOUT_GRID -DMSOCL_GRID_3D"
@@ -71,7 +74,7 @@ static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
       KIND(MSOCL__TABLE) ? " -DMSOCL_TABLE" : "",
       KIND(MSOCL__CAPSULE) ? " -DMSOCL_CAPSULE" : "",
       KIND(MSOCL__BOX) ? " -DMSOCL_BOX" : "",
-      planes,
+      msocl__pl_gather4(s) ? gather4 : "", planes,
       s->o.math == MSOCL_MATH_RELAXED
           ? " -DMSOCL_RELAXED -cl-fast-relaxed-math"
           /* GPUs may round single divide and sqrt loosely unless asked. */

@@ -82,6 +82,9 @@ struct msocl__engine {
   /* symplectic Euler in one sweep a step (planes_rows.c), where it applies */
   unsigned pl_wide;       /* 1 << q: planes kernel q is planes_wide.cl's
                              (planes.c) */
+  cl_mem pl_p4;           /* BUFFER on a CPU: the positions a float4 a
+                             point, for the force's gathers (planes_pack.c) */
+  cl_kernel pl_pack;      /* ... and the kernel that writes them */
   cl_kernel pl_rows, pl_rows_still; /* and with colliders at rest */
   cl_kernel pl_rows_steps; /* several steps a launch (planes_rows.c) */
   cl_mem pl_ring;         /* its work-items' rings of spring terms */

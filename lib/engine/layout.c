@@ -318,6 +318,11 @@ int msocl__layout_create(struct msocl__device *dev, const msocl_model *m,
      * engine's gather as BUFFER's are (planes.c) */
     out->degree = adj->max_degree;
     out->slots = msocl__table_slots(adj, table_slots);
+    for (int i = 0; i < adj->n; i++) {
+      const int d = adj->off[i + 1] - adj->off[i];
+      if (d <= out->slots && d > out->dense)
+        out->dense = d;
+    }
     rc = build_buffers(dev, m, adj, has_damping(m), classes, out);
   } else if (out->kind == MSOCL_LAYOUT_GRID) {
     if (!msocl__grid_intact(m))

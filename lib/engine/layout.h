@@ -9,6 +9,8 @@ struct msocl__layout {
   int slots;         /* springs a point can hold (BUFFER, EDGES); with
                         a spill: in the table */
   int degree;        /* BUFFER: the most springs any point has */
+  int dense;         /* BUFFER: the most any point that does not spill
+                        has (the table's slots past it are mostly free) */
   cl_mem spill;      /* BUFFER: per point, where its springs past the
                         table start in the list after it (n + 1 ints);
                         NULL: none spill */

@@ -269,7 +269,8 @@ int msocl__pl_fixed(msocl__engine *s, cl_kernel k)
       {"sum_p", sizeof s->pl_sum[0], &s->pl_sum[0]},
       {"sum_v", sizeof s->pl_sum[1], &s->pl_sum[1]},
       {"acc", sizeof s->pl_a, &s->pl_a},
-      {"acc_out", sizeof s->pl_a, &s->pl_a}};
+      {"acc_out", sizeof s->pl_a, &s->pl_a},
+      {"p4", sizeof s->pl_p4, &s->pl_p4}};
   TRY(msocl__pl_named(s, k, fixed, (int)(sizeof fixed / sizeof fixed[0])));
   TRY(msocl__pl_shape(s, k));
   return forces(s, k);
@@ -433,6 +434,11 @@ static int wide(const msocl__engine *s)
          (s->lay.kind == MSOCL_LAYOUT_GRID && s->pl_group >= MSOCL__WIDE_W);
 }
 
+int msocl__pl_gather4(const msocl__engine *s)
+{
+  return wide(s) && s->lay.kind != MSOCL_LAYOUT_GRID;
+}
+
 /* Planes kernel q's twin in explicit vectors (planes_wide.cl,
  * planes_wide_strain.cl, planes_wide_implicit.cl), or NULL: every
  * gathering kernel, and Verlet's drift. */
@@ -554,6 +560,7 @@ int msocl__planes_create(msocl__engine *s, cl_program prog)
                                   0, bytes, 0, NULL, NULL));
   }
   TRY(collider_table(s));
+  TRY(msocl__pl_pack_create(s, prog));
   TRY(fixed_args(s));
   return msocl__pl_rows_create(s, prog);
 }
@@ -707,6 +714,7 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
   case MSOCL__P_VELOCITY: {
     const cl_mem vel[3] = {p[r], v[r], v[w]};
     TRY(buffers(s, PL_VELOCITY, 3, step_names, vel));
+    TRY(msocl__pl_pack(s, p[r]));
     return launch(s, PL_VELOCITY);
   }
   case MSOCL__P_STRAIN_VEL: return strain_velocity(s, p[r], v[w]);
@@ -721,6 +729,7 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
     const int k = pass == MSOCL__P_FUSED ? PL_FUSED : PL_EULER;
     const cl_mem both[4] = {p[r], v[r], v[w], p[w]};
     TRY(buffers(s, k, 4, step_names, both));
+    TRY(msocl__pl_pack(s, p[r]));
     return launch(s, k);
   }
   case MSOCL__P_DRIFT: {
@@ -732,6 +741,7 @@ int msocl__planes_pass(msocl__engine *s, enum msocl__pass pass)
   case MSOCL__P_KICK: {
     const cl_mem kick[3] = {p[w], v[r], v[w]};
     TRY(buffers(s, PL_KICK, 3, step_names, kick));
+    TRY(msocl__pl_pack(s, p[w]));
     return launch(s, PL_KICK);
   }
   case MSOCL__P_RK4_0:
@@ -758,6 +768,7 @@ static int first_acceleration(msocl__engine *s)
   TRY(msocl__pl_mem(s, k, "v", s->pl_v[r]));
   TRY(msocl__pl_mem(s, k, "v_out", s->pl_v[1 - r]));
   TRY(msocl__pl_arg(s, k, "dt", sizeof zero, &zero));
+  TRY(msocl__pl_pack(s, s->pl_p[r]));
   TRY(launch(s, PL_KICK));
   return msocl__pl_arg(s, k, "dt", sizeof(float), &s->o.dt);
 }
@@ -805,4 +816,5 @@ void msocl__planes_release(msocl__engine *s)
   if (s->pl_list)
     clReleaseMemObject(s->pl_list);
   msocl__pl_rows_release(s);
+  msocl__pl_pack_release(s);
 }

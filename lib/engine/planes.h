@@ -36,6 +36,15 @@ int msocl__pl_fixed(msocl__engine *s, cl_kernel k);
  * spill). */
 int msocl__pl_launch(msocl__engine *s, int k);
 
+/* Whether the force kernels gather the positions from a float4 copy
+ * (-DMSOCL_GATHER4: BUFFER's and EDGES's tables on a CPU, planes.c). */
+int msocl__pl_gather4(const msocl__engine *s);
+/* planes_pack.c: that copy and its kernel, where it applies (create);
+ * the copy of positions p, before a pass that gathers them (pack). */
+int msocl__pl_pack_create(msocl__engine *s, cl_program prog);
+int msocl__pl_pack(msocl__engine *s, cl_mem p);
+void msocl__pl_pack_release(msocl__engine *s);
+
 /* planes_implicit.c: its kernels' fixed arguments (its CG operations:
  * schedule.h). */
 int msocl__pl_implicit_args(msocl__engine *s);
