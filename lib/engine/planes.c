@@ -419,61 +419,6 @@ static int padded_table(msocl__engine *s)
   return MSOCL_OK;
 }
 
-/* Whether the planes kernels take their planes_wide.cl twins (wide_name):
- * on a CPU device, where PoCL may leave the scalar kernels unvectorised;
- * one engine (they launch over every point), precise math (bitwise the
- * scalar kernels'); BUFFER's or EDGES's table, or a cloth grid or lattice
- * whose rows come in work-groups of a work-item's points or more. */
-static int wide(const msocl__engine *s)
-{
-  if (s->dev->info.type != MSOCL_DEVICE_CPU || s->lo != 0 ||
-      s->hi != s->n || s->o.math != MSOCL_MATH_PRECISE)
-    return 0;
-  return s->lay.kind == MSOCL_LAYOUT_BUFFER ||
-         s->lay.kind == MSOCL_LAYOUT_EDGES ||
-         (s->lay.kind == MSOCL_LAYOUT_GRID && s->pl_group >= MSOCL__WIDE_W);
-}
-
-int msocl__pl_gather4(const msocl__engine *s)
-{
-  return wide(s) && s->lay.kind != MSOCL_LAYOUT_GRID;
-}
-
-/* Planes kernel q's twin in explicit vectors (planes_wide.cl,
- * planes_wide_strain.cl, planes_wide_implicit.cl), or NULL: every
- * gathering kernel, and Verlet's drift. */
-static const char *wide_name(int q)
-{
-  switch (q) {
-  case PL_VELOCITY:
-    return "msocl_planes_wide_velocity";
-  case PL_FUSED:
-    return "msocl_planes_wide_fused";
-  case PL_KICK:
-    return "msocl_planes_wide_vkick";
-  case PL_RK4:
-    return "msocl_planes_wide_rk4_first";
-  case PL_RK4_MID:
-    return "msocl_planes_wide_rk4_middle";
-  case PL_RK4_LAST:
-    return "msocl_planes_wide_rk4_last";
-  case PL_EULER:
-    return "msocl_planes_wide_euler";
-  case PL_DRIFT:
-    return "msocl_planes_wide_drift";
-  case PL_STRAIN:
-    return "msocl_planes_wide_strain";
-  case PL_STRAIN_V:
-    return "msocl_planes_wide_strain_v";
-  case PL_IE_RHS:
-    return "msocl_planes_wide_ie_rhs";
-  case PL_IE_APPLY:
-    return "msocl_planes_wide_ie_apply";
-  default:
-    return NULL;
-  }
-}
-
 /* Planes kernel q from prog, and its _spill twin where it has one (the
  * twin's last argument, the list of the points that spill, set). */
 static int make_kernel(msocl__engine *s, cl_program prog, int q)
@@ -481,8 +426,8 @@ static int make_kernel(msocl__engine *s, cl_program prog, int q)
   const char *name = names[q];
   const unsigned bit = 1u << q;
   s->pl_wide &= ~bit;
-  if (wide_name(q) && wide(s)) {
-    name = wide_name(q);
+  if (msocl__pl_wide_name(q) && msocl__pl_wide(s)) {
+    name = msocl__pl_wide_name(q);
     s->pl_wide |= bit;
   }
   TRY(msocl__kernel_make(s->dev, prog, name, &s->pl_k[q]));

@@ -36,8 +36,12 @@ int msocl__pl_fixed(msocl__engine *s, cl_kernel k);
  * spill). */
 int msocl__pl_launch(msocl__engine *s, int k);
 
-/* Whether the force kernels gather the positions from a float4 copy
- * (-DMSOCL_GATHER4: BUFFER's and EDGES's tables on a CPU, planes.c). */
+/* planes_wide.c: whether the planes kernels take their twins in explicit
+ * vectors, kernel q's twin (NULL: none), and whether the force kernels
+ * gather the positions from a float4 copy (-DMSOCL_GATHER4: BUFFER's and
+ * EDGES's tables on a CPU). */
+int msocl__pl_wide(const msocl__engine *s);
+const char *msocl__pl_wide_name(int q);
 int msocl__pl_gather4(const msocl__engine *s);
 /* planes_pack.c: that copy and its kernel, where it applies (create);
  * the copy of positions p, before a pass that gathers them (pack). */
