@@ -65,8 +65,8 @@ msocl_wide_gather(__global const float *q, const int *j)
 }
 
 /* The float4s p4[j] as three vectors: four points a 16-lane vector, then
- * a 4x4 transpose in each 128-bit block (lane b of block c is point
- * 4b + c when vector c holds points c, c + 4, c + 8, c + 12). */
+ * a 4x4 transpose in each 128-bit block (lane c of block b comes out as
+ * point 4b + c when vector c holds points c, c + 4, c + 8, c + 12). */
 static MSOCL_WIDE_INLINE void
 msocl_wide_gather4(__global const float4 *p4, const int *j, msocl_rows_f *x,
                    msocl_rows_f *y, msocl_rows_f *z)
@@ -169,9 +169,9 @@ msocl_wide_gather4(__global const float4 *p4, const int *j, msocl_rows_f *x,
   const msocl_rows_m there =                                                 \
       msocl_wide_slot(MSOCL_CONN_ARGS, s, slab, x0, j_, &rest, &kk, &cc)
 #define MSOCL_WIDE_NB(q) msocl_wide_gather((q), j_)
-/* A slot past MSOCL_WIDE_DENSE (the most springs a point in the table
- * has, less the few points that spill) that no lane fills is skipped:
- * its + 0 terms leave a sum begun at +0 as it is (it is never -0). */
+/* A slot past MSOCL_WIDE_DENSE (the most springs of a point that does not
+ * spill) that no lane fills is skipped: its + 0 terms leave a sum begun
+ * at +0 as it is (such a sum is never -0). */
 #ifndef MSOCL_WIDE_DENSE
 #define MSOCL_WIDE_DENSE MSOCL_TABLE_SLOTS
 #endif
@@ -260,7 +260,8 @@ msocl_wide_pull(msocl_rows_f nx, msocl_rows_f ny, msocl_rows_f nz,
  * y at positions p and velocities v, slot by slot (msocl_planes_force's
  * sums, before viscous damping), and the points' own positions q and
  * velocities u. GRID: each neighbour a fixed offset away, one vector load;
- * BUFFER: the table's, gathered lane by lane. */
+ * BUFFER: the table's, gathered lane by lane, or a float4 a neighbour
+ * from p4 where the kernel has it. */
 static MSOCL_WIDE_INLINE void
 msocl_wide_force(MSOCL_CONN, __global const float4 *p4,
                  __global const float *p, __global const float *v,
