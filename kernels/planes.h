@@ -263,7 +263,7 @@ static MSOCL_PLANES_INLINE bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, 
    * sixteen work-items. The test keeps each slot's reads in a block of
    * their own: straight-line, -O3 pairs two slots' differences into a
    * <2 x float>, which stops PoCL vectorising across work-items. */
-  {
+  if (x < slab) {
     const int at = s * slab + x;
     j = nbr[at];
 #ifdef MSOCL_CLASSES
