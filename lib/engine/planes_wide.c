@@ -3,19 +3,34 @@
  * positions from a float4 copy (planes_pack.c). */
 #include "planes.h"
 
+/* Whether PoCL vectorises the scalar kernels' gathers with the CPU's own
+ * gather instructions: where its vectors are 16 floats (AVX-512). On
+ * AVX2 (8) LLVM's cost model leaves them scalar (docs/PERFORMANCE.md). */
+static int hardware_gathers(const msocl__engine *s)
+{
+  cl_uint w = 0;
+  clGetDeviceInfo(s->dev->id, CL_DEVICE_NATIVE_VECTOR_WIDTH_FLOAT, sizeof w,
+                  &w, NULL);
+  return w >= 16;
+}
+
 /* Whether the planes kernels take their planes_wide.cl twins:
  * on a CPU device, where PoCL may leave the scalar kernels unvectorised;
  * one engine (they launch over every point), precise math (bitwise the
- * scalar kernels'); BUFFER's or EDGES's table, or a cloth grid or lattice
- * whose rows come in work-groups of a work-item's points or more. */
+ * scalar kernels'); a cloth grid or lattice whose rows come in
+ * work-groups of a work-item's points or more, or BUFFER's or EDGES's
+ * table where the scalar kernels' gathers stay scalar (with hardware
+ * gathers PoCL's own vectors ran BUFFER 1.05-1.5x the wide kernels). */
 int msocl__pl_wide(const msocl__engine *s)
 {
   if (s->dev->info.type != MSOCL_DEVICE_CPU || s->lo != 0 ||
       s->hi != s->n || s->o.math != MSOCL_MATH_PRECISE)
     return 0;
-  return s->lay.kind == MSOCL_LAYOUT_BUFFER ||
-         s->lay.kind == MSOCL_LAYOUT_EDGES ||
-         (s->lay.kind == MSOCL_LAYOUT_GRID && s->pl_group >= MSOCL__WIDE_W);
+  if (s->lay.kind == MSOCL_LAYOUT_GRID)
+    return s->pl_group >= MSOCL__WIDE_W;
+  return (s->lay.kind == MSOCL_LAYOUT_BUFFER ||
+          s->lay.kind == MSOCL_LAYOUT_EDGES) &&
+         !hardware_gathers(s);
 }
 
 int msocl__pl_gather4(const msocl__engine *s)
