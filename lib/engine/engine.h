@@ -257,6 +257,11 @@ void msocl__mesh_free(struct msocl__mesh_dev *d);
  * differ (2), or (-1, the default) on the host for CPU devices and on the
  * device for others. */
 void msocl__mesh_host_grid(int mode);
+/* Tests only: simulations created from now on run BUFFER and EDGES in
+ * the wide kernels wherever those apply (1), never (-1), or (0, the
+ * default) where the CPU has no gathers PoCL vectorises with
+ * (planes_wide.c). */
+void msocl__pl_wide_mode(int mode);
 /* Tests only: a moving mesh's grid, for colliders created from now on,
  * never culled to the cloth (0), culled every call to the cloth's box as
  * it stands (1: the search outside the grid does the rest), or (-1) as

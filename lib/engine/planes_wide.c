@@ -3,6 +3,13 @@
  * positions from a float4 copy (planes_pack.c). */
 #include "planes.h"
 
+static int wide_mode = 0; /* tests: msocl__pl_wide_mode */
+
+void msocl__pl_wide_mode(int mode)
+{
+  wide_mode = mode;
+}
+
 /* Whether PoCL vectorises the scalar kernels' gathers with the CPU's own
  * gather instructions: where its vectors are 16 floats (AVX-512). On
  * AVX2 (8) LLVM's cost model leaves them scalar (docs/PERFORMANCE.md). */
@@ -30,7 +37,7 @@ int msocl__pl_wide(const msocl__engine *s)
     return s->pl_group >= MSOCL__WIDE_W;
   return (s->lay.kind == MSOCL_LAYOUT_BUFFER ||
           s->lay.kind == MSOCL_LAYOUT_EDGES) &&
-         !hardware_gathers(s);
+         (wide_mode > 0 || (wide_mode == 0 && !hardware_gathers(s)));
 }
 
 int msocl__pl_gather4(const msocl__engine *s)
