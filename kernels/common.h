@@ -137,5 +137,13 @@ __constant int msocl_grid_rest[12] = {1, 0, 0, 1, 2, 3, 3, 2, 5, 4, 4, 5};
 #else
 #define MSOCL_TABLE_SLOTS MSOCL_SLOTS
 #endif
+/* The slots a gather reads for a point that does not spill: BUFFER's
+ * MSOCL_DENSE, the most such a point has (the table's width is rounded
+ * up, and a spilling point fills it). */
+#ifdef MSOCL_DENSE
+#define MSOCL_ROW_SLOTS MSOCL_DENSE
+#else
+#define MSOCL_ROW_SLOTS MSOCL_TABLE_SLOTS
+#endif
 
 #endif

@@ -324,7 +324,7 @@ MSOCL_PLANES_GATHER(msocl_planes_strain,
   const float q[3] = {px, py, pz};
   float d[4] = {0.0f, 0.0f, 0.0f, 0.0f};
 #pragma unroll
-  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+  for (int s = 0; s < MSOCL_PLANES_SLOTS(pass); s++) {
     if (MSOCL_PLANES_SKIP(s))
       continue;
     MSOCL_PLANES_NEIGHBOR(s);
@@ -424,7 +424,7 @@ MSOCL_PLANES_GATHER(msocl_planes_strain_v,
   const float q[6] = {px, py, pz, vx, vy, vz};
   float d[4] = {0.0f, 0.0f, 0.0f, 0.0f};
 #pragma unroll
-  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+  for (int s = 0; s < MSOCL_PLANES_SLOTS(pass); s++) {
     if (MSOCL_PLANES_SKIP(s))
       continue;
     MSOCL_PLANES_NEIGHBOR(s);

@@ -297,6 +297,11 @@ static MSOCL_PLANES_INLINE bool msocl_planes_neighbor(MSOCL_CONN, int s, int x, 
 #define MSOCL_PLANES_SKIP(s) false
 #endif
 
+/* The slots a gathering kernel's pass reads: the rows store only points
+ * that do not spill (MSOCL_PLANES_LIVE), whose slots past MSOCL_ROW_SLOTS
+ * are free, and a free slot's + 0 leaves a sum begun at +0 as it is. */
+#define MSOCL_PLANES_SLOTS(pass) ((pass) ? MSOCL_TABLE_SLOTS : MSOCL_ROW_SLOTS)
+
 /* Slot s of the point (x, y, z) at a, declared as the gathering loops
  * use it: b, rest, kk, cc and there. */
 #define MSOCL_PLANES_NEIGHBOR(s)                                              \
@@ -366,16 +371,18 @@ static MSOCL_PLANES_INLINE void msocl_planes_spill_slot(MSOCL_CONN, int o, int s
  * follows the macro. */
 #define MSOCL_PLANES_UNPAREN(...) __VA_ARGS__
 #define MSOCL_PLANES_GATHER(name, params, args)                               \
-  static void name##_at(const int pass, const int x, const int y,            \
-                        const int z, MSOCL_PLANES_UNPAREN params);           \
+  static MSOCL_PLANES_INLINE void name##_at(                                 \
+      const int pass, const int x, const int y, const int z,                 \
+      MSOCL_PLANES_UNPAREN params);                                          \
   __kernel void name(MSOCL_PLANES_UNPAREN params)                            \
   {                                                                          \
     MSOCL_PLANES_XYZ;                                                        \
     name##_at(0, x, y, z, MSOCL_PLANES_UNPAREN args);                        \
   }                                                                          \
   MSOCL_PLANES_SPILL_TWIN(name, params, args)                                \
-  static void name##_at(const int pass, const int x, const int y,            \
-                        const int z, MSOCL_PLANES_UNPAREN params)
+  static MSOCL_PLANES_INLINE void name##_at(                                 \
+      const int pass, const int x, const int y, const int z,                 \
+      MSOCL_PLANES_UNPAREN params)
 
 /* One slot's part of the force on the point whose position and
  * velocity are q[0..5]: the spring's and its dashpot's pull from the
@@ -534,7 +541,7 @@ static MSOCL_PLANES_INLINE void msocl_planes_force(MSOCL_CONN, const int pass,
   const float q[6] = {p[a], p[plane + a], p[2 * plane + a], vx, vy, vz};
   float f[3] = {0.0f, 0.0f, 0.0f};
 #pragma unroll
-  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+  for (int s = 0; s < MSOCL_PLANES_SLOTS(pass); s++) {
     if (MSOCL_PLANES_SKIP(s))
       continue;
     MSOCL_PLANES_NEIGHBOR(s);

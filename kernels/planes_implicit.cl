@@ -96,7 +96,7 @@ MSOCL_PLANES_GATHER(msocl_planes_ie_rhs,
                      viscous, x, y, z, a, &fx, &fy, &fz);
   float k[3] = {0.0f, 0.0f, 0.0f};
 #pragma unroll
-  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+  for (int s = 0; s < MSOCL_PLANES_SLOTS(pass); s++) {
     if (MSOCL_PLANES_SKIP(s))
       continue;
     MSOCL_PLANES_NEIGHBOR(s);
@@ -166,7 +166,7 @@ MSOCL_PLANES_GATHER(msocl_planes_ie_apply,
   const float q[6] = {p[a], p[plane + a], p[2 * plane + a], ix, iy, iz};
   float k[3] = {0.0f, 0.0f, 0.0f}, c[3] = {0.0f, 0.0f, 0.0f};
 #pragma unroll
-  for (int s = 0; s < MSOCL_TABLE_SLOTS; s++) {
+  for (int s = 0; s < MSOCL_PLANES_SLOTS(pass); s++) {
     if (MSOCL_PLANES_SKIP(s))
       continue;
     MSOCL_PLANES_NEIGHBOR(s);

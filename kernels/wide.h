@@ -169,14 +169,10 @@ msocl_wide_gather4(__global const float4 *p4, const int *j, msocl_rows_f *x,
   const msocl_rows_m there =                                                 \
       msocl_wide_slot(MSOCL_CONN_ARGS, s, slab, x0, j_, &rest, &kk, &cc)
 #define MSOCL_WIDE_NB(q) msocl_wide_gather((q), j_)
-/* A slot past MSOCL_WIDE_DENSE (the most springs of a point that does not
- * spill) that no lane fills is skipped: its + 0 terms leave a sum begun
- * at +0 as it is (such a sum is never -0). */
-#ifndef MSOCL_WIDE_DENSE
-#define MSOCL_WIDE_DENSE MSOCL_TABLE_SLOTS
-#endif
+/* A slot past MSOCL_ROW_SLOTS that no lane fills is skipped: its + 0
+ * terms leave a sum begun at +0 as it is (such a sum is never -0). */
 #define MSOCL_WIDE_SKIP_FREE                                                  \
-  if (s >= MSOCL_WIDE_DENSE && !any(there))                                  \
+  if (s >= MSOCL_ROW_SLOTS && !any(there))                                   \
   continue
 /* the neighbours' positions, from p4 where a kernel has it */
 #define MSOCL_WIDE_NB_P(p4, px, py, pz, nx, ny, nz)                           \

@@ -42,9 +42,9 @@ static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
   clGetDeviceInfo(s->dev->id, CL_DEVICE_SINGLE_FP_CONFIG, sizeof fp, &fp,
                   NULL);
   /* the planes' kernels, with the colliders' loop unrolled */
-  char planes[112], gather4[64];
-  snprintf(gather4, sizeof gather4,
-           " -DMSOCL_GATHER4 -DMSOCL_WIDE_DENSE=%d", s->lay.dense);
+  char planes[112], dense[32];
+  /* BUFFER's rows skip the slots past the most a non-spilling point has */
+  snprintf(dense, sizeof dense, " -DMSOCL_DENSE=%d", s->lay.dense);
   const int ring_w = msocl__pl_rows_ring_w(s);
   int at = snprintf(planes, sizeof planes,
                     " -DMSOCL_PLANES -DMSOCL_NCOL=%d -DMSOCL_GRID_KINDS=%d",
@@ -56,7 +56,7 @@ static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
   /* EDGES holds BUFFER's table (layout.c) */
   int len = snprintf(
       buf, cap,
-      "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s%s%s%s%s",
+      "%s -DMSOCL_SLOTS=%d -DMSOCL_DEGREE=%d%s%s%s%s%s%s%s%s%s%s%s%s%s%s%s",
       s->lay.kind == MSOCL_LAYOUT_IMAGE2D ? "-DMSOCL_LAYOUT_IMAGE2D"
       : s->lay.kind == MSOCL_LAYOUT_GRID
           ? (s->lay.grid_nz > 0 ? "-DMSOCL_LAYOUT_GRID -DMSOCL_GRID_3D"
@@ -74,7 +74,10 @@ static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
       KIND(MSOCL__TABLE) ? " -DMSOCL_TABLE" : "",
       KIND(MSOCL__CAPSULE) ? " -DMSOCL_CAPSULE" : "",
       KIND(MSOCL__BOX) ? " -DMSOCL_BOX" : "",
-      msocl__pl_gather4(s) ? gather4 : "", planes,
+      msocl__pl_gather4(s) ? " -DMSOCL_GATHER4" : "",
+      s->lay.kind == MSOCL_LAYOUT_BUFFER || s->lay.kind == MSOCL_LAYOUT_EDGES
+          ? dense : "",
+      planes,
       s->o.math == MSOCL_MATH_RELAXED
           ? " -DMSOCL_RELAXED -cl-fast-relaxed-math"
           /* GPUs may round single divide and sqrt loosely unless asked. */
