@@ -368,7 +368,8 @@ typedef struct {
   int calibrate_steps;
   /* Symplectic Euler's two passes as one kernel: one launch and one read
    * of the state a step instead of two (gather layouts, no velocity
-   * strain limiting). AUTO: off, as it is not faster everywhere. */
+   * strain limiting). AUTO: on for BUFFER on a CPU device, one device
+   * (faster there); off elsewhere, as it is not faster everywhere. */
   msocl_choice fused;
   /* Number the points by reverse Cuthill-McKee, so that neighbours are
    * close in memory and split halos narrow; reads and writes keep the

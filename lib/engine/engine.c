@@ -90,6 +90,18 @@ static int build_options(const msocl__engine *s, int ncol, unsigned kinds,
   return MSOCL_OK;
 }
 
+/* Whether AUTO's fused is symplectic Euler's one-kernel step here: on a
+ * CPU's BUFFER table, one engine (a split keeps every engine's schedule
+ * alike), where it ran 1.0-1.4x the two passes (docs/PERFORMANCE.md). */
+static int fused_by_default(const msocl__engine *s)
+{
+  return s->o.tuning.fused == MSOCL_AUTO &&
+         s->lay.kind == MSOCL_LAYOUT_BUFFER &&
+         s->dev->info.type == MSOCL_DEVICE_CPU &&
+         s->o.integrator == MSOCL_SYMPLECTIC_EULER &&
+         s->o.strain != MSOCL_STRAIN_VELOCITY && s->lo == 0 && s->hi == s->n;
+}
+
 /* Masses, colliders and the reductions' buffers (the state and the
  * normals' lists: state.c, once the planes exist). */
 static int make_buffers(msocl__engine *s, const msocl_model *m)
@@ -205,6 +217,8 @@ int msocl__engine_create(msocl__engine **out, struct msocl__device *dev,
   if (rc == MSOCL_OK)
     rc = msocl__layout_create(s->dev, m, &adj, kind, o->tuning.buffer_slots,
                               o->tuning.classes, &s->lay);
+  if (rc == MSOCL_OK && fused_by_default(s))
+    s->o.tuning.fused = MSOCL_ON;
   if (rc == MSOCL_OK)
     rc = msocl__planes_fit(s);
   if (rc == MSOCL_OK)
