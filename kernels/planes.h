@@ -435,11 +435,26 @@ msocl_planes_spill8(MSOCL_CONN, __global const float *p,
   float wx[8], wy[8], wz[8];
 #endif
   (void)c; (void)v; /* read by dashpots */
+  int bs[8];
+#ifndef MSOCL_CLASSES
+  if (o + 8 <= end) { /* the table's entries as vectors */
+    const int at = MSOCL_SLOTS * slab + o;
+    vstore8(vload8(0, nbr + at), 0, bs);
+    const float16 w = vload16(0, (__global const float *)rk + 2 * at);
+    vstore8(w.even, 0, r);
+    vstore8(w.odd, 0, k);
+#ifdef MSOCL_DAMPING
+    vstore8(vload8(0, dmp + at), 0, c);
+#endif
+  } else
+#endif
+#pragma unroll
+    for (int u = 0; u < 8; u++)
+      msocl_planes_spill_slot(MSOCL_CONN_ARGS, min(o + u, end - 1), slab,
+                              &bs[u], &r[u], &k[u], &c[u]);
 #pragma unroll
   for (int u = 0; u < 8; u++) {
-    int b;
-    msocl_planes_spill_slot(MSOCL_CONN_ARGS, min(o + u, end - 1), slab, &b,
-                            &r[u], &k[u], &c[u]);
+    const int b = bs[u];
     nx[u] = p[b];
     ny[u] = p[plane + b];
     nz[u] = p[2 * plane + b];
