@@ -171,8 +171,9 @@ END_TEST
 
 /* BUFFER's wide kernels (with the float4 gather copy and the skip of
  * free slots) and its scalar ones give the same bits, whichever the CPU
- * takes by default: a solid (a hub that spills, 13 springs a surface
- * point in a table of 16 slots) and a damped cloth, every integrator. */
+ * takes by default: a solid (a hub that spills, 7 springs a surface point
+ * in a table of 8 slots) and a damped cloth, every integrator, symplectic
+ * Euler both as two passes and fused (AUTO's choice on a CPU's BUFFER). */
 START_TEST(wide_equals_scalar)
 {
   msocl_solid_desc sd;
@@ -195,14 +196,16 @@ START_TEST(wide_equals_scalar)
     const size_t bytes = 3 * (size_t)n * sizeof(float);
     float dt = 1e-4f;
     msocl_safe_dt(ms[k], MSOCL_SYMPLECTIC_EULER, &dt);
-    for (int in = MSOCL_SYMPLECTIC_EULER; in <= MSOCL_IMPLICIT_EULER; in++) {
+    /* in == -1: symplectic Euler's two passes */
+    for (int in = -1; in <= MSOCL_IMPLICIT_EULER; in++) {
       float *p[2], *v[2];
       for (int q = 0; q < 2; q++) {
         msocl__pl_wide_mode(q ? -1 : 1);
         msocl_sim_options o;
         msocl_sim_options_init(&o);
         o.dt = 0.5f * dt;
-        o.integrator = (msocl_integrator)in;
+        o.integrator = in < 0 ? MSOCL_SYMPLECTIC_EULER : (msocl_integrator)in;
+        o.tuning.fused = in < 0 ? MSOCL_OFF : MSOCL_AUTO;
         o.tuning.layout = MSOCL_LAYOUT_BUFFER;
         msocl_sim *s = NULL;
         ck_assert_int_eq(msocl_sim_create(&s, rt, ms[k], &o), MSOCL_OK);
