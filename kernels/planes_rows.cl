@@ -68,7 +68,7 @@
 /* Wind on the quads at row y's padded columns c.. into ring row t
  * (terms 6 and 7: A and B), from the velocities before the step in rows
  * v0 (y) and v1 (y + 1), planes `ps` floats apart, and the quads' edges
- * (msocl_rows_springs' ex..ez: right, above, -, above-right), as
+ * (msocl_rows_springs_at's ex..ez: right, above, -, above-right), as
  * msocl_wind_quads computes them: zero where the quad is not the
  * model's (its padding corners hold NaN). */
 static inline __attribute__((always_inline)) void
@@ -109,29 +109,25 @@ msocl_rows_wind(MSOCL_CONN, __global const float *v0,
   MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, bz, 0.0f), o + 2 * ring_w);
 }
 
-/* Row y's forward spring terms at padded columns 0..nx + 2 (x from -2 to
- * nx) into ring row t: msocl_planes_pull's `on ? t * d : 0`, and with
+/* Row y's forward spring terms at the padded columns c..c + W - 1 (column
+ * 0 is x = -2; msocl_rows_row sweeps 0..nx + 2) into ring row t: msocl_planes_pull's `on ? t * d : 0`, and with
  * dashpots its `onh ? u * d : 0` from the velocities before the step (a
  * backward one negates exactly: w and d both flip, w . d and len2 stay).
  * Positions and velocities of rows y, y + 1, y + 2 at p0.., v0.. (column
- * 0 is x = -2), planes `ps` floats apart. The last vector is moved back
- * to end at column nx + 2, and overlaps the one before it (the same terms
- * again), so no load passes the planes. */
+ * 0 is x = -2), planes `ps` floats apart. */
 static inline __attribute__((always_inline)) void
-msocl_rows_springs(MSOCL_CONN, __global const float *p0,
-                   __global const float *p1, __global const float *p2,
-                   __global const float *v0, __global const float *v1,
-                   __global const float *v2, int ps, int y,
-                   __global float *t, int ring_w, float4 air, float4 coef,
-                   const int wind)
+msocl_rows_springs_at(MSOCL_CONN, __global const float *p0,
+                      __global const float *p1, __global const float *p2,
+                      __global const float *v0, __global const float *v1,
+                      __global const float *v2, int ps, int y,
+                      __global float *t, int ring_w, float4 air,
+                      float4 coef, const int wind, const int c)
 {
 #ifdef MSOCL_DAMPING
   const float cc = MSOCL_GRID_C;
 #endif
   (void)v2;
-  const int cols = grid_nx + 3;
-  for (int c0 = 0; c0 < cols; c0 += MSOCL_ROWS_W) {
-    const int c = min(c0, cols - MSOCL_ROWS_W);
+  {
     const msocl_rows_f px = MSOCL_ROWS_LOAD(p0 + c),
                        py = MSOCL_ROWS_LOAD(p0 + ps + c),
                        pz = MSOCL_ROWS_LOAD(p0 + 2 * ps + c);
@@ -238,29 +234,26 @@ msocl_rows_sum(__global const float *r0,
   return g;
 }
 
-/* A row's kick and drift (msocl_planes_fused) from ring rows r0, r1, r2:
- * positions and velocities read from rows pr, vr (column 0 is x = -2;
- * planes `ps` floats apart), written to rows pw, vw (`pso` apart), the
- * inverse masses and pins from row ar (`plane` apart); vw may be vr
- * without wind or dashpots (only the point reads its own velocity). The
- * last vector moves back to end at the row's last point, over points the
- * one before it has updated: its velocities are read before that. */
+/* The kick and drift (msocl_planes_fused) of a row's points at padded
+ * columns c..c + W - 1 from ring rows r0, r1, r2: positions and
+ * velocities read from rows pr, vr (column 0 is x = -2; planes `ps`
+ * floats apart), written to rows pw, vw (`pso` apart), the inverse masses
+ * and pins from row ar (`plane` apart); vw may be vr without wind or
+ * dashpots (only the point reads its own velocity). The `last` vector
+ * ends at the row's last point, over points the one before it has
+ * updated: its velocities tx.. are read before the row's first. */
 static inline __attribute__((always_inline)) void
-msocl_rows_kick(MSOCL_CONN, __global const float *pr,
-                __global const float *vr, int ps, __global float *pw,
-                __global float *vw, int pso, __global const float *ar,
-                int plane, float4 gravity, float viscous, float air,
-                float dt, __constant const float *cf,
-                __global const float *r0, __global const float *r1,
-                __global const float *r2, int ring_w, int wind, int still)
+msocl_rows_kick_at(MSOCL_CONN, __global const float *pr,
+                   __global const float *vr, int ps, __global float *pw,
+                   __global float *vw, int pso, __global const float *ar,
+                   int plane, float4 gravity, float viscous, float air,
+                   float dt, __constant const float *cf,
+                   __global const float *r0, __global const float *r1,
+                   __global const float *r2, int ring_w, int wind,
+                   int still, const bool last, const int c,
+                   msocl_rows_f tx, msocl_rows_f ty, msocl_rows_f tz)
 {
-  const int tail = grid_nx - MSOCL_ROWS_W + 2;
-  const msocl_rows_f tx = MSOCL_ROWS_LOAD(vr + tail),
-                     ty = MSOCL_ROWS_LOAD(vr + ps + tail),
-                     tz = MSOCL_ROWS_LOAD(vr + 2 * ps + tail);
-  for (int x0 = 2; x0 < grid_nx + 2; x0 += MSOCL_ROWS_W) {
-    const bool last = x0 >= tail;
-    const int c = last ? tail : x0;
+  {
     const msocl_rows_f fx0 = msocl_rows_sum(r0, r1, r2, 0, c, ring_w),
                        fy0 = msocl_rows_sum(r0, r1, r2, 1, c, ring_w),
                        fz0 = msocl_rows_sum(r0, r1, r2, 2, c, ring_w);
@@ -318,6 +311,49 @@ msocl_rows_kick(MSOCL_CONN, __global const float *pr,
   }
 }
 
+/* Row y: its springs' terms (msocl_rows_springs_at, wind's quads where
+ * `blow`) and, where `kick`, its points' kick (msocl_rows_kick_at), in
+ * one column loop, each kick a vector behind the terms it reads (columns
+ * up to its own): one loop's additions and stores run while the other's
+ * square roots and divisions wait on the divider. The last vectors of
+ * both move back to end at the row's end, over columns done (the same
+ * terms again; velocities read before), so no load passes the planes. */
+static inline __attribute__((always_inline)) void
+msocl_rows_row(MSOCL_CONN, __global const float *p0,
+               __global const float *p1, __global const float *p2,
+               __global const float *v0, __global const float *v1,
+               __global const float *v2, int ps, int y, __global float *t,
+               int ring_w, float4 wind_air, float4 wind_coef, const int blow,
+               const bool kick, __global float *pw, __global float *vw,
+               int pso, __global const float *ar, int plane, float4 gravity,
+               float viscous, float air, float dt,
+               __constant const float *cf, __global const float *r0,
+               __global const float *r1, int wind, int still)
+{
+  const int cols = grid_nx + 3, tail = grid_nx - MSOCL_ROWS_W + 2;
+  const int tt = kick ? tail : 0;
+  const msocl_rows_f tx = MSOCL_ROWS_LOAD(v0 + tt),
+                     ty = MSOCL_ROWS_LOAD(v0 + ps + tt),
+                     tz = MSOCL_ROWS_LOAD(v0 + 2 * ps + tt);
+  int x0 = kick ? 2 : grid_nx + 2;
+#define MSOCL_ROWS_KICK_AT(xc)                                                \
+  msocl_rows_kick_at(MSOCL_CONN_ARGS, p0, v0, ps, pw, vw, pso, ar, plane,     \
+                     gravity, viscous, air, dt, cf, r0, r1, t, ring_w, wind,  \
+                     still, (xc) >= tail, min((xc), tail), tx, ty, tz)
+  for (int c0 = 0; c0 < cols; c0 += MSOCL_ROWS_W) {
+    const int c = min(c0, cols - MSOCL_ROWS_W);
+    msocl_rows_springs_at(MSOCL_CONN_ARGS, p0, p1, p2, v0, v1, v2, ps, y, t,
+                          ring_w, wind_air, wind_coef, blow, c);
+    if (x0 < grid_nx + 2 && min(x0, tail) <= c) {
+      MSOCL_ROWS_KICK_AT(x0);
+      x0 += MSOCL_ROWS_W;
+    }
+  }
+  for (; x0 < grid_nx + 2; x0 += MSOCL_ROWS_W)
+    MSOCL_ROWS_KICK_AT(x0);
+#undef MSOCL_ROWS_KICK_AT
+}
+
 #define MSOCL_ROWS_PARAMS                                                     \
   MSOCL_CONN, __global const float *p, __global const float *v,               \
       __global float *p_out, __global const float *aux, int pitch, int plane, \
@@ -359,20 +395,18 @@ msocl_rows_step(MSOCL_ROWS_PARAMS, int still)
     __global float *t = mine + (size_t)((y + 3) % 3) * one;
     const int row = (y + 2) * pitch;
     __global const float *pr = p + row, *vr = v + row;
+#define MSOCL_ROWS_ROW(blow)                                                  \
+  msocl_rows_row(MSOCL_CONN_ARGS, pr, pr + pitch, pr + 2 * pitch, vr,         \
+                 vr + pitch, vr + 2 * pitch, plane, y, t, rw, wind_air,       \
+                 wind_coef, blow, y >= y0, p_out + row, v_out + row, plane,   \
+                 aux + row, plane, gravity, viscous, air, dt, cf,             \
+                 mine + (size_t)((y + 1) % 3) * one,                          \
+                 mine + (size_t)((y + 2) % 3) * one, wind, still)
     if (wind && y >= y0 - 1)
-      msocl_rows_springs(MSOCL_CONN_ARGS, pr, pr + pitch, pr + 2 * pitch, vr,
-                         vr + pitch, vr + 2 * pitch, plane, y, t, rw,
-                         wind_air, wind_coef, 1);
+      MSOCL_ROWS_ROW(1);
     else
-      msocl_rows_springs(MSOCL_CONN_ARGS, pr, pr + pitch, pr + 2 * pitch, vr,
-                         vr + pitch, vr + 2 * pitch, plane, y, t, rw,
-                         wind_air, wind_coef, 0);
-    if (y >= y0)
-      msocl_rows_kick(MSOCL_CONN_ARGS, pr, v + row, plane, p_out + row,
-                      v_out + row, plane, aux + row, plane, gravity, viscous,
-                      air, dt, cf, mine + (size_t)((y + 1) % 3) * one,
-                      mine + (size_t)((y + 2) % 3) * one,
-                      mine + (size_t)((y + 3) % 3) * one, rw, wind, still);
+      MSOCL_ROWS_ROW(0);
+#undef MSOCL_ROWS_ROW
   }
 }
 
@@ -443,25 +477,23 @@ __kernel void msocl_planes_rows_steps(MSOCL_ROWS_PARAMS, __global float *mid,
       __global const float *v0 = j == 0 ? v + row : p0 + vs,
                            *v1 = j == 0 ? v0 + pitch : p1 + vs,
                            *v2 = j == 0 ? v0 + 2 * pitch : p2 + vs;
-      if (wind && z >= k0 - 1)
-        msocl_rows_springs(MSOCL_CONN_ARGS, p0, p1, p2, v0, v1, v2, in, z, t,
-                           rw, wind_air, wind_coef, 1);
-      else
-        msocl_rows_springs(MSOCL_CONN_ARGS, p0, p1, p2, v0, v1, v2, in, z, t,
-                           rw, wind_air, wind_coef, 0);
-      if (z < k0)
-        continue;
       /* its output: the planes, or its own ring */
       __global float *mo = mids + (size_t)min(j, MSOCL_ROWS_STEPS - 1) *
                                       (4 * slot + MSOCL_ROWS_W);
       __global float *pw =
           j == steps - 1 ? p_out + row : msocl_rows_mid(mo, z, slot, grid_ny);
       __global float *vw = j == steps - 1 ? v_out + row : pw + vs;
-      msocl_rows_kick(MSOCL_CONN_ARGS, p0, v0, in, pw, vw,
-                      j == steps - 1 ? plane : pitch, aux + row, plane,
-                      gravity, viscous, air, dt, cf,
-                      ts + (size_t)((z + 1) % 3) * one,
-                      ts + (size_t)((z + 2) % 3) * one, t, rw, wind, 1);
+#define MSOCL_ROWS_ROW(blow)                                                  \
+  msocl_rows_row(MSOCL_CONN_ARGS, p0, p1, p2, v0, v1, v2, in, z, t, rw,       \
+                 wind_air, wind_coef, blow, z >= k0, pw, vw,                  \
+                 j == steps - 1 ? plane : pitch, aux + row, plane, gravity,   \
+                 viscous, air, dt, cf, ts + (size_t)((z + 1) % 3) * one,      \
+                 ts + (size_t)((z + 2) % 3) * one, wind, 1)
+      if (wind && z >= k0 - 1)
+        MSOCL_ROWS_ROW(1);
+      else
+        MSOCL_ROWS_ROW(0);
+#undef MSOCL_ROWS_ROW
     }
   }
 }
