@@ -109,12 +109,12 @@ msocl_rows_wind(MSOCL_CONN, __global const float *v0,
   MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(real, bz, 0.0f), o + 2 * ring_w);
 }
 
-/* Row y's forward spring terms at the padded columns c..c + W - 1 (column
- * 0 is x = -2; msocl_rows_row sweeps 0..nx + 2) into ring row t: msocl_planes_pull's `on ? t * d : 0`, and with
- * dashpots its `onh ? u * d : 0` from the velocities before the step (a
- * backward one negates exactly: w and d both flip, w . d and len2 stay).
- * Positions and velocities of rows y, y + 1, y + 2 at p0.., v0.. (column
- * 0 is x = -2), planes `ps` floats apart. */
+/* Row y's forward spring terms at the padded columns c..c + W - 1 into
+ * ring row t: msocl_planes_pull's `on ? t * d : 0`, and with dashpots its
+ * `onh ? u * d : 0` from the velocities before the step (a backward one
+ * negates exactly: w and d both flip, w . d and len2 stay). Positions and
+ * velocities of rows y, y + 1, y + 2 at p0.., v0.. (column 0 is x = -2;
+ * msocl_rows_row sweeps 0..nx + 2), planes `ps` floats apart. */
 static inline __attribute__((always_inline)) void
 msocl_rows_springs_at(MSOCL_CONN, __global const float *p0,
                       __global const float *p1, __global const float *p2,
@@ -127,66 +127,64 @@ msocl_rows_springs_at(MSOCL_CONN, __global const float *p0,
   const float cc = MSOCL_GRID_C;
 #endif
   (void)v2;
-  {
-    const msocl_rows_f px = MSOCL_ROWS_LOAD(p0 + c),
-                       py = MSOCL_ROWS_LOAD(p0 + ps + c),
-                       pz = MSOCL_ROWS_LOAD(p0 + 2 * ps + c);
+  const msocl_rows_f px = MSOCL_ROWS_LOAD(p0 + c),
+                     py = MSOCL_ROWS_LOAD(p0 + ps + c),
+                     pz = MSOCL_ROWS_LOAD(p0 + 2 * ps + c);
 #ifdef MSOCL_DAMPING
-    const msocl_rows_f vx = MSOCL_ROWS_LOAD(v0 + c),
-                       vy = MSOCL_ROWS_LOAD(v0 + ps + c),
-                       vz = MSOCL_ROWS_LOAD(v0 + 2 * ps + c);
+  const msocl_rows_f vx = MSOCL_ROWS_LOAD(v0 + c),
+                     vy = MSOCL_ROWS_LOAD(v0 + ps + c),
+                     vz = MSOCL_ROWS_LOAD(v0 + 2 * ps + c);
 #endif
-    /* wind's quad edges: springs 0, 3 and 1's (right, above-right,
-     * above), the same bits as loading them again */
-    msocl_rows_f ex[4], ey[4], ez[4];
+  /* wind's quad edges: springs 0, 3 and 1's (right, above-right,
+   * above), the same bits as loading them again */
+  msocl_rows_f ex[4], ey[4], ez[4];
 #pragma unroll
-    for (int f = 0; f < 6; f++) {
-      const bool edge = wind && f < 4 && f != 2;
-      if (!MSOCL_ROWS_HAS(f) && !edge)
-        continue;
-      const int o_ = c + MSOCL_ROWS_DX(f);
-      __global const float *o = (MSOCL_ROWS_DY(f) == 0   ? p0
-                                 : MSOCL_ROWS_DY(f) == 1 ? p1
-                                                         : p2) + o_;
-      const float kk = MSOCL_ROWS_K(f), rest = MSOCL_ROWS_REST(f);
-      const msocl_rows_f dx = MSOCL_ROWS_LOAD(o) - px,
-                         dy = MSOCL_ROWS_LOAD(o + ps) - py,
-                         dz = MSOCL_ROWS_LOAD(o + 2 * ps) - pz;
-      if (edge) {
-        ex[f] = dx;
-        ey[f] = dy;
-        ez[f] = dz;
-      }
-      if (!MSOCL_ROWS_HAS(f))
-        continue;
-      const msocl_rows_f len2 = dx * dx + dy * dy + dz * dz;
-      const msocl_rows_f len = MSOCL_SQRT(len2);
-      const msocl_rows_f k = kk * MSOCL_DIV(len - rest, len);
-      const msocl_rows_m on = len > 0.0f;
-      __global float *q = t + 3 * f * ring_w + c;
-      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dx, 0.0f), q);
-      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dy, 0.0f), q + ring_w);
-      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dz, 0.0f), q + 2 * ring_w);
-#ifdef MSOCL_DAMPING
-      __global const float *b = (MSOCL_ROWS_DY(f) == 0   ? v0
-                                 : MSOCL_ROWS_DY(f) == 1 ? v1
-                                                         : v2) + o_;
-      const msocl_rows_f wx = MSOCL_ROWS_LOAD(b) - vx,
-                         wy = MSOCL_ROWS_LOAD(b + ps) - vy,
-                         wz = MSOCL_ROWS_LOAD(b + 2 * ps) - vz;
-      const msocl_rows_f u =
-          cc * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
-      const msocl_rows_m onh = len2 > 0.0f;
-      __global float *h = t + 3 * (MSOCL_ROWS_DASH + f) * ring_w + c;
-      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(onh, u * dx, 0.0f), h);
-      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(onh, u * dy, 0.0f), h + ring_w);
-      MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(onh, u * dz, 0.0f), h + 2 * ring_w);
-#endif
+  for (int f = 0; f < 6; f++) {
+    const bool edge = wind && f < 4 && f != 2;
+    if (!MSOCL_ROWS_HAS(f) && !edge)
+      continue;
+    const int o_ = c + MSOCL_ROWS_DX(f);
+    __global const float *o = (MSOCL_ROWS_DY(f) == 0   ? p0
+                               : MSOCL_ROWS_DY(f) == 1 ? p1
+                                                       : p2) + o_;
+    const float kk = MSOCL_ROWS_K(f), rest = MSOCL_ROWS_REST(f);
+    const msocl_rows_f dx = MSOCL_ROWS_LOAD(o) - px,
+                       dy = MSOCL_ROWS_LOAD(o + ps) - py,
+                       dz = MSOCL_ROWS_LOAD(o + 2 * ps) - pz;
+    if (edge) {
+      ex[f] = dx;
+      ey[f] = dy;
+      ez[f] = dz;
     }
-    if (wind)
-      msocl_rows_wind(MSOCL_CONN_ARGS, v0, v1, ps, y, c, ex, ey, ez, air,
-                      coef, t, ring_w);
+    if (!MSOCL_ROWS_HAS(f))
+      continue;
+    const msocl_rows_f len2 = dx * dx + dy * dy + dz * dz;
+    const msocl_rows_f len = MSOCL_SQRT(len2);
+    const msocl_rows_f k = kk * MSOCL_DIV(len - rest, len);
+    const msocl_rows_m on = len > 0.0f;
+    __global float *q = t + 3 * f * ring_w + c;
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dx, 0.0f), q);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dy, 0.0f), q + ring_w);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(on, k * dz, 0.0f), q + 2 * ring_w);
+#ifdef MSOCL_DAMPING
+    __global const float *b = (MSOCL_ROWS_DY(f) == 0   ? v0
+                               : MSOCL_ROWS_DY(f) == 1 ? v1
+                                                       : v2) + o_;
+    const msocl_rows_f wx = MSOCL_ROWS_LOAD(b) - vx,
+                       wy = MSOCL_ROWS_LOAD(b + ps) - vy,
+                       wz = MSOCL_ROWS_LOAD(b + 2 * ps) - vz;
+    const msocl_rows_f u =
+        cc * MSOCL_DIV(wx * dx + wy * dy + wz * dz, len2);
+    const msocl_rows_m onh = len2 > 0.0f;
+    __global float *h = t + 3 * (MSOCL_ROWS_DASH + f) * ring_w + c;
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(onh, u * dx, 0.0f), h);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(onh, u * dy, 0.0f), h + ring_w);
+    MSOCL_ROWS_STORE(MSOCL_ROWS_SEL(onh, u * dz, 0.0f), h + 2 * ring_w);
+#endif
   }
+  if (wind)
+    msocl_rows_wind(MSOCL_CONN_ARGS, v0, v1, ps, y, c, ex, ey, ez, air,
+                    coef, t, ring_w);
 }
 
 /* Term q of forward spring f in ring row r at padded column c */
@@ -253,62 +251,60 @@ msocl_rows_kick_at(MSOCL_CONN, __global const float *pr,
                    int still, const bool last, const int c,
                    msocl_rows_f tx, msocl_rows_f ty, msocl_rows_f tz)
 {
-  {
-    const msocl_rows_f fx0 = msocl_rows_sum(r0, r1, r2, 0, c, ring_w),
-                       fy0 = msocl_rows_sum(r0, r1, r2, 1, c, ring_w),
-                       fz0 = msocl_rows_sum(r0, r1, r2, 2, c, ring_w);
-    msocl_rows_f ux = last ? tx : MSOCL_ROWS_LOAD(vr + c),
-                 uy = last ? ty : MSOCL_ROWS_LOAD(vr + ps + c),
-                 uz = last ? tz : MSOCL_ROWS_LOAD(vr + 2 * ps + c);
-    const msocl_rows_f im = MSOCL_ROWS_LOAD(ar + c);
-    if (wind) {
-      /* the six triangles' thirds in triangle order, then the velocity
-       * change, as msocl_wind_quad_points and msocl_wind_kick */
-      msocl_rows_f wx = 0.0f, wy = 0.0f, wz = 0.0f;
+  const msocl_rows_f fx0 = msocl_rows_sum(r0, r1, r2, 0, c, ring_w),
+                     fy0 = msocl_rows_sum(r0, r1, r2, 1, c, ring_w),
+                     fz0 = msocl_rows_sum(r0, r1, r2, 2, c, ring_w);
+  msocl_rows_f ux = last ? tx : MSOCL_ROWS_LOAD(vr + c),
+               uy = last ? ty : MSOCL_ROWS_LOAD(vr + ps + c),
+               uz = last ? tz : MSOCL_ROWS_LOAD(vr + 2 * ps + c);
+  const msocl_rows_f im = MSOCL_ROWS_LOAD(ar + c);
+  if (wind) {
+    /* the six triangles' thirds in triangle order, then the velocity
+     * change, as msocl_wind_quad_points and msocl_wind_kick */
+    msocl_rows_f wx = 0.0f, wy = 0.0f, wz = 0.0f;
 #define W(r, f, cc)                                                           \
   wx += MSOCL_ROWS_T(r, f, 0, cc);                                            \
   wy += MSOCL_ROWS_T(r, f, 1, cc);                                            \
   wz += MSOCL_ROWS_T(r, f, 2, cc)
-      W(r1, 6, c - 1);
-      W(r1, 7, c - 1);
-      W(r1, 7, c);
-      W(r2, 6, c - 1);
-      W(r2, 6, c);
-      W(r2, 7, c);
+    W(r1, 6, c - 1);
+    W(r1, 7, c - 1);
+    W(r1, 7, c);
+    W(r2, 6, c - 1);
+    W(r2, 6, c);
+    W(r2, 7, c);
 #undef W
 #ifdef MSOCL_PINS
-      const msocl_rows_m held = MSOCL_ROWS_LOAD(ar + plane + c) != 0.0f;
-      const msocl_rows_f s = MSOCL_ROWS_SEL(held, 0.0f, dt * im);
+    const msocl_rows_m held = MSOCL_ROWS_LOAD(ar + plane + c) != 0.0f;
+    const msocl_rows_f s = MSOCL_ROWS_SEL(held, 0.0f, dt * im);
 #else
-      const msocl_rows_f s = dt * im;
+    const msocl_rows_f s = dt * im;
 #endif
-      ux += s * wx;
-      uy += s * wy;
-      uz += s * wz;
-    }
-    const msocl_rows_f px = MSOCL_ROWS_LOAD(pr + c),
-                       py = MSOCL_ROWS_LOAD(pr + ps + c),
-                       pz = MSOCL_ROWS_LOAD(pr + 2 * ps + c);
-    msocl_rows_f vx, vy, vz;
-    msocl_rows_velocity(fx0, fy0, fz0, ux, uy, uz, im, px, py, pz, gravity,
-                        viscous, air, dt, cf, still, &vx, &vy, &vz);
-    msocl_rows_f qx = px + dt * vx, qy = py + dt * vy, qz = pz + dt * vz;
-#ifdef MSOCL_PINS
-    const msocl_rows_m pinned = MSOCL_ROWS_LOAD(ar + plane + c) != 0.0f;
-    vx = MSOCL_ROWS_SEL(pinned, 0.0f, vx);
-    vy = MSOCL_ROWS_SEL(pinned, 0.0f, vy);
-    vz = MSOCL_ROWS_SEL(pinned, 0.0f, vz);
-    qx = MSOCL_ROWS_SEL(pinned, px, qx);
-    qy = MSOCL_ROWS_SEL(pinned, py, qy);
-    qz = MSOCL_ROWS_SEL(pinned, pz, qz);
-#endif
-    MSOCL_ROWS_STORE(vx, vw + c);
-    MSOCL_ROWS_STORE(vy, vw + pso + c);
-    MSOCL_ROWS_STORE(vz, vw + 2 * pso + c);
-    MSOCL_ROWS_STORE(qx, pw + c);
-    MSOCL_ROWS_STORE(qy, pw + pso + c);
-    MSOCL_ROWS_STORE(qz, pw + 2 * pso + c);
+    ux += s * wx;
+    uy += s * wy;
+    uz += s * wz;
   }
+  const msocl_rows_f px = MSOCL_ROWS_LOAD(pr + c),
+                     py = MSOCL_ROWS_LOAD(pr + ps + c),
+                     pz = MSOCL_ROWS_LOAD(pr + 2 * ps + c);
+  msocl_rows_f vx, vy, vz;
+  msocl_rows_velocity(fx0, fy0, fz0, ux, uy, uz, im, px, py, pz, gravity,
+                      viscous, air, dt, cf, still, &vx, &vy, &vz);
+  msocl_rows_f qx = px + dt * vx, qy = py + dt * vy, qz = pz + dt * vz;
+#ifdef MSOCL_PINS
+  const msocl_rows_m pinned = MSOCL_ROWS_LOAD(ar + plane + c) != 0.0f;
+  vx = MSOCL_ROWS_SEL(pinned, 0.0f, vx);
+  vy = MSOCL_ROWS_SEL(pinned, 0.0f, vy);
+  vz = MSOCL_ROWS_SEL(pinned, 0.0f, vz);
+  qx = MSOCL_ROWS_SEL(pinned, px, qx);
+  qy = MSOCL_ROWS_SEL(pinned, py, qy);
+  qz = MSOCL_ROWS_SEL(pinned, pz, qz);
+#endif
+  MSOCL_ROWS_STORE(vx, vw + c);
+  MSOCL_ROWS_STORE(vy, vw + pso + c);
+  MSOCL_ROWS_STORE(vz, vw + 2 * pso + c);
+  MSOCL_ROWS_STORE(qx, pw + c);
+  MSOCL_ROWS_STORE(qy, pw + pso + c);
+  MSOCL_ROWS_STORE(qz, pw + 2 * pso + c);
 }
 
 /* Row y: its springs' terms (msocl_rows_springs_at, wind's quads where
