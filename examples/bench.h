@@ -42,6 +42,8 @@ struct bench_opts {
   int values;                     /* --values: also BUFFER with classes
                                      and with values forced (table1) */
   int expert;                     /* --expert: also expert C (table1) */
+  int sweep_steps;                /* --sweep-steps: GRID's steps a launch
+                                     (tuning.sweep_steps; 0 AUTO) */
   int sweeps[BENCH_MAX_LIST], nsweeps; /* --sweeps (strain) */
   const char *csv;                /* --csv */
 };

@@ -328,6 +328,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   msocl_sim *s = NULL;
   int rc = MSOCL_OK, vs_expert = 0;
   double busy = 0.0; /* the best run's cores kept busy */
+  int sweep = 0;     /* GRID's steps a launch */
   if (info->global_mem > 0 && need > (double)info->global_mem) {
     r.status = "skipped (device memory)";
   } else {
@@ -339,6 +340,7 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
     so.tuning.device = dev;
     so.check_every = 0;
     so.tuning.fused = fused ? MSOCL_ON : MSOCL_AUTO;
+    so.tuning.sweep_steps = c->o->sweep_steps;
     so.tuning.classes = variant == CLASSES  ? MSOCL_ON
                         : variant == VALUES ? MSOCL_OFF
                                             : MSOCL_AUTO;
@@ -366,6 +368,8 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
       r.seconds = NAN;
     }
     bench_row_rates(&r);
+    if (rc == MSOCL_OK && layout == MSOCL_LAYOUT_GRID)
+      msocl_sim_sweep_steps(s, &sweep);
   }
   msocl_sim_destroy(s);
   bench_progress(0, 0, " ");
@@ -373,6 +377,9 @@ static void run_device(struct ctx *c, const msocl_model *m, int n, float dt,
   if (vs_expert && r.status && !strcmp(r.status, "ok"))
     print_expert(c, c->xyz, n, r.steps_per_s, c->copy[dev],
                  info->type == MSOCL_DEVICE_CPU ? busy : 0.0);
+  if (sweep > 1)
+    printf("%9s   GRID's sweep: %d steps a launch%s\n", "", sweep,
+           c->o->sweep_steps ? "" : " (timed on the first launches)");
   bench_csv_row(c->csv, &r);
   keep(c, &r, engine);
 }
@@ -478,9 +485,10 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
          "neighbours cached (0), writes vel 12;\nposition pass reads pos + "
          "vel 24 + pin 4, writes pos 12: 84 (connectivity not counted).\n"
          "GB/s = bytes x vertex-steps/s; %%copy = GB/s over the copy "
-         "bandwidth.\nGRID on a CPU device sweeps up to 4 steps a launch, "
-         "reading and writing the\nplanes once for them: its %%copy "
-         "(and the memory bound's %%) may pass 100.\n\n");
+         "bandwidth.\nGRID on a CPU device sweeps several steps a launch "
+         "(--sweep-steps; its row says\nhow many), reading and writing the "
+         "planes once for them: its %%copy (and the\nmemory bound's %%) "
+         "may pass 100.\n\n");
   printf("%-9s %-28s %6s %8s %8s %9s %9s %6s %6s %6s %9s\n", "grid",
          "engine", "steps", "time s", "it/s", "s/2000it", "vs serial",
          "B/v-st", "GB/s", "%copy", "rms vs C");

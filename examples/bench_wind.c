@@ -68,6 +68,7 @@ int bench_wind(const struct bench_opts *o, FILE *csv)
     msocl_sim_options_init(&so);
     so.dt = 1e-4f;
     so.check_every = 0;
+    so.tuning.sweep_steps = o->sweep_steps;
     msocl_sim *s[KINDS] = {NULL, NULL, NULL};
     int rc = m ? MSOCL_OK : MSOCL_ERR_BAD_VALUE;
     for (int w = 0; rc == MSOCL_OK && w < KINDS; w++)

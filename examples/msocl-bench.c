@@ -7,6 +7,7 @@
  *               [-l LIST] [-i LIST] [-m LIST] [-T SECONDS] [--from X]
  *               [--levels N]
  *               [--max-grid N] [--big-steps N] [--repeat N] [--copy-mib N]
+ *               [--sweep-steps N]
  *               [--quick]
  *               [--csv FILE]
  */
@@ -86,6 +87,8 @@ static int usage(FILE *f, int code)
 "                 rows, one fused sweep, OpenMP; the yardstick of issue 15),\n"
 "                 its speed against each layout's and whether their final\n"
 "                 positions agree bit for bit\n"
+"  --sweep-steps N  table1 and wind: GRID's sweep on a CPU runs N steps a\n"
+"                 launch (1-8; default 0: the library times 2, 3, 4, 8)\n"
 "  --quick        tiny sizes and few steps: a smoke test\n"
 "  --csv FILE     also write one CSV row per run to FILE\n"
 "  -h, --help     this text\n");
@@ -193,6 +196,9 @@ int main(int argc, char **argv)
       bad = parse_int(v, 1, &o.steps), have_s = 1;
     } else if (!strcmp(w, "--big-steps")) {
       bad = parse_int(v, 1, &o.big_steps);
+    } else if (!strcmp(w, "--sweep-steps")) {
+      bad = parse_int(v, 0, &o.sweep_steps) ||
+            o.sweep_steps > MSOCL_MAX_SWEEP_STEPS;
     } else if (!strcmp(w, "--repeat")) {
       bad = parse_int(v, 1, &o.repeat);
     } else if (!strcmp(w, "--max-grid")) {

@@ -420,8 +420,8 @@ __kernel void msocl_planes_rows_still(MSOCL_ROWS_PARAMS)
 }
 
 /* Steps a launch of msocl_planes_rows_steps at most (planes_rows.c's
- * ROWS_STEPS) */
-#define MSOCL_ROWS_STEPS 4
+ * ROWS_STEPS, msocl.h's MSOCL_MAX_SWEEP_STEPS) */
+#define MSOCL_ROWS_STEPS 8
 
 /* Row r of a middle state in its ring `m` (three rows, then one of NaN
  * for rows off the grid), each `slot` floats: positions then velocities,

@@ -389,7 +389,17 @@ typedef struct {
    * instead of 12 or 16. AUTO: when the table of values would not fit in
    * half the device's cache, where the step is bound by memory bandwidth. */
   msocl_choice classes;
+  /* GRID on a CPU device: steps its sweep runs in one launch, 1 to
+   * MSOCL_MAX_SWEEP_STEPS (1: a launch a step). More read and write the
+   * state fewer times but recompute more rows at the blocks' edges and
+   * keep more in cache; the best count depends on the CPU's caches. 0:
+   * 2, 3, 4 and 8 each timed over the first launches, the fastest kept
+   * (msocl_sim_sweep_steps says which). */
+  int sweep_steps;
 } msocl_tuning;
+
+/* tuning.sweep_steps at most */
+#define MSOCL_MAX_SWEEP_STEPS 8
 
 /* What the simulation computes. msocl_sim_options_init gives each field
  * its default (the tuning all AUTO); then set dt. */
@@ -433,6 +443,10 @@ MSOCL_EXTERN void msocl_sim_destroy(msocl_sim *s);
 MSOCL_EXTERN int msocl_sim_step(msocl_sim *s, int n);
 MSOCL_EXTERN int msocl_sim_point_count(const msocl_sim *s, int *n);
 MSOCL_EXTERN int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout);
+/* Steps a launch of GRID's sweep (tuning.sweep_steps): 1 where every step
+ * is a launch (no sweep: another layout or device, a split); 0 while
+ * AUTO still times the candidates. */
+MSOCL_EXTERN int msocl_sim_sweep_steps(const msocl_sim *s, int *steps);
 /* How the layout holds the springs: slots a point in its table (BUFFER
  * and IMAGE2D; GRID: the 12 implicit neighbours; EDGES: 0) and BUFFER's
  * spring classes (0: the values in every slot). Either may be NULL. */

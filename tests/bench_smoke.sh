@@ -34,6 +34,14 @@ grep -q ",expert-planes,symplectic,precise,13,.*,0,ok,,\$" "$tmp/e.csv" ||
 [ "$(grep -c 'bitwise: yes, max |diff| 0;' "$tmp/e.txt")" -eq 2 ] ||
   fail "expert C not bitwise GRID: $(grep bitwise "$tmp/e.txt")"
 
+# --sweep-steps reaches GRID's sweep, which says its count; 9 is refused
+./examples/msocl-bench table1 --quick -g 20 -s 9 -l grid --sweep-steps 3 \
+  >"$tmp/w.txt" || fail "table1 --sweep-steps exited $?"
+grep -q "GRID's sweep: 3 steps a launch\$" "$tmp/w.txt" ||
+  fail "no sweep count of 3: $(grep sweep "$tmp/w.txt")"
+./examples/msocl-bench table1 --quick -g 20 --sweep-steps 9 >/dev/null 2>&1 &&
+  fail "table1 --sweep-steps 9 accepted"
+
 ./examples/msocl-bench precision --quick -g 5 -i symplectic,implicit \
   -m precise --levels 2 --csv "$tmp/p.csv" || fail "precision exited $?"
 [ "$(head -n 1 "$tmp/p.csv")" = "$header" ] || fail "precision CSV header"

@@ -72,8 +72,9 @@ static void state_free(struct state *st)
 struct setup {
   msocl_layout layout;
   int classes, slots;
+  int sweep; /* tuning.sweep_steps */
 };
-static struct setup setup_ = {MSOCL_LAYOUT_GRID, -1, 0};
+static struct setup setup_ = {MSOCL_LAYOUT_GRID, -1, 0, 0};
 
 /* The setup a tested one is held to, which must step bitwise alike: GRID
  * and IMAGE2D against BUFFER's plain table (no classes); BUFFER with
@@ -83,7 +84,7 @@ static struct setup setup_ = {MSOCL_LAYOUT_GRID, -1, 0};
  * table). */
 static struct setup held_setup(const msocl_model *m, struct setup t)
 {
-  struct setup h = {MSOCL_LAYOUT_BUFFER, 0, 0};
+  struct setup h = {MSOCL_LAYOUT_BUFFER, 0, 0, 0};
   if (t.layout != MSOCL_LAYOUT_BUFFER)
     return h;
   if (t.classes == 1) {
@@ -115,6 +116,7 @@ static msocl_sim *make_strained(const msocl_model *m, int held, int mode,
   o.tuning.classes =
       t.classes < 0 ? MSOCL_AUTO : t.classes ? MSOCL_ON : MSOCL_OFF;
   o.tuning.buffer_slots = t.slots;
+  o.tuning.sweep_steps = t.sweep;
   o.strain = strain;
   o.strain_iterations = 3; /* the sweeps ping-pong */
   if (mode >= 3) {
@@ -883,7 +885,7 @@ static msocl_model *mesh_scene(int q, char *label, size_t cap)
 
 static void mesh_done(msocl_model *m)
 {
-  setup_ = (struct setup){MSOCL_LAYOUT_GRID, -1, 0};
+  setup_ = (struct setup){MSOCL_LAYOUT_GRID, -1, 0, 0};
   msocl_model_destroy(m);
 }
 
@@ -1081,6 +1083,78 @@ START_TEST(rows_bitwise)
 }
 END_TEST
 
+/* GRID's sweep gives the same bits at every count of steps a launch
+ * (tuning.sweep_steps, 1 one launch a step), in one call that ends inside
+ * a launch and in calls shorter than AUTO's trials; AUTO settles on one
+ * of its candidates, and msocl_sim_sweep_steps says which. */
+START_TEST(rows_steps_a_launch)
+{
+  msocl_model *m = rows_cloth(_i ? 5 : 1);
+  float dt;
+  ck_assert_int_eq(msocl_stable_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
+  dt *= 0.5f;
+  setup_.sweep = 1;
+  struct state one = run(m, 0, 1, MSOCL_MATH_PRECISE, dt, 1, 301);
+  static const int forced[] = {2, 3, 5, MSOCL_MAX_SWEEP_STEPS};
+  char what[64];
+  for (int q = 0; q < 4; q++) {
+    setup_.sweep = forced[q];
+    msocl_sim *s = make(m, 0, 1, MSOCL_MATH_PRECISE, dt);
+    int k = -1;
+    ck_assert_int_eq(msocl_sim_sweep_steps(s, &k), MSOCL_OK);
+    ck_assert_int_eq(k, forced[q]);
+    ck_assert_int_eq(msocl_sim_step(s, 301), MSOCL_OK);
+    struct state st = read_state(s);
+    snprintf(what, sizeof what, "%d steps a launch", forced[q]);
+    assert_bitwise(&one, &st, what);
+    state_free(&st);
+    msocl_sim_destroy(s);
+  }
+  /* AUTO: timing until its trials are done, in one long call or, where
+   * calls are too short for a trial, after a few launches */
+  setup_.sweep = 0;
+  for (int calls = 1; calls <= 43; calls += 42) {
+    msocl_sim *s = make(m, 0, 1, MSOCL_MATH_PRECISE, dt);
+    int k = -1;
+    ck_assert_int_eq(msocl_sim_sweep_steps(s, &k), MSOCL_OK);
+    ck_assert_int_eq(k, 0);
+    for (int c = 0; c < calls; c++)
+      ck_assert_int_eq(msocl_sim_step(s, 301 / calls), MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_sweep_steps(s, &k), MSOCL_OK);
+    ck_assert_msg(k >= 2 && k <= 4, "AUTO chose %d steps a launch", k);
+    struct state st = read_state(s);
+    snprintf(what, sizeof what, "AUTO in %d calls (%d steps a launch)",
+             calls, k);
+    assert_bitwise(&one, &st, what);
+    state_free(&st);
+    msocl_sim_destroy(s);
+  }
+  /* out of range: refused; no sweep (BUFFER): a launch a step */
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = dt;
+  msocl_sim *s = NULL;
+  for (int q = 0; q < 2; q++) {
+    o.tuning.sweep_steps = q ? MSOCL_MAX_SWEEP_STEPS + 1 : -1;
+    ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+    ck_assert_ptr_null(s);
+    ck_assert_ptr_nonnull(strstr(msocl_last_error(), "sweep_steps"));
+  }
+  o.tuning.sweep_steps = 3;
+  o.tuning.layout = MSOCL_LAYOUT_BUFFER;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  int k = -1;
+  ck_assert_int_eq(msocl_sim_sweep_steps(s, &k), MSOCL_OK);
+  ck_assert_int_eq(k, 1);
+  ck_assert_int_eq(msocl_sim_sweep_steps(NULL, &k), MSOCL_ERR_NULL_HANDLE);
+  ck_assert_int_eq(msocl_sim_sweep_steps(s, NULL), MSOCL_ERR_NULL_HANDLE);
+  msocl_sim_destroy(s);
+  setup_.sweep = 0;
+  state_free(&one);
+  msocl_model_destroy(m);
+}
+END_TEST
+
 /* Dashpotted cloth in the sweep (the hanging cloth, 48 points a row) is
  * bitwise BUFFER's, and BUFFER in calls bitwise IMAGE2D in one, after
  * 200 symplectic steps that swing it. */
@@ -1146,6 +1220,7 @@ int main(void)
   tcase_add_loop_test(rows, rows_bitwise, 0,
                       (int)(sizeof rows_cases / sizeof rows_cases[0]));
   tcase_add_test(rows, rows_dashpots_buffer);
+  tcase_add_loop_test(rows, rows_steps_a_launch, 0, 2);
   suite_add_tcase(su, rows);
   return scene_run(su);
 }

@@ -27,6 +27,9 @@ int msocl__fail(int code, const char *fmt, ...)
  * nothing. */
 void msocl__clear_error(void);
 
+/* A monotonic clock in seconds (core/clock.c). */
+double msocl__seconds(void);
+
 /* Returns from the enclosing function with the OpenCL status if a CL call
  * failed, naming the call. */
 #define MSOCL__CL(call)                                                       \

@@ -15,6 +15,10 @@ enum {
   MSOCL__K_COUNT
 };
 
+/* Steps a launch that GRID's sweep times where tuning.sweep_steps is AUTO
+ * (sweep_steps.c) */
+#define MSOCL__SWEEP_CANDIDATES 3
+
 typedef struct msocl__engine msocl__engine;
 
 struct msocl__engine {
@@ -91,6 +95,12 @@ struct msocl__engine {
   cl_mem pl_mid;          /* its middle states' rows */
   size_t pl_blocks;       /* its work-items: blocks of rows */
   size_t pl_steps_blocks; /* and pl_rows_steps' */
+  /* its steps a launch, or 0 while each candidate is timed: trials begun
+   * (the first launch counts one), launches left in the running one,
+   * launches outside trials, when the running one began, each
+   * candidate's best seconds a step (sweep_steps.c) */
+  int pl_steps_k, pl_trials, pl_trial_left, pl_untimed;
+  double pl_trial_t0, pl_trial_s[MSOCL__SWEEP_CANDIDATES];
   int pl_rows_wind;       /* it blows wind on the quads (wind.c) */
   /* wind on the triangles (wind.c, kernels/wind.cl) */
   int wind_on, wind_ntri, wind_nspill;

@@ -75,4 +75,13 @@ void msocl__pl_rows_release(msocl__engine *s);
  * option there, -DMSOCL_ROWS_RING_W), 0 where it does not run. */
 int msocl__pl_rows_ring_w(const msocl__engine *s);
 
+/* sweep_steps.c: steps a launch of GRID's sweep. From the tuning, before
+ * the first launch: */
+void msocl__sweep_steps_init(msocl__engine *s);
+/* Steps the next launch runs of the n due (< 2: none); *start and *end
+ * where it begins and ends a candidate's trial, whose time from before
+ * the first launch to after the last msocl__sweep_took takes. */
+int msocl__sweep_next(msocl__engine *s, int n, int *start, int *end);
+void msocl__sweep_took(msocl__engine *s, double seconds);
+
 #endif

@@ -4,7 +4,8 @@
  * sweeps follow the step's two passes, so the sweep's end), rows of at
  * least one vector. Elsewhere planes.c's passes run. Where nothing acts
  * between steps (no collider moving, no field, soft pins or wind of
- * wind.c's own), up to ROWS_STEPS steps run in one launch. */
+ * wind.c's own), up to ROWS_STEPS steps run in one launch
+ * (sweep_steps.c says how many). */
 #include "config.h"
 #include "planes.h"
 #include "schedule.h"
@@ -14,7 +15,7 @@
 #define ROWS_W MSOCL__WIDE_W
 /* steps a launch at most, rings of terms and middle states a block
  * (MSOCL_ROWS_STEPS) */
-#define ROWS_STEPS 4
+#define ROWS_STEPS MSOCL_MAX_SWEEP_STEPS
 
 /* Work-items a CPU compute unit: blocks of rows, each sweeping two rows
  * more than its own, handed to the device's threads as they come free. */
@@ -114,6 +115,7 @@ int msocl__pl_rows_create(msocl__engine *s, cl_program prog)
   if (blocks > (size_t)s->lay.grid_ny)
     blocks = (size_t)s->lay.grid_ny;
   s->pl_blocks = blocks;
+  msocl__sweep_steps_init(s);
   /* several steps a launch: a block a unit, as a block's first steps
    * sweep rows of its neighbours' too */
   s->pl_steps_blocks = (blocks + BLOCKS_PER_UNIT - 1) / BLOCKS_PER_UNIT;
@@ -206,9 +208,21 @@ int msocl__pl_rows_steps(msocl__engine *s, int n, int *done)
       (s->wind_on && !s->pl_rows_wind) || s->field_on || s->soft_m != 0 ||
       s->o.strain != MSOCL_STRAIN_NONE)
     return MSOCL_OK;
-  const int r = s->pl_set, w = 1 - r, k = n < ROWS_STEPS ? n : ROWS_STEPS;
+  int start, end;
+  const int r = s->pl_set, w = 1 - r,
+            k = msocl__sweep_next(s, n, &start, &end);
+  if (k < 2)
+    return MSOCL_OK;
   MSOCL__TRY(msocl__arg_int(s, s->pl_rows_steps, "steps", k));
+  if (start) {
+    MSOCL__CL(clFinish(s->dev->queue));
+    s->pl_trial_t0 = msocl__seconds();
+  }
   MSOCL__TRY(sweep(s, s->pl_rows_steps, r, w, w, s->pl_steps_blocks));
+  if (end) {
+    MSOCL__CL(clFinish(s->dev->queue));
+    msocl__sweep_took(s, msocl__seconds() - s->pl_trial_t0);
+  }
   *done = k;
   return MSOCL_OK;
 }

@@ -7,7 +7,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 /* An msocl_choice field: AUTO, ON or OFF. */
 static int check_choice(msocl_choice c, const char *name)
@@ -110,6 +109,10 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
   if (t->buffer_slots < 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "buffer_slots is %d: >= 0",
                        t->buffer_slots);
+  if (t->sweep_steps < 0 || t->sweep_steps > MSOCL_MAX_SWEEP_STEPS)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "sweep_steps is %d: 1 to %d, or 0 to choose",
+                       t->sweep_steps, MSOCL_MAX_SWEEP_STEPS);
   if (t->calibrate_steps < 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "calibrate_steps %d is negative",
                        t->calibrate_steps);
@@ -147,12 +150,6 @@ static void scene_scale(msocl_sim *s, const msocl_model *m)
 }
 
 
-static double now(void)
-{
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* Weighs each device by its speed: the whole model for `steps` steps on
  * it alone (after one untimed step, which builds and warms up). */
@@ -169,12 +166,12 @@ static int calibrate(msocl_sim *s, msocl_runtime *rt, const msocl_model *m,
       rc = msocl__integrate(e, 1);
     if (rc == MSOCL_OK && clFinish(e->dev->queue) != CL_SUCCESS)
       rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "calibration failed");
-    double t0 = now();
+    double t0 = msocl__seconds();
     if (rc == MSOCL_OK)
       rc = msocl__integrate(e, o.tuning.calibrate_steps);
     if (rc == MSOCL_OK && clFinish(e->dev->queue) != CL_SUCCESS)
       rc = msocl__fail(MSOCL_ERR_INVALID_ARG, "calibration failed");
-    double t = now() - t0;
+    double t = msocl__seconds() - t0;
     msocl__engine_destroy(e);
     if (rc != MSOCL_OK)
       return rc;

@@ -128,6 +128,15 @@ int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout)
   return MSOCL_OK;
 }
 
+int msocl_sim_sweep_steps(const msocl_sim *s, int *steps)
+{
+  if (!s || !steps)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim or out-pointer is NULL");
+  const msocl__engine *e = s->part[0];
+  *steps = s->nparts == 1 && e->pl_rows_steps ? e->pl_steps_k : 1;
+  return MSOCL_OK;
+}
+
 int msocl_sim_connectivity(const msocl_sim *s, int *slots, int *classes)
 {
   if (!s)

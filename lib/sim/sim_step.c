@@ -8,24 +8,17 @@
 
 #include <math.h>
 #include <string.h>
-#include <time.h>
 
-static double now(void)
-{
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 /* Waits for engine d's queues: its kernels, and the copies into and out
  * of its halos (whose device time is then booked). */
 static int finish(msocl_sim *s, int d)
 {
-  double t0 = now();
+  double t0 = msocl__seconds();
   MSOCL__CL(clFinish(s->part[d]->dev->queue));
   if (s->nparts > 1 && s->x.xq[d])
     MSOCL__CL(clFinish(s->x.xq[d]));
-  s->x.stat[d].wait_seconds += now() - t0;
+  s->x.stat[d].wait_seconds += msocl__seconds() - t0;
   if (s->nparts > 1) {
     msocl__exchange_settle(s, d);
     msocl__exchange_marks(s, d, 0);
@@ -50,17 +43,17 @@ static int finish_all(msocl_sim *s)
 /* Gather (after the queue finished) or scatter, timed on the host. */
 static int gather(msocl_sim *s, int d, unsigned mask)
 {
-  double t0 = now();
+  double t0 = msocl__seconds();
   int rc = msocl__exchange_gather(s, d, mask);
-  s->x.stat[d].host_seconds += now() - t0;
+  s->x.stat[d].host_seconds += msocl__seconds() - t0;
   return rc;
 }
 
 static int scatter(msocl_sim *s, int d)
 {
-  double t0 = now();
+  double t0 = msocl__seconds();
   int rc = msocl__exchange_scatter(s, d);
-  s->x.stat[d].host_seconds += now() - t0;
+  s->x.stat[d].host_seconds += msocl__seconds() - t0;
   return rc;
 }
 
@@ -160,14 +153,14 @@ static int job(void *ctx, int d)
     mark[1] = NULL;
   if (rc == MSOCL_OK && ahead) {
     /* only the reads are waited for; the rest queues on */
-    double t0 = now();
+    double t0 = msocl__seconds();
     cl_int err = clFlush(e->dev->queue);
     if (err != CL_SUCCESS)
       rc = msocl__fail(err, "clFlush failed: %s (%d)", msocl_err_name(err),
                        (int)err);
     if (rc == MSOCL_OK) /* the reads go with the markers, if any */
       rc = msocl__exchange_wait(s, d, mark[1] ? m : NULL);
-    x->stat[d].wait_seconds += now() - t0;
+    x->stat[d].wait_seconds += msocl__seconds() - t0;
   } else if (rc == MSOCL_OK) {
     rc = finish(s, d);
     if (rc == MSOCL_OK && mask)
