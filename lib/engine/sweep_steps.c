@@ -55,10 +55,12 @@ int msocl__sweep_next(msocl__engine *s, int n, int *start, int *end)
     return 0;
   if (s->pl_steps_k)
     return n < s->pl_steps_k ? n : s->pl_steps_k;
-  if (s->pl_trial_left > 0) {
+  if (s->pl_trial_left > 0 && current(s) <= n) {
     *end = --s->pl_trial_left == 0;
     return current(s);
   }
+  /* a trial cut short (a call that failed inside it) starts again */
+  s->pl_trial_left = 0;
   /* the first launch builds PoCL's work-group function: not timed */
   const int plain = n < 4 ? n : 4;
   if (s->pl_trials == 0 || n < TRIAL_STEPS) {
