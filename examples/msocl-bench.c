@@ -88,7 +88,7 @@ static int usage(FILE *f, int code)
 "                 its speed against each layout's and whether their final\n"
 "                 positions agree bit for bit\n"
 "  --sweep-steps N  table1 and wind: GRID's sweep on a CPU runs N steps a\n"
-"                 launch (1-8; default 0: the library times 2, 3, 4, 8)\n"
+"                 launch (1-8; default 0: the library times 4, 3, 2)\n"
 "  --quick        tiny sizes and few steps: a smoke test\n"
 "  --csv FILE     also write one CSV row per run to FILE\n"
 "  -h, --help     this text\n");

@@ -393,8 +393,8 @@ typedef struct {
    * MSOCL_MAX_SWEEP_STEPS (1: a launch a step). More read and write the
    * state fewer times but recompute more rows at the blocks' edges and
    * keep more in cache; the best count depends on the CPU's caches. 0:
-   * 2, 3, 4 and 8 each timed over the first launches, the fastest kept
-   * (msocl_sim_sweep_steps says which). */
+   * 4, 3 and 2 each timed over the first long calls, the fastest kept
+   * (msocl_sim_sweep_steps says which; docs/API.md). */
   int sweep_steps;
 } msocl_tuning;
 
