@@ -13,7 +13,16 @@
 #              BUFFER and of GRID, and BUFFER with spring classes (-C) and
 #              values (-V) forced, final meshes compared bit for bit
 #              with BUFFER's (as make check does on PoCL; the GPU
-#              machine has no Check)                          (seconds)
+#              machine has no Check); then `msocl-bench verify`: every
+#              layout, integrator, contact and relaxed math against the
+#              double host reference with the tests' tolerances, and
+#              against the same runs on PoCL saved on the build machine
+#              in MSOCL_BENCH_AGAINST (default ../.gpu/verify_pocl.txt,
+#              made there by `examples/msocl-bench verify -d cpu --save
+#              .gpu/verify_pocl.txt`)                   (under a minute)
+#   table1q    Table 1 trimmed for the first command: each layout at
+#              MSOCL_BENCH_GRIDS (default 128,512,1024,2048), 200 steps
+#              best of 3, the copy bandwidth, no serial C  (a minute or two)
 #   table1     Table 1 on the GPU: 48..2048 per layout, with the one-kernel
 #              step (--fused), BUFFER's classes and values rows
 #              (--values), serial C beside it           (about 7 min)
@@ -35,7 +44,14 @@
 #              and per-point search), wind on a flag at 128..512^2,
 #              the analytic colliders at rest and moving   (a few minutes)
 # Each stage writes STAGE.txt (and .csv) under OUTDIR with the command at
-# the top. Back on the build machine: bench/plot.sh OUTDIR/precision.csv
+# the top; with MSOCL_BENCH_PACK=FILE, OUTDIR is then packed into the
+# tarball FILE (the GPU machine returns a few files from $OUT: keep OUTDIR
+# outside it). The first command, about 4 minutes on the GPU machine:
+#   . .gpu/env.sh; tar xf libmsocl-0.1.0.tar.gz && cd libmsocl-0.1.0 &&
+#   ./configure -q && make -j16 >/dev/null && MSOCL_BENCH_PACK=$OUT/first.tgz
+#   bench/gpu.sh /tmp/gpu1 devices verify table1q
+# the second, if time is left: `... bench/gpu.sh /tmp/gpu2 split
+# precision` packed into $OUT/second.tgz. Back on the build machine: bench/plot.sh OUTDIR/precision.csv
 # OUTDIR/precision.png and bench/plot_strain.sh OUTDIR/strain.csv
 # OUTDIR/strain.png, then commit OUTDIR as bench/results/<gpu>/.
 # MSOCL_BENCH_DEVICE=cpu runs the single-device stages on PoCL's CPU
@@ -99,6 +115,20 @@ for stage in $stages; do
       fi
     done
     rm -f "$out"/verify_*.obj
+    against=${MSOCL_BENCH_AGAINST:-../.gpu/verify_pocl.txt}
+    if [ -f "$against" ]; then
+      record verify_reference env MSOCL_DEVICE=$dev $bench verify \
+        --against "$against" --save "$out/verify_positions.txt" \
+        --csv "$out/verify_reference.csv"
+    else
+      record verify_reference env MSOCL_DEVICE=$dev $bench verify \
+        --save "$out/verify_positions.txt" --csv "$out/verify_reference.csv"
+    fi
+    ;;
+  table1q)
+    record table1q env MSOCL_DEVICE=$dev $bench table1 \
+      -g "${MSOCL_BENCH_GRIDS:-128,512,1024,2048}" -s 1000 --big-steps 200 \
+      --repeat 3 --no-serial --csv "$out/table1q.csv"
     ;;
   table1)
     record table1 env MSOCL_DEVICE=$dev $bench table1 --big-steps 200 \
@@ -165,3 +195,7 @@ for stage in $stages; do
     ;;
   esac
 done
+if [ -n "${MSOCL_BENCH_PACK:-}" ]; then
+  tar czf "$MSOCL_BENCH_PACK" -C "$(dirname "$out")" "$(basename "$out")"
+  echo "packed $out into $MSOCL_BENCH_PACK"
+fi

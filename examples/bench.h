@@ -46,6 +46,8 @@ struct bench_opts {
                                      (tuning.sweep_steps; 0 AUTO) */
   int sweeps[BENCH_MAX_LIST], nsweeps; /* --sweeps (strain) */
   const char *csv;                /* --csv */
+  int no_serial;                  /* --no-serial: table1 without serial C */
+  const char *save, *against;     /* --save, --against FILE (verify) */
 };
 
 /* One run: a CSV row. NaN numbers are written as empty fields. */
@@ -92,6 +94,13 @@ void bench_progress(int i, int n, const char *fmt, ...)
  * msocl_cloth_desc_init leaves it. */
 void bench_cloth(msocl_cloth_desc *d, int n, const float origin[3],
                  const float u[3], const float v[3]);
+/* The two scenes the modes share, NULL after saying why: the tablecloth
+ * (TC_*) with *dt half its symplectic stable step (table1), and a 1 m
+ * square of n x n points (0.5 kg, the tablecloth's springs, dashpots)
+ * flat in the x-z plane, held at the two corners of one edge
+ * (precision, verify). */
+msocl_model *bench_tablecloth(int n, float *dt);
+msocl_model *bench_hanging_cloth(int n);
 /* Prints the library's error and returns 1. */
 int bench_fail(const char *what, int rc);
 /* The runtime o->spec names, and its first device's info: 0, or 1 after
@@ -117,6 +126,7 @@ int bench_strain(const struct bench_opts *o, FILE *csv);
 int bench_colliders(const struct bench_opts *o, FILE *csv);
 int bench_meshes(const struct bench_opts *o, FILE *csv);
 int bench_wind(const struct bench_opts *o, FILE *csv);
+int bench_verify(const struct bench_opts *o, FILE *csv);
 /* msocl-bench meshcollider (bench_mesh_collider.c). */
 int bench_mesh_collider(const struct bench_opts *o, FILE *csv);
 

@@ -16,9 +16,7 @@
 #define MIN_TIME 0.3 /* s: short runs repeat until this, the best counts */
 #define MAX_REPS 10
 
-/* A 1 m square of n x n points (0.5 kg, the tablecloth's springs) lying
- * flat in the x-z plane, held at the two corners of one edge. */
-static msocl_model *build(int n)
+msocl_model *bench_hanging_cloth(int n)
 {
   msocl_cloth_desc d;
   const float origin[3] = {-0.5f, 0.0f, -0.5f}, u[3] = {1, 0, 0},
@@ -139,7 +137,7 @@ int bench_precision(const struct bench_opts *o, FILE *csv)
 {
   int g = o->grids[0];
   msocl_runtime *rt = NULL;
-  msocl_model *m = build(g);
+  msocl_model *m = bench_hanging_cloth(g);
   if (!m)
     return 1;
   int n = g * g, ndev = 0, rc;

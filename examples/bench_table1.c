@@ -52,7 +52,7 @@ static const char *layout_name(int layout, int variant)
                                         : "buffer";
 }
 
-static msocl_model *build(int n, float *dt)
+msocl_model *bench_tablecloth(int n, float *dt)
 {
   msocl_cloth_desc d;
   /* u = z, v = x: the tablecloth example's cloth, normals up */
@@ -506,7 +506,7 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
       continue;
     }
     float dt = 0.0f;
-    msocl_model *m = build(n, &dt);
+    msocl_model *m = bench_tablecloth(n, &dt);
     if (!m) {
       rc = 1;
       break;
@@ -516,7 +516,8 @@ int bench_table1(const struct bench_opts *o, FILE *csv)
     const float *spos = NULL;
     bench_serial *s = NULL;
     double sips = 0.0;
-    run_serial(&c, n, dt, steps, &spos, &s, &sips);
+    if (!o->no_serial)
+      run_serial(&c, n, dt, steps, &spos, &s, &sips);
     bench_expert *e = NULL;
     c.expert_pos = NULL;
     if (o->expert)

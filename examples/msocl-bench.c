@@ -3,7 +3,7 @@
  * math mode (precision), and the second seed's jello cube per engine
  * (lattice). A table on stdout, one CSV row per run.
  *
- *   msocl-bench [table1|precision|lattice|strain|colliders|meshes|wind|meshcollider] [-d SPEC] [-g LIST] [-s STEPS]
+ *   msocl-bench [table1|precision|lattice|strain|colliders|meshes|wind|meshcollider|verify] [-d SPEC] [-g LIST] [-s STEPS]
  *               [-l LIST] [-i LIST] [-m LIST] [-T SECONDS] [--from X]
  *               [--levels N]
  *               [--max-grid N] [--big-steps N] [--repeat N] [--copy-mib N]
@@ -27,7 +27,7 @@ static int usage(FILE *f, int code)
 {
   fprintf(f,
 "usage: msocl-bench [table1|precision|lattice|strain|colliders|meshes|wind|\n"
-"                   meshcollider]\n"
+"                   meshcollider|verify]\n"
 "                   [options]\n"
 "  table1     the paper's Table 1: tablecloth on a round table, serial C\n"
 "             (Algorithm 1) against libmsocl per layout, with a roofline\n"
@@ -56,6 +56,10 @@ static int usage(FILE *f, int code)
 "             static 10 000-triangle sphere mesh and against it moving\n"
 "             (new vertices every 10 steps, and every 60 Hz frame's 167),\n"
 "             side by side (-g default 128,512; -s default 200)\n"
+"  verify     the device against the double host reference with the\n"
+"             tests' tolerances (every layout and integrator, contact,\n"
+"             relaxed math), for a machine without the test suite; exit\n"
+"             status 1 if a check fails\n"
 "options:\n"
 "  -d SPEC        device spec (MSOCL_DEVICE grammar; 'all' = every device)\n"
 "  -g LIST        grid sizes, e.g. 48,64,96 (table1: default 48,64,96,128,\n"
@@ -89,6 +93,10 @@ static int usage(FILE *f, int code)
 "                 positions agree bit for bit\n"
 "  --sweep-steps N  table1 and wind: GRID's sweep on a CPU runs N steps a\n"
 "                 launch (1-8; default 0: the library times 4, 3, 2)\n"
+"  --no-serial    table1: without the serial C rows (slow at 2048^2)\n"
+"  --save FILE    verify: also write each check's final positions to FILE\n"
+"  --against FILE verify: also compare them with FILE's, saved on another\n"
+"                 device (within twice the reference tolerance)\n"
 "  --quick        tiny sizes and few steps: a smoke test\n"
 "  --csv FILE     also write one CSV row per run to FILE\n"
 "  -h, --help     this text\n");
@@ -178,6 +186,14 @@ int main(int argc, char **argv)
       o.values = 1, takes = 0;
     } else if (!strcmp(w, "--expert")) {
       o.expert = 1, takes = 0;
+    } else if (!strcmp(w, "verify") && a == 1) {
+      mode = 8, takes = 0;
+    } else if (!strcmp(w, "--no-serial")) {
+      o.no_serial = 1, takes = 0;
+    } else if (!strcmp(w, "--save")) {
+      bad = !v, o.save = v;
+    } else if (!strcmp(w, "--against")) {
+      bad = !v, o.against = v;
     } else if (!strcmp(w, "--quick")) {
       o.quick = 1, takes = 0;
     } else if (!v) {
@@ -326,7 +342,8 @@ int main(int argc, char **argv)
            : mode == 4 ? bench_colliders(&o, csv)
            : mode == 5 ? bench_meshes(&o, csv)
            : mode == 6 ? bench_wind(&o, csv)
-                       : bench_mesh_collider(&o, csv);
+           : mode == 7 ? bench_mesh_collider(&o, csv)
+                       : bench_verify(&o, csv);
   if (csv && fclose(csv) != 0) {
     perror(o.csv);
     rc = 1;

@@ -42,6 +42,30 @@ grep -q "GRID's sweep: 3 steps a launch\$" "$tmp/w.txt" ||
 ./examples/msocl-bench table1 --quick -g 20 --sweep-steps 9 >/dev/null 2>&1 &&
   fail "table1 --sweep-steps 9 accepted"
 
+# --no-serial leaves serial C out: the device's row alone
+./examples/msocl-bench table1 --quick -g 8 -s 5 -l grid --no-serial \
+  --csv "$tmp/n.csv" >/dev/null || fail "table1 --no-serial exited $?"
+[ "$(tail -n +2 "$tmp/n.csv" | wc -l)" -eq 1 ] &&
+  grep -q ',grid,symplectic,precise,8,' "$tmp/n.csv" ||
+  fail "table1 --no-serial rows: $(cat "$tmp/n.csv")"
+
+# verify: every check within the tests' tolerance on this device; its
+# saved positions read back bitwise; one point saved 1 m away is caught
+./examples/msocl-bench verify --quick --save "$tmp/v.txt" --csv "$tmp/v.csv" \
+  >"$tmp/v.out" || fail "verify exited $?: $(grep -v ' pass ' "$tmp/v.out")"
+[ "$(head -n 1 "$tmp/v.csv")" = "$header" ] || fail "verify CSV header"
+[ "$(grep -c ',pass,,$' "$tmp/v.csv")" -eq 16 ] || fail "verify: not 16 passes"
+./examples/msocl-bench verify --quick --against "$tmp/v.txt" >"$tmp/a.out" ||
+  fail "verify --against its own save exited $?"
+[ "$(grep -c ' pass  *0 (bitwise)$' "$tmp/a.out")" -eq 16 ] ||
+  fail "verify --against its own save: $(cat "$tmp/a.out")"
+sed -E '/^tablecloth24-grid/ s/^([^ ]+ [0-9]+) [^ ]+/\1 0x1p+0/' "$tmp/v.txt" \
+  >"$tmp/bad.txt"
+./examples/msocl-bench verify --quick --against "$tmp/bad.txt" >"$tmp/b.out" &&
+  fail "verify passed against a moved point"
+grep -q '^tablecloth24-grid-.* pass .* FAIL$' "$tmp/b.out" ||
+  fail "verify did not name the moved point's check: $(cat "$tmp/b.out")"
+
 ./examples/msocl-bench precision --quick -g 5 -i symplectic,implicit \
   -m precise --levels 2 --csv "$tmp/p.csv" || fail "precision exited $?"
 [ "$(head -n 1 "$tmp/p.csv")" = "$header" ] || fail "precision CSV header"
