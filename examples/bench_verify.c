@@ -163,6 +163,16 @@ int bench_verify(const struct bench_opts *o, FILE *csv)
     return 1;
   char device[128];
   bench_device_label(device, sizeof device, &info);
+  /* a file to compare with that cannot be read is an error, not a
+   * column of "not saved" */
+  FILE *in = o->against ? fopen(o->against, "r") : NULL;
+  if (o->against && !in) {
+    perror(o->against);
+    msocl_runtime_destroy(rt);
+    return 1;
+  }
+  if (in)
+    fclose(in);
   FILE *out = NULL;
   if (o->save && !(out = fopen(o->save, "w"))) {
     perror(o->save);

@@ -65,6 +65,8 @@ sed -E '/^tablecloth24-grid/ s/^([^ ]+ [0-9]+) [^ ]+/\1 0x1p+0/' "$tmp/v.txt" \
   fail "verify passed against a moved point"
 grep -q '^tablecloth24-grid-.* pass .* FAIL$' "$tmp/b.out" ||
   fail "verify did not name the moved point's check: $(cat "$tmp/b.out")"
+./examples/msocl-bench verify --quick --against "$tmp/none.txt" \
+  >/dev/null 2>&1 && fail "verify accepted a missing --against file"
 
 ./examples/msocl-bench precision --quick -g 5 -i symplectic,implicit \
   -m precise --levels 2 --csv "$tmp/p.csv" || fail "precision exited $?"
