@@ -187,9 +187,13 @@ int bench_verify(const struct bench_opts *o, FILE *csv)
   printf("%-44s %6s %12s %9s %6s %14s\n", "check", "steps", "|dev-ref| m",
          "tolerance", "result", "|dev-saved| m");
   int failed = 0, rc = MSOCL_OK;
-  const int big = 3 * 24 * 24;
-  float *p = malloc(big * sizeof *p), *w = malloc(big * sizeof *w);
-  double *q = malloc(big * sizeof *q);
+  int big = 0; /* the largest check's floats */
+  for (int k = 0; k < NCHECKS; k++)
+    big = 3 * checks[k].n * checks[k].n > big ? 3 * checks[k].n * checks[k].n
+                                              : big;
+  float *p = malloc((size_t)big * sizeof *p),
+        *w = malloc((size_t)big * sizeof *w);
+  double *q = malloc((size_t)big * sizeof *q);
   for (int k = 0; k < NCHECKS && p && w && q; k++) {
     const struct check *c = &checks[k];
     /* --quick: a quarter of the steps, for the smoke test */
