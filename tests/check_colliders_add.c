@@ -441,6 +441,16 @@ START_TEST(bad_input)
       "quaternion");
   ERR(msocl_sim_add_box(s, inf3, ident, HALF, 0.3f, &id),
       MSOCL_ERR_NOT_FINITE, "box 1");
+  /* finite, past a coordinate's bound (a step's squares overflow) */
+  const float huge3[3] = {0.0f, 1e30f, 0.0f};
+  ERR(msocl_sim_add_sphere(s, huge3, 0.1f, 0.3f, &id), MSOCL_ERR_BAD_VALUE,
+      "sphere 1: |1e+30| exceeds");
+  ERR(msocl_sim_add_sphere(s, c, 1e30f, 0.3f, &id), MSOCL_ERR_BAD_VALUE,
+      "exceeds");
+  ERR(msocl_sim_add_capsule(s, c, huge3, 0.1f, 0.3f, &id),
+      MSOCL_ERR_BAD_VALUE, "capsule 1");
+  ERR(msocl_sim_add_box(s, c, ident, huge3, 0.3f, &id), MSOCL_ERR_BAD_VALUE,
+      "box 1");
   ck_assert_int_eq(id, 7); /* untouched by a refused add */
   /* unknown and removed ids */
   ERR(msocl_sim_remove_collider(s, 1), MSOCL_ERR_BAD_INDEX, "out of range");

@@ -504,6 +504,9 @@ START_TEST(bad_input)
       "position coordinate 1 is nan");
   ERR(msocl_sim_set_collider_pose(s, 0, P, inf4), MSOCL_ERR_NOT_FINITE,
       "rotation component 1 is inf");
+  const float huge3[3] = {0.0f, 0.0f, 1e30f};
+  ERR(msocl_sim_set_collider_pose(s, 0, huge3, ident), MSOCL_ERR_BAD_VALUE,
+      "position coordinate 2, 1e+30, exceeds");
   ERR(msocl_sim_set_collider_pose(s, 0, P, zero4), MSOCL_ERR_BAD_VALUE,
       "quaternion is zero");
   ERR(msocl_sim_set_collider_pose(s, 1, top, tilt), MSOCL_ERR_BAD_VALUE,

@@ -477,6 +477,21 @@ START_TEST(bad_input)
   EXPECT(msocl_model_set_air_resistance(m, 0.9f), MSOCL_ERR_INVALID_ARG);
   EXPECT(msocl_sim_set_viscous_damping(s, -1.0f), MSOCL_ERR_BAD_VALUE);
   EXPECT(msocl_sim_set_viscous_damping(s, nan), MSOCL_ERR_NOT_FINITE);
+  /* finite values past the limits a step's floats hold, as the model's */
+  EXPECT(msocl_sim_set_gravity(s, 0.0f, -1e35f, 0.0f), MSOCL_ERR_BAD_VALUE);
+  SAYS("exceeds");
+  EXPECT(msocl_sim_set_viscous_damping(s, 1e35f), MSOCL_ERR_BAD_VALUE);
+  SAYS("force limit");
+  float far[3 * N * N];
+  for (int q = 0; q < 3 * N * N; q++)
+    far[q] = q == 7 ? 1e38f : 0.0f;
+  EXPECT(msocl_sim_set_accelerations(s, far), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 2");
+  msocl_wind w;
+  msocl_wind_init(&w);
+  w.velocity[0] = 1e30f;
+  EXPECT(msocl_sim_set_wind(s, &w), MSOCL_ERR_BAD_VALUE);
+  SAYS("wind");
   /* targets */
   const float t[6] = {0.0f, 0.1f, 0.0f, 1.0f, 0.1f, 0.0f};
   float bad[6];
@@ -485,6 +500,10 @@ START_TEST(bad_input)
   EXPECT(msocl_sim_set_pin_targets(s, 2, NULL, bad), MSOCL_ERR_NOT_FINITE);
   bad[4] = -inf;
   EXPECT(msocl_sim_set_pin_targets(s, 2, NULL, bad), MSOCL_ERR_NOT_FINITE);
+  bad[4] = 1e20f;
+  EXPECT(msocl_sim_set_pin_targets(s, 2, NULL, bad), MSOCL_ERR_BAD_VALUE);
+  SAYS("target 1");
+  bad[4] = nan;
   EXPECT(msocl_sim_set_pin_targets(s, 1, (int[]){5}, t), MSOCL_ERR_BAD_VALUE);
   SAYS("not pinned");
   EXPECT(msocl_sim_set_pin_targets(s, 1, (int[]){N * N}, t),
@@ -505,6 +524,12 @@ START_TEST(bad_input)
   EXPECT(msocl_sim_write_list(s, 1, 1, (int[]){3}, bad + 3),
          MSOCL_ERR_NOT_FINITE);
   EXPECT(msocl_sim_write_range(s, 0, 0, 2, bad), MSOCL_ERR_NOT_FINITE);
+  bad[4] = 2e18f;
+  EXPECT(msocl_sim_write_range(s, 0, 0, 2, bad), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 1");
+  EXPECT(msocl_sim_write_list(s, 1, 2, (int[]){3, 9}, bad),
+         MSOCL_ERR_BAD_VALUE);
+  SAYS("point 9");
   EXPECT(msocl_sim_read_list(s, 0, 1, NULL, p), MSOCL_ERR_NULL_HANDLE);
   msocl_sim_destroy(s);
   /* the model is free again once its simulation is gone */

@@ -48,6 +48,20 @@ double msocl__seconds(void);
       return msocl__rc;                                                       \
   } while (0)
 
+/* The limits of msocl.h that keep a step's float arithmetic finite: a
+ * coordinate (and a speed) within MSOCL__COORD_MAX keeps squared
+ * distances, 3 (2 x 1e18)^2, below FLT_MAX; forces and accelerations (SI
+ * units) stop at MSOCL__FORCE_MAX, a factor 3e8 below FLT_MAX, room for
+ * sums and the step's products. Compared in double, as the floats they
+ * are. */
+#define MSOCL__COORD_MAX ((double)1e18f)
+#define MSOCL__FORCE_MAX ((double)1e30f)
+/* n triples xyz, each component finite (MSOCL_ERR_NOT_FINITE) and within
+ * max (MSOCL_ERR_BAD_VALUE); messages "<what>: <item> <i>: ...", i being
+ * idx[q] for triple q, or first + q without idx (core/limits.c). */
+int msocl__check_triples(const char *what, const char *item, const float *xyz,
+                         int n, const int *idx, int first, double max);
+
 /* Checks wind's parameters (finite; density and drag >= 0) and gives
  * kd = rho Cd / 2 and kl = rho Cl / 2 (core/wind.c). */
 int msocl__wind_check(const msocl_wind *w, double *kd, double *kl);
@@ -78,6 +92,8 @@ int msocl__collider_check(const msocl_model *m, const char *kind,
  * them (kind MSOCL__SPHERE or MSOCL__TABLE for round), messages naming
  * collider id. */
 int msocl__collider_friction(const char *kind, int id, float friction);
+/* n of a collider's coordinates or sizes, each within MSOCL__COORD_MAX. */
+int msocl__collider_extent(const char *kind, int id, const float *v, int n);
 int msocl__collider_plane(int id, const float normal[3], float offset,
                           float friction, struct msocl__collider *out);
 int msocl__collider_round(int id, int kind, const float centre[3],

@@ -25,6 +25,13 @@ int msocl__wind_check(const msocl_wind *w, double *kd, double *kl)
                          "wind: %s is %g", q < 3 ? "a velocity component"
                          : q == 3 ? "the density" : q == 4 ? "drag" : "lift",
                          (double)v[q]);
+  /* the force grows as the speed squared: that square within the limit */
+  for (int q = 0; q < 3; q++)
+    if (fabs(w->velocity[q]) > sqrt(MSOCL__FORCE_MAX))
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "wind: velocity component %g exceeds %g, whose "
+                         "square is the force limit",
+                         (double)w->velocity[q], sqrt(MSOCL__FORCE_MAX));
   if (w->density < 0 || w->drag < 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "wind: density %g and drag %g must be >= 0",

@@ -172,6 +172,12 @@ int msocl__pose_check(const char *call, int id, int kind,
                          d < 3 ? "position coordinate" : "rotation component",
                          d < 3 ? d : d - 3, (double)x);
   }
+  for (int d = 0; d < 3; d++)
+    if (fabs(position[d]) > MSOCL__COORD_MAX)
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "%s: collider %d's position coordinate %d, %g, "
+                         "exceeds %g",
+                         call, id, d, (double)position[d], MSOCL__COORD_MAX);
   double len = 0;
   for (int d = 0; d < 4; d++)
     len += (double)rotation[d] * rotation[d];

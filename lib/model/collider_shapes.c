@@ -25,6 +25,9 @@ int msocl__collider_capsule(int id, const float a[3], const float b[3],
   if (!(radius > 0))
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "capsule %d: radius %g must be > 0", id, radius);
+  MSOCL__TRY(msocl__collider_extent("capsule", id, a, 3));
+  MSOCL__TRY(msocl__collider_extent("capsule", id, b, 3));
+  MSOCL__TRY(msocl__collider_extent("capsule", id, &radius, 1));
   *out = (struct msocl__collider){.kind = MSOCL__CAPSULE, .friction = friction};
   for (int d = 0; d < 3; d++) {
     out->p[d] = a[d];
@@ -50,6 +53,8 @@ int msocl__collider_box(int id, const float centre[3], const float rotation[4],
       return msocl__fail(MSOCL_ERR_BAD_VALUE,
                          "box %d: half extent %d is %g, must be > 0", id, d,
                          half[d]);
+  MSOCL__TRY(msocl__collider_extent("box", id, centre, 3));
+  MSOCL__TRY(msocl__collider_extent("box", id, half, 3));
   /* in double: a float's square of a tiny or huge quaternion under- or
    * overflows */
   double len = 0;

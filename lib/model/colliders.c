@@ -47,6 +47,16 @@ static int check_vector(const char *kind, int id, const float v[3]) {
   return MSOCL_OK;
 }
 
+int msocl__collider_extent(const char *kind, int id, const float *v, int n)
+{
+  for (int d = 0; d < n; d++)
+    if (fabs(v[d]) > MSOCL__COORD_MAX)
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "%s %d: |%g| exceeds %g, the bound of a coordinate",
+                         kind, id, (double)v[d], MSOCL__COORD_MAX);
+  return MSOCL_OK;
+}
+
 static void fill(struct msocl__collider *c, int kind, const float v[3],
                  float w, float friction) {
   *c = (struct msocl__collider){.kind = kind, .friction = friction};
@@ -67,6 +77,8 @@ int msocl__collider_round(int id, int kind, const float centre[3],
   if (!(radius > 0))
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "%s %d: radius %g must be > 0",
                        name, id, radius);
+  MSOCL__TRY(msocl__collider_extent(name, id, centre, 3));
+  MSOCL__TRY(msocl__collider_extent(name, id, &radius, 1));
   fill(out, kind, centre, radius, friction);
   return MSOCL_OK;
 }
@@ -94,6 +106,7 @@ int msocl__collider_plane(int id, const float normal[3], float offset,
     return msocl__fail(MSOCL_ERR_NOT_FINITE,
                        "plane %d: offset %g / |normal| %g overflows a float",
                        id, offset, len);
+  MSOCL__TRY(msocl__collider_extent("plane", id, &off, 1));
   fill(out, MSOCL__PLANE, unit, off, friction);
   return MSOCL_OK;
 }

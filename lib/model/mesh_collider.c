@@ -46,11 +46,8 @@ static int check(const msocl_model *m, const float *verts, int nverts,
                                           : MSOCL_ERR_NOT_FINITE,
                        "mesh collider: friction %g is outside [0, 1]",
                        (double)friction);
-  for (int i = 0; i < 3 * nverts; i++)
-    if (!isfinite(verts[i]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "mesh collider: vertex %d has coordinate %g", i / 3,
-                         (double)verts[i]);
+  MSOCL__TRY(msocl__check_triples("mesh collider", "vertex", verts, nverts,
+                                  NULL, 0, MSOCL__COORD_MAX));
   int real = 0;
   for (int t = 0; t < ntris; t++) {
     const int *k = tris + 3 * (size_t)t;

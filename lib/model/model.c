@@ -111,16 +111,13 @@ static int reserve_triangles(msocl_model *m, int need) {
 /* -------------------------------------------------------------- checks */
 
 /* The limits of msocl.h (at msocl_model_add_points and _add_springs) that
- * keep a step's float arithmetic finite. A coordinate's bound keeps
- * squared distances, 3 (2 x 1e18)^2, below FLT_MAX; a mass in
- * [FLT_MIN, 1/FLT_MIN] has a normal 1/m; forces and accelerations (SI
- * units) stop at 1e30, a factor 3e8 below FLT_MAX, room for stretch past
- * the extent, sums and the step's products. Compared in double, as the
- * floats they are. */
-#define COORD_MAX ((double)1e18f)
+ * keep a step's float arithmetic finite: coordinates and forces as
+ * internal.h says, and a mass in [FLT_MIN, 1/FLT_MIN], whose 1/m is a
+ * normal float. */
+#define COORD_MAX MSOCL__COORD_MAX
 #define MASS_MIN ((double)FLT_MIN)
 #define MASS_MAX (1.0 / (double)FLT_MIN)
-#define FORCE_MAX ((double)1e30f)
+#define FORCE_MAX MSOCL__FORCE_MAX
 
 /* Indices in messages count from the start of the caller's arrays. */
 static int check_point(int i, const float *p, float mass) {

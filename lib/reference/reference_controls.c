@@ -14,10 +14,9 @@ int msocl_reference_set_gravity(msocl_reference *r, float gx, float gy,
   msocl__clear_error();
   if (!r)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "reference is NULL");
-  if (!isfinite(gx) || !isfinite(gy) || !isfinite(gz))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                       "gravity (%g, %g, %g) is not finite", (double)gx,
-                       (double)gy, (double)gz);
+  const float g[3] = {gx, gy, gz};
+  MSOCL__TRY(msocl__check_triples("msocl_reference_set_gravity", "vector",
+                                  g, 1, NULL, 0, MSOCL__FORCE_MAX));
   r->gravity[0] = gx;
   r->gravity[1] = gy;
   r->gravity[2] = gz;
@@ -80,11 +79,9 @@ int msocl_reference_set_pin_targets(msocl_reference *r, int count,
   if (!idx && count != npins)
     return msocl__fail(MSOCL_ERR_BAD_COUNT,
                        "%d targets for all %d pinned points", count, npins);
-  for (int q = 0; q < 3 * count; q++)
-    if (!isfinite(xyz[q]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "target %d coordinate %d is %g", q / 3, q % 3,
-                         (double)xyz[q]);
+  MSOCL__TRY(msocl__check_triples("msocl_reference_set_pin_targets",
+                                  "target", xyz, count, NULL, 0,
+                                  MSOCL__COORD_MAX));
   int *ix = malloc(((size_t)count + 1) * sizeof *ix);
   double *st = malloc((3 * (size_t)count + 1) * sizeof *st),
          *tg = malloc((3 * (size_t)count + 1) * sizeof *tg);

@@ -17,11 +17,10 @@ static int set(msocl_reference *r, const float *xyz, int forces)
     r->field = NULL;
     return MSOCL_OK;
   }
-  for (int i = 0; i < 3 * r->n; i++)
-    if (!isfinite(xyz[i]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "point %d's field component %d is %g", i / 3, i % 3,
-                         (double)xyz[i]);
+  MSOCL__TRY(msocl__check_triples(forces ? "msocl_reference_set_forces"
+                                         : "msocl_reference_set_accelerations",
+                                  "point", xyz, r->n, NULL, 0,
+                                  MSOCL__FORCE_MAX));
   if (!r->field && !(r->field = malloc(3 * (size_t)r->n * sizeof *r->field)))
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "the reference's field");
   for (int i = 0; i < 3 * r->n; i++)

@@ -30,9 +30,8 @@ int msocl_reference_set_soft_pins(msocl_reference *r, int count,
       return msocl__fail(MSOCL_ERR_BAD_VALUE, "soft pins: point %d is pinned",
                          idx[q]);
   }
-  for (int q = 0; q < 3 * count; q++)
-    if (!isfinite(xyz[q]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE, "soft pins: anchor %d", q / 3);
+  MSOCL__TRY(msocl__check_triples("soft pins", "anchor", xyz, count, NULL, 0,
+                                  MSOCL__COORD_MAX));
   const int move = count > 0 && count == r->soft_m &&
                    memcmp(idx, r->soft_idx, (size_t)count * sizeof *idx) == 0;
   int *keep = malloc(((size_t)count + 1) * sizeof *keep);

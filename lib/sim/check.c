@@ -46,7 +46,8 @@ double msocl__check_bound(const msocl_sim *s)
 
 /* The baseline: energy at the start and its scale; after writes, the
  * written state's energy added to e0 (which the first write took the
- * replaced state's off), and the scale kept at the larger. */
+ * replaced state's off), and the scale kept at the larger. A sum that is
+ * not finite accounts for nothing: the written state starts afresh. */
 int msocl__check_baseline(msocl_sim *s)
 {
   msocl_energy e;
@@ -54,7 +55,7 @@ int msocl__check_baseline(msocl_sim *s)
   if (rc != MSOCL_OK)
     return rc;
   const double sc = scale(s, &e);
-  if (s->e0_valid && s->moved) {
+  if (s->e0_valid && s->moved && isfinite(s->e0 + e.total)) {
     s->e0 += e.total;
     s->escale = sc > s->escale ? sc : s->escale;
     s->wrote = 1;
@@ -80,7 +81,9 @@ int msocl__check_backup(msocl_sim *s, int to_backup)
  * at the next step, which saves it as the state to restore), so the check
  * judges only what the steps did. A replaced state already past the bound
  * blew up in the steps since the last save; the check reports that and
- * restores the saved state, undoing the writes since. */
+ * restores the saved state, undoing the writes since. A replaced state
+ * (or a baseline) whose energy is not finite has no work to take off: the
+ * next step takes the written state's energy as a new start. */
 int msocl__check_write(msocl_sim *s)
 {
   if (s->o.check_every <= 0 || !s->e0_valid || s->moved || s->blown)
@@ -93,8 +96,11 @@ int msocl__check_write(msocl_sim *s)
     s->blown = 1;
     s->blown_step = s->steps;
     s->blown_total = e.total;
-  } else {
+  } else if (isfinite(e.total) && isfinite(s->e0)) {
     s->e0 -= e.total;
+    s->moved = 1;
+  } else {
+    s->e0_valid = 0;
     s->moved = 1;
   }
   return MSOCL_OK;

@@ -96,10 +96,9 @@ int msocl_sim_set_gravity(msocl_sim *s, float gx, float gy, float gz)
   msocl__clear_error();
   if (!s)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
-  if (!isfinite(gx) || !isfinite(gy) || !isfinite(gz))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                       "gravity (%g, %g, %g) is not finite", (double)gx,
-                       (double)gy, (double)gz);
+  const float g[3] = {gx, gy, gz};
+  MSOCL__TRY(msocl__check_triples("msocl_sim_set_gravity", "vector", g, 1,
+                                  NULL, 0, MSOCL__FORCE_MAX));
   /* gravity's potential is part of the blow-up check's energy: the change
    * moves its baseline as a write does */
   MSOCL__TRY(msocl__check_write(s));
@@ -127,6 +126,13 @@ static int set_damping(msocl_sim *s, int air, float value)
   if (air ? !(value > 0.0f && value <= 1.0f) : value < 0.0f)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "%s %g must be %s", what,
                        (double)value, air ? "in (0, 1]" : ">= 0");
+  /* as the model's check: the force at the model's extent a second */
+  const double ext1 = s->extent > 1.0 ? s->extent : 1.0;
+  if (!air && (double)value * ext1 > MSOCL__FORCE_MAX)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "viscous damping %g x speed %g (the model's extent a "
+                       "second) exceeds the force limit %g",
+                       (double)value, ext1, MSOCL__FORCE_MAX);
   struct msocl__controls *c;
   MSOCL__TRY(controls(s, &c));
   const int off = air ? value == 1.0f : value == 0.0f;
@@ -272,12 +278,8 @@ int msocl_sim_set_pin_targets(msocl_sim *s, int count, const int *idx,
                        "msocl_sim_set_pin_targets: %d targets for all %d "
                        "pinned points",
                        count, npins);
-  for (int q = 0; q < 3 * count; q++)
-    if (!isfinite(xyz[q]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "msocl_sim_set_pin_targets: target %d coordinate %d "
-                         "is %g",
-                         q / 3, q % 3, (double)xyz[q]);
+  MSOCL__TRY(msocl__check_triples("msocl_sim_set_pin_targets", "target",
+                                  xyz, count, NULL, 0, MSOCL__COORD_MAX));
   int *model = malloc(((size_t)count + 1) * sizeof *model),
       *at = malloc(((size_t)count + 1) * sizeof *at);
   unsigned char *seen = calloc((size_t)s->n, 1);

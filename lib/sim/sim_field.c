@@ -19,11 +19,8 @@ static int set(msocl_sim *s, const float *xyz, int forces)
                        "%s: a point field does not run on a simulation "
                        "split over %d devices",
                        what, s->nparts);
-  for (int i = 0; i < 3 * s->n; i++)
-    if (!isfinite(xyz[i]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "%s: point %d's component %d is %g", what, i / 3,
-                         i % 3, (double)xyz[i]);
+  MSOCL__TRY(msocl__check_triples(what, "point", xyz, s->n, NULL, 0,
+                                  MSOCL__FORCE_MAX));
   if (!s->perm)
     return msocl__field_set(s->part[0], xyz, forces);
   float *own = malloc(3 * (size_t)s->n * sizeof *own);

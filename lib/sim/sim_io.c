@@ -46,11 +46,11 @@ static int write_state(msocl_sim *s, int velocities, const float *xyz)
   if (!s || !xyz)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s is NULL",
                        s ? "input array" : "sim");
-  for (int i = 0; i < 3 * s->n; i++)
-    if (!isfinite(xyz[i]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "point %d: coordinate %d is %g", i / 3, i % 3,
-                         xyz[i]);
+  /* a speed within the coordinates' bound too: dt v stays one */
+  MSOCL__TRY(msocl__check_triples(velocities ? "msocl_sim_write_velocities"
+                                             : "msocl_sim_write_positions",
+                                  "point", xyz, s->n, NULL, 0,
+                                  MSOCL__COORD_MAX));
   int rc = msocl__check_write(s); /* the blow-up check's part */
   if (rc != MSOCL_OK)
     return rc;

@@ -6,6 +6,7 @@
 #include "sim.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 int msocl__meshes_create(msocl_sim *s, const msocl_model *m)
@@ -87,11 +88,10 @@ int msocl_sim_set_mesh_collider_vertices(msocl_sim *s, int id,
     return msocl__fail(MSOCL_ERR_NULL_HANDLE,
                        "mesh collider %d: verts is NULL", id);
   const int nv = msocl__mesh_nv(s->mesh[id]);
-  for (int i = 0; i < 3 * nv; i++)
-    if (!isfinite(verts[i]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "mesh collider %d: vertex %d has coordinate %g", id,
-                         i / 3, (double)verts[i]);
+  char what[48];
+  snprintf(what, sizeof what, "mesh collider %d", id);
+  MSOCL__TRY(msocl__check_triples(what, "vertex", verts, nv, NULL, 0,
+                                  MSOCL__COORD_MAX));
   msocl__mesh_vertices(s->mesh[id], verts);
   return MSOCL_OK;
 }

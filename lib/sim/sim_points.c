@@ -67,12 +67,9 @@ static int points_io(msocl_sim *s, int velocities, int write, int list,
       return msocl__fail(MSOCL_ERR_BAD_INDEX,
                          "%s: index %d (entry %d) out of range [0, %d)", what,
                          idx[q], q, s->n);
-  for (int q = 0; write && q < 3 * count; q++)
-    if (!isfinite(in[q]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "%s: point %d coordinate %d is %g", what,
-                         idx ? idx[q / 3] : first + q / 3, q % 3,
-                         (double)in[q]);
+  if (write)
+    MSOCL__TRY(msocl__check_triples(what, "point", in, count, idx, first,
+                                    MSOCL__COORD_MAX));
   if (count == 0)
     return MSOCL_OK;
   int *k = malloc((size_t)count * sizeof *k);

@@ -55,11 +55,8 @@ static int check(msocl_sim *s, int count, const int *idx, const float *xyz,
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "%s: soft pins do not run on a simulation split over "
                        "%d devices", what, s->nparts);
-  for (int q = 0; q < 3 * count; q++)
-    if (!isfinite(xyz[q]))
-      return msocl__fail(MSOCL_ERR_NOT_FINITE,
-                         "%s: anchor %d coordinate %d is %g", what, q / 3,
-                         q % 3, (double)xyz[q]);
+  MSOCL__TRY(msocl__check_triples(what, "anchor", xyz, count, NULL, 0,
+                                  MSOCL__COORD_MAX));
   unsigned char *seen = calloc((size_t)s->n + 1, 1);
   if (!seen)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "soft pins");
