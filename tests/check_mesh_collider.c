@@ -706,10 +706,71 @@ START_TEST(bad_input)
                    MSOCL_ERR_NULL_HANDLE);
   ck_assert_int_eq(msocl_sim_set_mesh_collider_vertices(s, 0, nan),
                    MSOCL_ERR_NOT_FINITE);
+  float huge[sizeof v / sizeof v[0]];
+  memcpy(huge, v, sizeof v);
+  huge[4] = 1e30f;
+  ck_assert_int_eq(msocl_sim_set_mesh_collider_vertices(s, 0, huge),
+                   MSOCL_ERR_BAD_VALUE);
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "vertex 1"));
   ck_assert_int_eq(msocl_sim_enable_mesh_collider(s, 2, 1),
                    MSOCL_ERR_BAD_INDEX);
   ck_assert_int_eq(msocl_sim_enable_mesh_collider(NULL, 0, 1),
                    MSOCL_ERR_NULL_HANDLE);
+  msocl_sim_destroy(s);
+  msocl_model_destroy(m);
+}
+END_TEST
+
+/* A closed cube mesh (top face at y = -0.05) lifted 5 cm over one call,
+ * its first move after calls that left it still, carries the 16 x 16
+ * cloth resting on it: every point over the top face ends at least the
+ * thickness, less TOL of it, above the face. (That call used to collide
+ * with the resting cube's triangles: the points ended up to 3 cm inside.) */
+static void cube(float *v, float cy)
+{
+  for (int i = 0; i < 8; i++) {
+    v[3 * i] = 0.5f + 0.2f * (i & 1 ? 1.0f : -1.0f);
+    v[3 * i + 1] = cy + 0.2f * (i & 2 ? 1.0f : -1.0f);
+    v[3 * i + 2] = 0.5f + 0.2f * (i & 4 ? 1.0f : -1.0f);
+  }
+}
+
+START_TEST(first_move_carries)
+{
+  /* outward: x (0-1), y (0-2), z (0-4) each low or high */
+  static const int t[36] = {0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5,
+                            0, 1, 5, 0, 5, 4, 2, 6, 7, 2, 7, 3,
+                            0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6};
+  msocl_cloth_desc d;
+  msocl_cloth_desc_init(&d);
+  d.nx = d.ny = 16;
+  msocl_model *m = NULL;
+  float v[24];
+  cube(v, -0.25f);
+  ck_assert_int_eq(msocl_model_cloth_grid(&m, &d), MSOCL_OK);
+  ck_assert_int_eq(msocl_model_add_mesh_collider(m, v, 8, t, 12,
+                                                 (float)THICK, 0.5f),
+                   MSOCL_OK);
+  msocl_sim_options o;
+  msocl_sim_options_init(&o);
+  o.dt = 5e-4f;
+  msocl_sim *s = NULL;
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, 1000), MSOCL_OK);
+  cube(v, -0.20f);
+  ck_assert_int_eq(msocl_sim_set_mesh_collider_vertices(s, 0, v), MSOCL_OK);
+  ck_assert_int_eq(msocl_sim_step(s, 100), MSOCL_OK);
+  float x[3 * 256];
+  ck_assert_int_eq(msocl_sim_read_positions(s, x), MSOCL_OK);
+  int over = 0;
+  for (int i = 0; i < 256; i++)
+    if (fabsf(x[3 * i] - 0.5f) < 0.15f && fabsf(x[3 * i + 2] - 0.5f) < 0.15f) {
+      over++;
+      ck_assert_msg(x[3 * i + 1] >= (1.0 - TOL) * THICK,
+                    "point %d at y = %g, under the lifted top face's %g",
+                    i, x[3 * i + 1], THICK);
+    }
+  ck_assert_int_ge(over, 16);
   msocl_sim_destroy(s);
   msocl_model_destroy(m);
 }
@@ -733,6 +794,7 @@ int main(void)
   tcase_add_test(tc, per_point_is_rows);
   tcase_add_test(tc, device_grid_is_host_grid);
   tcase_add_test(tc, culled_grid_misses_nothing);
+  tcase_add_test(tc, first_move_carries);
   suite_add_tcase(su, tc);
   return scene_run(su);
 }

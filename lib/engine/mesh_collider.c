@@ -834,6 +834,7 @@ int msocl__mesh_begin(msocl__engine *s, struct msocl__mesh_dev *d, int n)
       TRY(cloth_bounds(s, d));
     d->n = n;
     d->pending = 1;
+    d->placed = 0; /* a static call before it placed the resting mesh */
   } else {
     drop_read(d); /* stale by the next moving call */
     if (!d->built || d->culled) /* once while it stays: whole */
