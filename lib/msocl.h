@@ -534,8 +534,8 @@ MSOCL_EXTERN int msocl_sim_set_soft_pins(msocl_sim *s, int count,
  * The pose set is
  * reached at the end of the next msocl_sim_step(s, n): before step j the
  * collider is at (1 - f) start + f end (in double), f = (float)j /
- * (float)n, the rotation by nlerp (normalised linear blend in double, end
- * taken in the start's hemisphere), exact at both ends, moving toward the
+ * (float)n, the rotation by nlerp (normalised linear blend in double of the
+ * ends made unit, end taken in the start's hemisphere), exact at both ends, moving toward the
  * pose at (j + 1) / n; the collision response acts on the
  * velocity relative to the surface's u = v + w x (p - c) over the step
  * (friction on the relative tangential part: a point resting on a moving

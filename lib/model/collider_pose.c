@@ -123,12 +123,16 @@ void msocl__pose_lerp(const float a[3], const float qa[4], const float b[3],
     memcpy(Q, f == 0.0f ? qa : qb, 4 * sizeof *Q);
     return;
   }
-  double dot = 0, q[4], len = 0;
+  /* the ends as unit quaternions: a quaternion's scale (10 q is q) must
+   * not weigh its end in the blend */
+  double ua[4], ub[4], dot = 0, q[4], len = 0;
+  unit(qa, ua);
+  unit(qb, ub);
   for (int d = 0; d < 4; d++)
-    dot += (double)qa[d] * qb[d];
+    dot += ua[d] * ub[d];
   const double sb = dot < 0 ? -g : g;
   for (int d = 0; d < 4; d++) {
-    q[d] = (1 - g) * qa[d] + sb * qb[d];
+    q[d] = (1 - g) * ua[d] + sb * ub[d];
     len += q[d] * q[d];
   }
   len = sqrt(len);
