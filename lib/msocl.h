@@ -360,11 +360,13 @@ typedef struct {
   msocl_layout layout;
   int device;   /* first device: index into the runtime's devices */
   /* Split the model into contiguous ranges of points, one a device from
-   * `device` on: 0 or 1 device, or MSOCL_ALL_DEVICES. */
+   * `device` on: 0 or 1 device, or MSOCL_ALL_DEVICES (another negative
+   * count: MSOCL_ERR_BAD_VALUE). */
   int ndevices;
   float weights[MSOCL_MAX_DEVICES]; /* each device's share; all 0: equal */
   /* > 0 and all weights 0: weigh the devices by their speed on this
-   * model, timed over this many steps on each device alone. */
+   * model, timed over this many steps on each device alone (after the
+   * same steps untimed, which build and warm up). */
   int calibrate_steps;
   /* Symplectic Euler's two passes as one kernel: one launch and one read
    * of the state a step instead of two (gather layouts, no velocity

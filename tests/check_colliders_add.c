@@ -452,6 +452,8 @@ START_TEST(bad_input)
   ERR(msocl_sim_add_box(s, c, ident, huge3, 0.3f, &id), MSOCL_ERR_BAD_VALUE,
       "box 1");
   ck_assert_int_eq(id, 7); /* untouched by a refused add */
+  ERR(msocl_sim_enable_mesh_collider(s, 0, 1), MSOCL_ERR_BAD_INDEX,
+      "mesh collider 0: the simulation has none");
   /* unknown and removed ids */
   ERR(msocl_sim_remove_collider(s, 1), MSOCL_ERR_BAD_INDEX, "out of range");
   ERR(msocl_sim_remove_collider(s, -1), MSOCL_ERR_BAD_INDEX, "out of range");

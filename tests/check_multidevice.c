@@ -362,7 +362,9 @@ START_TEST(device_without_images)
 }
 END_TEST
 
-/* Weights from a calibration run: positive, reported, and the split
+/* Weights from a calibration run: positive, reported, within 20x of each
+ * other on these two alike devices (a timed run that built kernels gave
+ * one 2 800x the other's weight on a cold PoCL cache), and the split
  * still gives one device's bits. */
 START_TEST(calibrated_weights)
 {
@@ -380,6 +382,10 @@ START_TEST(calibrated_weights)
   printf("calibrated weights %.3g : %.3g -> %d and %d points\n",
          info.weight[0], info.weight[1], info.count[0], info.count[1]);
   ck_assert(info.weight[0] > 0.0f && info.weight[1] > 0.0f);
+  ck_assert_msg(info.weight[0] < 20.0f * info.weight[1] &&
+                    info.weight[1] < 20.0f * info.weight[0],
+                "alike devices weighed %g and %g", info.weight[0],
+                info.weight[1]);
   ck_assert_int_eq(info.count[0] + info.count[1], 576);
   o.tuning.ndevices = 1;
   ck_assert_int_eq(msocl_sim_create(&one, rt, m, &o), MSOCL_OK);
@@ -393,6 +399,10 @@ START_TEST(calibrated_weights)
   msocl_sim_destroy(one);
   o.tuning.calibrate_steps = -1;
   ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  o.tuning.calibrate_steps = 0;
+  o.tuning.ndevices = -2; /* neither a count nor MSOCL_ALL_DEVICES */
+  ck_assert_int_eq(msocl_sim_create(&s, rt, m, &o), MSOCL_ERR_BAD_VALUE);
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "MSOCL_ALL_DEVICES"));
   msocl_model_destroy(m);
 }
 END_TEST

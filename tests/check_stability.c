@@ -439,6 +439,19 @@ START_TEST(stable_dt_refuses)
                    MSOCL_ERR_BAD_VALUE);
   ck_assert_int_eq(msocl_stable_dt_at(m, NULL, MSOCL_VERLET, &dt),
                    MSOCL_ERR_NULL_HANDLE);
+  /* a state that is not one: refused as the writes refuse it */
+  float bad[sizeof xyz / sizeof xyz[0]];
+  memcpy(bad, xyz, sizeof xyz);
+  bad[4] = INFINITY;
+  ck_assert_int_eq(msocl_stable_dt_at(m, bad, MSOCL_VERLET, &dt),
+                   MSOCL_ERR_NOT_FINITE);
+  bad[4] = NAN;
+  ck_assert_int_eq(msocl_stable_dt_at(m, bad, MSOCL_VERLET, &dt),
+                   MSOCL_ERR_NOT_FINITE);
+  ck_assert_ptr_nonnull(strstr(msocl_last_error(), "point 1: y = nan"));
+  bad[4] = 1e19f;
+  ck_assert_int_eq(msocl_stable_dt_at(m, bad, MSOCL_VERLET, &dt),
+                   MSOCL_ERR_BAD_VALUE);
   ck_assert_int_eq(msocl_safe_dt(m, MSOCL_SYMPLECTIC_EULER, &dt), MSOCL_OK);
   ck_assert(isfinite(dt) && dt > 0.0f);
   msocl_model_destroy(m);

@@ -209,6 +209,16 @@ int msocl_stable_dt_at(const msocl_model *m, const float *xyz,
       *dt = 0.0f;
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "xyz is NULL");
   }
+  if (m) {
+    msocl__clear_error();
+    const int rc = msocl__check_triples("msocl_stable_dt_at", "point", xyz,
+                                        m->n, NULL, 0, MSOCL__COORD_MAX);
+    if (rc != MSOCL_OK) {
+      if (dt)
+        *dt = 0.0f;
+      return rc;
+    }
+  }
   return stable(m, xyz, 0, integrator, dt);
 }
 

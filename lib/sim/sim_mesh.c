@@ -70,10 +70,16 @@ int msocl__meshes_end(msocl_sim *s)
 
 static int known(const msocl_sim *s, int id)
 {
+  if (s->nmesh == 0)
+    return msocl__fail(MSOCL_ERR_BAD_INDEX,
+                       "mesh collider %d: the simulation has none (its "
+                       "model added no mesh collider)",
+                       id);
   if (id < 0 || id >= s->nmesh)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
                        "mesh collider %d: the simulation has %d (ids 0 to "
-                       "%d)", id, s->nmesh, s->nmesh - 1);
+                       "%d)",
+                       id, s->nmesh, s->nmesh - 1);
   return MSOCL_OK;
 }
 
