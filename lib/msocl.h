@@ -744,9 +744,14 @@ MSOCL_EXTERN int msocl_reference_set_accelerations(msocl_reference *r,
 MSOCL_EXTERN int msocl_reference_set_forces(msocl_reference *r,
                                             const float *xyz);
 /* The simulation's live controls on the reference (msocl_sim_set_gravity,
- * msocl_sim_pin, msocl_sim_set_pin_targets), in double. */
+ * _set_viscous_damping, _set_air_resistance, msocl_sim_pin,
+ * msocl_sim_set_pin_targets), in double. */
 MSOCL_EXTERN int msocl_reference_set_gravity(msocl_reference *r, float gx,
                                              float gy, float gz);
+MSOCL_EXTERN int msocl_reference_set_viscous_damping(msocl_reference *r,
+                                                     float c);
+MSOCL_EXTERN int msocl_reference_set_air_resistance(msocl_reference *r,
+                                                    float factor);
 MSOCL_EXTERN int msocl_reference_pin(msocl_reference *r, int count,
                                      const int *idx, int pinned);
 MSOCL_EXTERN int msocl_reference_set_pin_targets(msocl_reference *r,

@@ -1,6 +1,7 @@
 /* The host reference's live controls, as the simulation's (lib/sim/
- * sim_controls.c) in double: gravity, pins, and pins moved to targets
- * along a straight path over the next call's steps. */
+ * sim_controls.c) in double: gravity, viscous damping and air
+ * resistance, pins, and pins moved to targets along a straight path over
+ * the next call's steps. */
 #include "config.h"
 #include "reference_state.h"
 
@@ -22,6 +23,39 @@ int msocl_reference_set_gravity(msocl_reference *r, float gx, float gy,
   r->gravity[2] = gz;
   r->acc_valid = 0; /* Verlet's a held the old gravity */
   return MSOCL_OK;
+}
+
+/* Viscous damping (air 0) or air resistance (air 1), as the simulation
+ * checks them (sim_controls.c set_damping). */
+static int set_damping(msocl_reference *r, int air, float value)
+{
+  msocl__clear_error();
+  if (!r)
+    return msocl__fail(MSOCL_ERR_NULL_HANDLE, "reference is NULL");
+  const char *what = air ? "air resistance" : "viscous damping";
+  if (!isfinite(value))
+    return msocl__fail(MSOCL_ERR_NOT_FINITE, "%s %g is not finite", what,
+                       (double)value);
+  if (air ? !(value > 0.0f && value <= 1.0f) : value < 0.0f)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "%s %g must be %s", what,
+                       (double)value, air ? "in (0, 1]" : ">= 0");
+  if (air)
+    r->air = value;
+  else {
+    r->viscous = value;
+    r->acc_valid = 0; /* Verlet's a held the old damping force */
+  }
+  return MSOCL_OK;
+}
+
+int msocl_reference_set_viscous_damping(msocl_reference *r, float c)
+{
+  return set_damping(r, 0, c);
+}
+
+int msocl_reference_set_air_resistance(msocl_reference *r, float factor)
+{
+  return set_damping(r, 1, factor);
 }
 
 static int check_indices(const msocl_reference *r, int count, const int *idx)
