@@ -494,7 +494,13 @@ MSOCL_EXTERN int msocl_sim_set_forces(msocl_sim *s, const float *xyz);
  * direction; viscous damping c >= 0 and air resistance in (0, 1]: a term
  * the model had off when the simulation was created is built into the
  * kernels at the first call that turns it on (a program build, ~0.1 s
- * with PoCL's cache warm). */
+ * with PoCL's cache warm). Every live call holds its values to the
+ * model's limits (msocl_model_add_points, msocl_model_validate):
+ * positions, targets, anchors, poses, sizes and speeds within +-1e18,
+ * gravity, accelerations and forces within 1e30, viscous damping times
+ * the model's extent within 1e30, wind's speed within 1e15 (its square
+ * within 1e30); past them MSOCL_ERR_BAD_VALUE, NaN or Inf
+ * MSOCL_ERR_NOT_FINITE, the entry named. */
 MSOCL_EXTERN int msocl_sim_set_gravity(msocl_sim *s, float gx, float gy,
                                        float gz);
 MSOCL_EXTERN int msocl_sim_set_viscous_damping(msocl_sim *s, float c);
@@ -603,7 +609,10 @@ MSOCL_EXTERN int msocl_sim_enable_mesh_collider(msocl_sim *s, int id, int on);
 /* Partial state access: 3 floats a point, of positions (velocities 0) or
  * velocities (1), for points first..first+count-1 or idx[0..count);
  * other points and the rest of the state are untouched (writes keep the
- * pins and count as writes for the blow-up check). */
+ * pins and count as writes for the blow-up check). A write's list names
+ * each point once (MSOCL_ERR_BAD_VALUE); a value is finite
+ * (MSOCL_ERR_NOT_FINITE) and within msocl_model_add_points' 1e18
+ * (MSOCL_ERR_BAD_VALUE), a velocity too. */
 MSOCL_EXTERN int msocl_sim_read_range(msocl_sim *s, int velocities,
                                       int first, int count, float *xyz);
 MSOCL_EXTERN int msocl_sim_write_range(msocl_sim *s, int velocities,

@@ -594,6 +594,11 @@ START_TEST(split_refuses)
   const float P[3] = {0.0f, 0.0f, 0.0f};
   ERR(msocl_sim_set_collider_pose(s, 0, P, ident), MSOCL_ERR_BAD_VALUE,
       "split over 2 devices");
+  /* a query answers: the sphere where the model put it */
+  float pos[3], rot[4], home[3], q[4];
+  pose_at(SPHERE, 0.0, home, q);
+  OK(msocl_sim_get_collider_pose(s, 0, pos, rot));
+  ck_assert(!memcmp(pos, home, sizeof pos) && rot[3] == 1.0f);
   msocl_sim_destroy(s);
   msocl_model_destroy(m);
   msocl_runtime_destroy(two);

@@ -568,6 +568,8 @@ START_TEST(bad_input)
   EXPECT(msocl_sim_write_list(s, 1, 2, (int[]){3, 9}, bad),
          MSOCL_ERR_BAD_VALUE);
   SAYS("point 9");
+  EXPECT(msocl_sim_write_list(s, 0, 2, (int[]){4, 4}, t), MSOCL_ERR_BAD_VALUE);
+  SAYS("point 4 listed twice");
   EXPECT(msocl_sim_read_list(s, 0, 1, NULL, p), MSOCL_ERR_NULL_HANDLE);
   msocl_sim_destroy(s);
   /* the model is free again once its simulation is gone */

@@ -238,6 +238,10 @@ START_TEST(bad_input)
     ck_assert_int_eq(msocl_sim_set_soft_pins(s, 2, idx, a, 1.0f),
                      MSOCL_ERR_BAD_VALUE);
     ck_assert_ptr_nonnull(strstr(msocl_last_error(), "split"));
+    /* clearing them is no soft pin: as set_wind(NULL) there */
+    ck_assert_int_eq(msocl_sim_set_soft_pins(s, 0, NULL, NULL, 0.0f),
+                     MSOCL_OK);
+    ck_assert_int_eq(msocl_sim_step(s, 10), MSOCL_OK);
     msocl_sim_destroy(s);
     msocl_runtime_destroy(two);
   }

@@ -50,11 +50,11 @@ static int refuse_engine(const msocl_sim *s, const char *call)
   return MSOCL_OK;
 }
 
-/* The colliders as the engine holds them, read back at the first call:
- * kind, friction and p from the float4 table, x from pl_colx. */
-static int moving(msocl_sim *s, const char *call, struct msocl__moving **out)
+/* The colliders as the (first) engine holds them, read back at the first
+ * call: kind, friction and p from the float4 table, x from pl_colx. A
+ * split's engines hold the same, which only a query reads. */
+static int loaded(msocl_sim *s, struct msocl__moving **out)
 {
-  MSOCL__TRY(refuse_engine(s, call));
   if (!s->mov) {
     msocl__engine *e = s->part[0];
     float packed[8 * MSOCL__MAX_COLLIDERS];
@@ -81,6 +81,12 @@ static int moving(msocl_sim *s, const char *call, struct msocl__moving **out)
   }
   *out = s->mov;
   return MSOCL_OK;
+}
+
+static int moving(msocl_sim *s, const char *call, struct msocl__moving **out)
+{
+  MSOCL__TRY(refuse_engine(s, call));
+  return loaded(s, out);
 }
 
 /* Collider c's row of the table (lane 0 of each of its float4s): its
@@ -268,8 +274,8 @@ int msocl_sim_get_collider_pose(msocl_sim *s, int id, float position[3],
   if (!position || !rotation)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "%s: %s is NULL", call,
                        position ? "rotation" : "position");
-  struct msocl__moving *m;
-  MSOCL__TRY(moving(s, call, &m));
+  struct msocl__moving *m; /* a query: a split's poses too */
+  MSOCL__TRY(loaded(s, &m));
   MSOCL__TRY(check_id(m, id, call));
   memcpy(position, m->pos[id], sizeof m->pos[id]);
   memcpy(rotation, m->rot[id], sizeof m->rot[id]);

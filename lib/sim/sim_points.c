@@ -43,6 +43,23 @@ static int copy_runs(msocl__engine *e, int velocities, int write,
   return MSOCL_OK;
 }
 
+/* A write's list names a point once: which of two values would win is
+ * the copy order's, not the caller's (pin targets and soft pins refuse
+ * the same). */
+static int once_each(const msocl_sim *s, int count, const int *idx)
+{
+  unsigned char *seen = calloc((size_t)s->n, 1);
+  if (!seen)
+    return msocl__fail(MSOCL_ERR_NO_MEMORY, "write of %d points", count);
+  int rc = MSOCL_OK;
+  for (int q = 0; rc == MSOCL_OK && q < count; q++)
+    if (seen[idx[q]]++)
+      rc = msocl__fail(MSOCL_ERR_BAD_VALUE,
+                       "write: point %d listed twice (entry %d)", idx[q], q);
+  free(seen);
+  return rc;
+}
+
 static int points_io(msocl_sim *s, int velocities, int write, int list,
                   int first, int count, const int *idx, float *out,
                   const float *in)
@@ -72,6 +89,8 @@ static int points_io(msocl_sim *s, int velocities, int write, int list,
                                     MSOCL__COORD_MAX));
   if (count == 0)
     return MSOCL_OK;
+  if (write && list)
+    MSOCL__TRY(once_each(s, count, idx));
   int *k = malloc((size_t)count * sizeof *k);
   float *xyz = malloc(3 * (size_t)count * sizeof *xyz);
   int rc = k && xyz ? numbers(s, first, count, idx, k)

@@ -51,7 +51,7 @@ static int check(msocl_sim *s, int count, const int *idx, const float *xyz,
                                            : MSOCL_ERR_NOT_FINITE,
                        "%s: stiffness %g must be finite and > 0", what,
                        (double)stiffness);
-  if (s->nparts > 1)
+  if (s->nparts > 1 && count > 0) /* clearing none is no soft pin */
     return msocl__fail(MSOCL_ERR_BAD_VALUE,
                        "%s: soft pins do not run on a simulation split over "
                        "%d devices", what, s->nparts);
@@ -89,6 +89,8 @@ int msocl_sim_set_soft_pins(msocl_sim *s, int count, const int *idx,
   if (!s)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "sim is NULL");
   MSOCL__TRY(check(s, count, idx, xyz, stiffness));
+  if (s->nparts > 1) /* none to clear: a split never had any */
+    return MSOCL_OK;
   if (!s->soft && !(s->soft = calloc(1, sizeof *s->soft)))
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "soft pins");
   struct msocl__soft *c = s->soft;
