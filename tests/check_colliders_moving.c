@@ -388,6 +388,31 @@ static void lerp(const float a[3], const float qa[4], const float b[3],
     Q[k] = (float)(q[k] / sqrt(len));
 }
 
+/* a and b's positions and velocities bitwise alike, after the box pushed
+ * the cloth (so that they compare a contact); then both and m freed. */
+static void same_and_pushed(msocl_sim *a, msocl_sim *b, msocl_model *m)
+{
+  const int n = N * N;
+  float *x = malloc(12 * (size_t)n * sizeof *x);
+  OK(msocl_sim_read_positions(a, x));
+  OK(msocl_sim_read_positions(b, x + 3 * n));
+  OK(msocl_sim_read_velocities(a, x + 6 * n));
+  OK(msocl_sim_read_velocities(b, x + 9 * n));
+  ck_assert_msg(!memcmp(x, x + 3 * n, 3 * (size_t)n * sizeof *x),
+                "positions differ by %g", scene_max_diff(x, x + 3 * n, 3 * n));
+  ck_assert_msg(!memcmp(x + 6 * n, x + 9 * n, 3 * (size_t)n * sizeof *x),
+                "velocities differ by %g",
+                scene_max_diff(x + 6 * n, x + 9 * n, 3 * n));
+  double zmax = 0;
+  for (int i = 0; i < n; i++)
+    zmax = fmax(zmax, x[3 * i + 2]);
+  ck_assert_msg(zmax > 0.01, "the box never met the cloth (z %g)", zmax);
+  free(x);
+  msocl_sim_destroy(a);
+  msocl_sim_destroy(b);
+  msocl_model_destroy(m);
+}
+
 /* Calls of K steps carrying a turning box equal K one-step calls given
  * the path's poses at j / K, bitwise (positions and velocities). */
 START_TEST(calls_bitwise)
@@ -424,26 +449,7 @@ START_TEST(calls_bitwise)
     memcpy(P0, P1, sizeof P0);
     memcpy(Q0, Q1, sizeof Q0);
   }
-  const int n = N * N;
-  float *x = malloc(12 * (size_t)n * sizeof *x);
-  OK(msocl_sim_read_positions(a, x));
-  OK(msocl_sim_read_positions(b, x + 3 * n));
-  OK(msocl_sim_read_velocities(a, x + 6 * n));
-  OK(msocl_sim_read_velocities(b, x + 9 * n));
-  ck_assert_msg(!memcmp(x, x + 3 * n, 3 * (size_t)n * sizeof *x),
-                "positions differ by %g", scene_max_diff(x, x + 3 * n, 3 * n));
-  ck_assert_msg(!memcmp(x + 6 * n, x + 9 * n, 3 * (size_t)n * sizeof *x),
-                "velocities differ by %g",
-                scene_max_diff(x + 6 * n, x + 9 * n, 3 * n));
-  /* the box pushed the cloth (so the test compares a contact) */
-  double zmax = 0;
-  for (int i = 0; i < n; i++)
-    zmax = fmax(zmax, x[3 * i + 2]);
-  ck_assert_msg(zmax > 0.01, "the box never met the cloth (z %g)", zmax);
-  free(x);
-  msocl_sim_destroy(a);
-  msocl_sim_destroy(b);
-  msocl_model_destroy(m);
+  same_and_pushed(a, b, m);
 }
 END_TEST
 
@@ -470,20 +476,7 @@ START_TEST(quaternion_scale)
     OK(msocl_sim_step(a, K));
     OK(msocl_sim_step(b, K));
   }
-  const int n = N * N;
-  float *x = malloc(6 * (size_t)n * sizeof *x);
-  OK(msocl_sim_read_positions(a, x));
-  OK(msocl_sim_read_positions(b, x + 3 * n));
-  ck_assert_msg(!memcmp(x, x + 3 * n, 3 * (size_t)n * sizeof *x),
-                "positions differ by %g", scene_max_diff(x, x + 3 * n, 3 * n));
-  double zmax = 0;
-  for (int i = 0; i < n; i++)
-    zmax = fmax(zmax, x[3 * i + 2]);
-  ck_assert_msg(zmax > 0.01, "the box never met the cloth (z %g)", zmax);
-  free(x);
-  msocl_sim_destroy(a);
-  msocl_sim_destroy(b);
-  msocl_model_destroy(m);
+  same_and_pushed(a, b, m);
 }
 END_TEST
 

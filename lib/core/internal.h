@@ -61,6 +61,9 @@ double msocl__seconds(void);
  * idx[q] for triple q, or first + q without idx (core/limits.c). */
 int msocl__check_triples(const char *what, const char *item, const float *xyz,
                          int n, const int *idx, int first, double max);
+/* Viscous damping (air 0: finite, >= 0) or air resistance (air 1: in
+ * (0, 1]), for the model, the simulation and the reference alike. */
+int msocl__check_damping(int air, float value);
 
 /* Checks wind's parameters (finite; density and drag >= 0) and gives
  * kd = rho Cd / 2 and kl = rho Cl / 2 (core/wind.c). */

@@ -6,6 +6,18 @@
 
 #include <math.h>
 
+int msocl__check_damping(int air, float value)
+{
+  const char *what = air ? "air resistance" : "viscous damping";
+  if (!isfinite(value))
+    return msocl__fail(MSOCL_ERR_NOT_FINITE, "%s %g is not finite", what,
+                       (double)value);
+  if (air ? !(value > 0.0f && value <= 1.0f) : value < 0.0f)
+    return msocl__fail(MSOCL_ERR_BAD_VALUE, "%s %g must be %s", what,
+                       (double)value, air ? "in (0, 1]" : ">= 0");
+  return MSOCL_OK;
+}
+
 int msocl__check_triples(const char *what, const char *item, const float *xyz,
                          int n, const int *idx, int first, double max)
 {

@@ -241,15 +241,7 @@ static int check_gravity(const float g[3]) {
   return MSOCL_OK;
 }
 
-static int check_viscous(float c) {
-  if (!isfinite(c))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE, "viscous damping %g is not finite",
-                       c);
-  if (c < 0)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "viscous damping %g must be >= 0",
-                       c);
-  return MSOCL_OK;
-}
+static int check_viscous(float c) { return msocl__check_damping(0, c); }
 
 /* Shared guard of the adding calls: handle, arrays, count, room. */
 static int check_add(const msocl_model *m, const void *a, const void *b, int n,
@@ -396,15 +388,7 @@ int msocl_model_set_gravity(msocl_model *m, float gx, float gy, float gz) {
   return MSOCL_OK;
 }
 
-static int check_air(float f) {
-  if (!isfinite(f))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE, "air resistance %g is not finite",
-                       (double)f);
-  if (!(f > 0.0f && f <= 1.0f))
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "air resistance factor %g must be in (0, 1]", (double)f);
-  return MSOCL_OK;
-}
+static int check_air(float f) { return msocl__check_damping(1, f); }
 
 int msocl_model_set_air_resistance(msocl_model *m, float factor) {
   int rc;

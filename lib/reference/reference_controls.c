@@ -32,13 +32,7 @@ static int set_damping(msocl_reference *r, int air, float value)
   msocl__clear_error();
   if (!r)
     return msocl__fail(MSOCL_ERR_NULL_HANDLE, "reference is NULL");
-  const char *what = air ? "air resistance" : "viscous damping";
-  if (!isfinite(value))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE, "%s %g is not finite", what,
-                       (double)value);
-  if (air ? !(value > 0.0f && value <= 1.0f) : value < 0.0f)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "%s %g must be %s", what,
-                       (double)value, air ? "in (0, 1]" : ">= 0");
+  MSOCL__TRY(msocl__check_damping(air, value));
   if (air)
     r->air = value;
   else {
