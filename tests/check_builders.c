@@ -2,7 +2,10 @@
  * formulas, rest lengths, degrees, outward closed surfaces, rejected input,
  * files read back. No OpenCL. */
 #include <check.h>
+#include <dirent.h>
 #include <errno.h>
+#include <signal.h>
+#include <sys/resource.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -872,6 +875,54 @@ START_TEST(ply_rejected) {
 }
 END_TEST
 
+/* A write that fails part way (here the file-size limit, as a full disk
+ * would) leaves the file that was there as it was, and nothing beside it:
+ * frames are written beside the path and renamed over it once whole (a
+ * failed rewrite used to leave 16 KiB of a 140 KiB file, cut mid-line). */
+START_TEST(failed_write_keeps_file) {
+  enum { P = 400 };
+  float xyz[3 * P];
+  int tri[3 * (P - 2)];
+  for (int i = 0; i < 3 * P; i++)
+    xyz[i] = 0.001f * (float)i;
+  for (int t = 0; t < P - 2; t++) {
+    tri[3 * t] = t;
+    tri[3 * t + 1] = t + 1;
+    tri[3 * t + 2] = t + 2;
+  }
+  OK(msocl_write_obj(tmp_path, 3, xyz, NULL, 1, tri));
+  char *before = slurp(tmp_path);
+  struct rlimit old, low;
+  ck_assert_int_eq(getrlimit(RLIMIT_FSIZE, &old), 0);
+  low = old;
+  low.rlim_cur = 2048; /* the soft limit alone: it can be raised again */
+  signal(SIGXFSZ, SIG_IGN); /* the write fails with EFBIG instead */
+  ck_assert_int_eq(setrlimit(RLIMIT_FSIZE, &low), 0);
+  const int obj = msocl_write_obj(tmp_path, P, xyz, NULL, P - 2, tri);
+  const int ply = msocl_write_ply(tmp_path, P, xyz, NULL, P - 2, tri);
+  ck_assert_int_eq(setrlimit(RLIMIT_FSIZE, &old), 0);
+  ck_assert_int_eq(obj, MSOCL_ERR_IO);
+  ck_assert_int_eq(ply, MSOCL_ERR_IO);
+  SAYS("as it was");
+  char *after = slurp(tmp_path);
+  ck_assert_str_eq(after, before);
+  /* no part-written file left beside it */
+  const char *slash = strrchr(tmp_path, '/');
+  char dir[4096];
+  snprintf(dir, sizeof dir, "%.*s", (int)(slash - tmp_path), tmp_path);
+  DIR *d = opendir(dir);
+  ck_assert_ptr_nonnull(d);
+  const size_t len = strlen(slash + 1);
+  for (struct dirent *e; (e = readdir(d));)
+    ck_assert_msg(strncmp(e->d_name, slash + 1, len) != 0 ||
+                      e->d_name[len] == '\0',
+                  "left behind: %s", e->d_name);
+  closedir(d);
+  free(before);
+  free(after);
+}
+END_TEST
+
 /* A blown-up state is refused by both writers, in points or in normals,
  * and the file left as it was: written, it would say "nan", which no
  * reader (the library's own OBJ reader included) takes back. */
@@ -942,6 +993,7 @@ static Suite *builders_suite(void) {
   tcase_add_test(t, ply_of_model);
   tcase_add_test(t, ply_rejected);
   tcase_add_test(t, frame_not_finite);
+  tcase_add_test(t, failed_write_keeps_file);
   suite_add_tcase(s, t);
   return s;
 }

@@ -305,12 +305,15 @@ int msocl__check_finite(const char *builder, const char *what,
 int msocl__check_coef(const char *builder, const char *what, float x);
 
 /* Frame writers (export*.c): the argument checks they share (normals may
- * be NULL), and closing a written file with the system's reason for any
- * write error. */
+ * be NULL); opening a file beside the path (its name into tmp, cap
+ * bytes; NULL and the error recorded on failure), and closing it, renamed
+ * over the path once whole, with the system's reason for any write error
+ * (io/frame_file.c). */
 int msocl__frame_check(const char *path, int npoints, const float *xyz,
                        const float *normals, int ntriangles, const int *ijk);
 #include <stdio.h>
-int msocl__frame_close(FILE *f, const char *path);
+FILE *msocl__frame_open(const char *path, char *tmp, size_t cap);
+int msocl__frame_close(FILE *f, const char *path, const char *tmp);
 
 /* Embedded kernel sources (generated from the kernels folder at build time). */
 struct msocl__kernel_source {

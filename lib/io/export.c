@@ -13,10 +13,10 @@ int msocl_write_obj(const char *path, int npoints, const float *xyz,
   int rc = msocl__frame_check(path, npoints, xyz, normals, ntriangles, ijk);
   if (rc != MSOCL_OK)
     return rc;
-  FILE *f = fopen(path, "w");
+  char tmp[4096];
+  FILE *f = msocl__frame_open(path, tmp, sizeof tmp);
   if (!f)
-    return msocl__fail(MSOCL_ERR_IO, "cannot create %s: %s", path,
-                       strerror(errno));
+    return MSOCL_ERR_IO;
   fprintf(f, "# libmsocl frame: %d points, %d triangles\n", npoints,
           ntriangles);
   for (int i = 0; i < npoints; i++)
@@ -33,5 +33,5 @@ int msocl_write_obj(const char *path, int npoints, const float *xyz,
     else
       fprintf(f, "f %d %d %d\n", a, b, c);
   }
-  return msocl__frame_close(f, path);
+  return msocl__frame_close(f, path, tmp);
 }

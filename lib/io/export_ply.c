@@ -40,21 +40,6 @@ int msocl__frame_check(const char *path, int npoints, const float *xyz,
                         : rc;
 }
 
-/* Closes f, reporting a write error seen at any point (stdio buffers, so
- * it may only surface here) with the system's reason. */
-int msocl__frame_close(FILE *f, const char *path)
-{
-  int bad = ferror(f), err = errno;
-  if (fclose(f) != 0 && !bad) {
-    bad = 1;
-    err = errno;
-  }
-  if (bad)
-    return msocl__fail(MSOCL_ERR_IO, "error writing %s: %s", path,
-                       strerror(err));
-  return MSOCL_OK;
-}
-
 int msocl_write_ply(const char *path, int npoints, const float *xyz,
                     const float *normals, int ntriangles, const int *ijk)
 {
@@ -62,10 +47,10 @@ int msocl_write_ply(const char *path, int npoints, const float *xyz,
   int rc = msocl__frame_check(path, npoints, xyz, normals, ntriangles, ijk);
   if (rc != MSOCL_OK)
     return rc;
-  FILE *f = fopen(path, "w");
+  char tmp[4096];
+  FILE *f = msocl__frame_open(path, tmp, sizeof tmp);
   if (!f)
-    return msocl__fail(MSOCL_ERR_IO, "cannot create %s: %s", path,
-                       strerror(errno));
+    return MSOCL_ERR_IO;
   fprintf(f, "ply\nformat ascii 1.0\ncomment libmsocl frame\n");
   fprintf(f, "element vertex %d\n", npoints);
   fprintf(f, "property float x\nproperty float y\nproperty float z\n");
@@ -82,5 +67,5 @@ int msocl_write_ply(const char *path, int npoints, const float *xyz,
   }
   for (int t = 0; t < ntriangles; t++)
     fprintf(f, "3 %d %d %d\n", ijk[3 * t], ijk[3 * t + 1], ijk[3 * t + 2]);
-  return msocl__frame_close(f, path);
+  return msocl__frame_close(f, path, tmp);
 }
