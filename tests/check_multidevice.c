@@ -428,6 +428,15 @@ START_TEST(unstable_rolls_back)
   ck_assert_int_eq(msocl_sim_step(s, 1000), MSOCL_ERR_UNSTABLE);
   ck_assert_int_eq(msocl_sim_read_positions(s, q), MSOCL_OK);
   ck_assert(memcmp(p, q, sizeof p) == 0);
+  /* the exchange a step is what it was, rolled-back steps counted (it
+   * used to grow with each rollback, the bytes over the rewound count) */
+  msocl_split_info a, b;
+  msocl_sim_split_info(s, &a);
+  ck_assert_int_eq(msocl_sim_step(s, 1000), MSOCL_ERR_UNSTABLE);
+  msocl_sim_split_info(s, &b);
+  ck_assert_msg(a.bytes_per_step > 0 && b.bytes_per_step == a.bytes_per_step,
+                "bytes a step %g, then %g", a.bytes_per_step,
+                b.bytes_per_step);
   msocl_sim_destroy(s);
   msocl_model_destroy(m);
 }

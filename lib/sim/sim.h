@@ -62,6 +62,9 @@ struct msocl__exchange {
   cl_event wev[MSOCL__MAX_PARTS][MSOCL__X_COPIES];
   int nwev[MSOCL__MAX_PARTS];    /* writes queued, not yet settled */
   struct msocl__xstat stat[MSOCL__MAX_PARTS];
+  /* steps run split, rolled-back ones too: the stats' steps (a rollback
+   * winds the simulation's count back, not what was exchanged) */
+  long long steps_run;
   /* Boundary first (tuning.overlap): an engine's range as spans, those
    * other engines read (nbound) first, then the interior; the slices
    * leave through `send` and arrive through `recv` (buffers of `packed`

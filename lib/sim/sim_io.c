@@ -210,7 +210,8 @@ int msocl_sim_split_info(const msocl_sim *s, msocl_split_info *info)
     if (st->wait_seconds > info->wait_seconds)
       info->wait_seconds = st->wait_seconds;
   }
-  info->bytes_per_step = s->steps > 0 ? bytes / (double)s->steps : 0.0;
+  info->bytes_per_step =
+      s->x.steps_run > 0 ? bytes / (double)s->x.steps_run : 0.0;
   return MSOCL_OK;
 }
 

@@ -209,6 +209,7 @@ static int split_steps(msocl_sim *s, int n)
         s->x.parity ^= 1;
     }
     s->steps++;
+    s->x.steps_run++;
   }
   /* the last exchange's writes, so the halos match the state at rest */
   j.ph = -1;
