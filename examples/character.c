@@ -228,16 +228,19 @@ static void capsule_obj(FILE *f, int *base, const float a[3],
   v[0] = ax[1] * u[2] - ax[2] * u[1];
   v[1] = ax[2] * u[0] - ax[0] * u[2];
   v[2] = ax[0] * u[1] - ax[1] * u[0];
-  /* poles, then 2 RINGS rings of AROUND points from a's end to b's */
+  /* poles, then 2 RINGS rings of AROUND points from a's end to b's: a
+   * hemisphere's RINGS latitudes from its equator up to one step short of
+   * its pole, alike at both ends; a sphere's (a = b, whose equators
+   * would meet) spread evenly between its poles */
   fprintf(f, "v %.5f %.5f %.5f\n", a[0] - r * ax[0], a[1] - r * ax[1],
           a[2] - r * ax[2]);
   fprintf(f, "v %.5f %.5f %.5f\n", b[0] + r * ax[0], b[1] + r * ax[1],
           b[2] + r * ax[2]);
   for (int ring = 0; ring < 2 * RINGS; ring++) {
     const int far = ring >= RINGS;
-    const double al = far ? PI / 2 * (ring - RINGS) / RINGS
-                          : -PI / 2 * (RINGS - 1 - ring) / RINGS -
-                                PI / 2 / RINGS;
+    const double al = len == 0 ? -PI / 2 + PI * (ring + 1) / (2 * RINGS + 1)
+                      : far  ? PI / 2 * (ring - RINGS) / RINGS
+                             : -PI / 2 * (RINGS - 1 - ring) / RINGS;
     const double along = (far ? len : 0.0) + r * sin(al), rad = r * cos(al);
     for (int k = 0; k < AROUND; k++) {
       const double phi = 2 * PI * k / AROUND;
@@ -318,13 +321,16 @@ int main(int argc, char **argv)
   const double t0 = cli_now();
   for (int f = 0; rc == MSOCL_OK && f <= frames; f++) {
     char path[4096];
-    snprintf(path, sizeof path, "%s/cape-%04d.obj", a.dir, f);
+    const int w = cli_frame_digits(frames);
+    snprintf(path, sizeof path, "%s/cape-%0*d.obj", a.dir, w, f);
     rc = msocl_sim_read_positions(s, xyz);
     if (rc == MSOCL_OK)
       rc = msocl_write_obj(path, n, xyz, NULL, ntri, tri);
-    snprintf(path, sizeof path, "%s/body-%04d.obj", a.dir, f);
-    if (rc == MSOCL_OK && body_obj(path, &p))
-      return cli_bad(PROG, "writing %s: %s", path, strerror(errno));
+    snprintf(path, sizeof path, "%s/body-%0*d.obj", a.dir, w, f);
+    if (rc == MSOCL_OK && body_obj(path, &p)) { /* a run's failure: 1 */
+      fprintf(stderr, "%s: writing %s: %s\n", PROG, path, strerror(errno));
+      return 1;
+    }
     if (f == frames)
       break;
     /* where the body is at the end of the next frame: colliders and

@@ -31,6 +31,14 @@ double cli_now(void)
   return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
+int cli_frame_digits(int frames)
+{
+  int w = 1;
+  for (int f = frames; f >= 10; f /= 10)
+    w++;
+  return w > 4 ? w : 4;
+}
+
 int cli_fail(const char *prog, const char *what, int rc)
 {
   fprintf(stderr, "%s: %s: %s (%s)\n%s\n", prog, what, msocl_strerror(rc),

@@ -17,6 +17,10 @@ extern const char *const cli_layouts[5];
 /* Seconds on a monotonic clock. */
 double cli_now(void);
 
+/* Digits of frame numbers 0..frames (at least 4), so that the names sort
+ * in frame order however long the run. */
+int cli_frame_digits(int frames);
+
 /* What failed, the library's status and detailed message on stderr;
  * returns 1 (the exit status of a failed run). */
 int cli_fail(const char *prog, const char *what, int rc);

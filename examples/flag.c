@@ -95,7 +95,8 @@ int main(int argc, char **argv)
   double t = 0.0, t0 = cli_now();
   for (int f = 0; rc == MSOCL_OK && f <= frames; f++) {
     char path[4096];
-    snprintf(path, sizeof path, "%s/flag-%04d.obj", a.dir, f);
+    snprintf(path, sizeof path, "%s/flag-%0*d.obj", a.dir,
+             cli_frame_digits(frames), f);
     rc = msocl_sim_read_positions(s, xyz);
     if (rc == MSOCL_OK)
       rc = msocl_write_obj(path, n, xyz, NULL, ntri, tri);
