@@ -145,10 +145,13 @@ int cli_double(const char *prog, int opt, const char *arg, const char *what,
   char *end, why[64];
   errno = 0;
   double v = strtod(arg, &end);
-  if (end == arg || *end || isspace((unsigned char)*arg) || errno ||
-      !isfinite(v))
+  if (end == arg || *end || isspace((unsigned char)*arg) || !isfinite(v) ||
+      (errno && fabs(v) > 1.0))
     return cli_bad(prog, "-%c %s: %s must be a finite number", opt, arg,
                    what);
+  if (errno) /* underflow: strtod's ERANGE for a subnormal or zero */
+    return cli_bad(prog, "-%c %s: %s is too close to 0 for a double", opt,
+                   arg, what);
   if ((lo_open ? !(v > lo) : !(v >= lo)) || v > hi) {
     range(why, sizeof why, lo, lo_open, hi, 0);
     return cli_bad(prog, "-%c %s: %s %s", opt, arg, what, why);
@@ -298,6 +301,9 @@ int cli_frames_parse(const char *prog, const char *usage, int argc,
     rc = cli_no_operands(prog, optind, argc, argv);
   if (!rc && mkdir(a->dir, 0777) != 0 && errno != EEXIST)
     rc = cli_bad(prog, "-o %s: %s", a->dir, strerror(errno));
+  struct stat st; /* there already: a folder, not a file */
+  if (!rc && (stat(a->dir, &st) != 0 || !S_ISDIR(st.st_mode)))
+    rc = cli_bad(prog, "-o %s: not a folder", a->dir);
   return rc;
 }
 

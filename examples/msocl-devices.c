@@ -12,7 +12,8 @@
 
 #include "cli.h"
 
-#define MAX_CHOSEN 64
+/* what a runtime holds: a spec choosing more is refused, as here */
+#define MAX_CHOSEN MSOCL_MAX_DEVICES
 
 static const char *type_name(int type) {
   switch (type) {

@@ -138,6 +138,28 @@ START_TEST(test_lists) {
 }
 END_TEST
 
+/* A name may hold colons (ROCm's "gfx90a:sramecc+:xnack-"): a term
+ * begun as no number begins is a name, colons and all. (Any term with a
+ * colon used to be P:D: such a device could be chosen only by the part
+ * before its first colon.) */
+START_TEST(test_colon_names) {
+  static const msocl_device_info rocm[] = {
+      {0, 0, "AMD Accelerated Parallel Processing", "gfx90a:sramecc+:xnack-",
+       "OpenCL 2.0", MSOCL_DEVICE_GPU, 104, 1ULL << 36, 1, 16384, 16384, 1,
+       0},
+      {0, 1, "AMD Accelerated Parallel Processing", "gfx90a:sramecc-:xnack-",
+       "OpenCL 2.0", MSOCL_DEVICE_GPU, 104, 1ULL << 36, 1, 16384, 16384, 1,
+       0},
+  };
+  const int second[] = {1}, both[] = {0, 1};
+  expect("gfx90a:sramecc-", rocm, 2, second, 1);
+  expect("gfx90a:sramecc-:xnack-", rocm, 2, second, 1);
+  expect("0:0,sramecc-:xnack", rocm, 2, both, 2);
+  expect_fail("gfx90a:xnack+", rocm, 2, 8, MSOCL_ERR_NO_DEVICE,
+              "'gfx90a:xnack+'");
+}
+END_TEST
+
 /* -------------------------------------------------------------- errors */
 
 START_TEST(test_bad_spec) {
@@ -150,7 +172,8 @@ START_TEST(test_bad_spec) {
   FAIL("1:", MSOCL_ERR_BAD_SPEC, "'1:'");
   FAIL(":1", MSOCL_ERR_BAD_SPEC, "':1'");
   FAIL(":", MSOCL_ERR_BAD_SPEC, "':'");
-  FAIL("a:b", MSOCL_ERR_BAD_SPEC, "'a:b'");
+  /* begun as no number begins: a name (README: "any other text") */
+  FAIL("a:b", MSOCL_ERR_NO_DEVICE, "'a:b'");
   FAIL("-1:0", MSOCL_ERR_BAD_SPEC, "'-1:0'");
   FAIL("0:-1", MSOCL_ERR_BAD_SPEC, "'0:-1'");
   FAIL("1:2:3", MSOCL_ERR_BAD_SPEC, "'1:2:3'");
@@ -357,6 +380,7 @@ static Suite *select_suite(void) {
   tcase_add_test(grammar, test_indices);
   tcase_add_test(grammar, test_names);
   tcase_add_test(grammar, test_lists);
+  tcase_add_test(grammar, test_colon_names);
   suite_add_tcase(s, grammar);
 
   tcase_add_test(errors, test_bad_spec);

@@ -114,6 +114,7 @@ for p in $j $s; do
 done
 refused $t -n 0
 refused $t -n 1
+refused $t -n 13379
 refused $j -n 0
 refused $j -n 65
 refused $s -n -1
@@ -126,6 +127,10 @@ for a in -x --bogus "-n 3" "-n 513" "-n abc" "-t 0" "-t inf" "-F 0" "-F 241" ext
   # shellcheck disable=SC2086
   refused $g $a
 done
+touch "$tmp/afile"
+refused $g -o "$tmp/afile"
+refused $c -o "$tmp/afile"
+refused $g -t 1e-320
 refused $b table1 -s 0
 refused $b table1 -s abc
 

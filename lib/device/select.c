@@ -56,9 +56,16 @@ static const char *next_term(const char *p, struct term *t) {
   return *end == ',' ? end + 1 : NULL;
 }
 
-/* Any term with a colon is P:D, so "a:b" is an error, not a name. */
+/* A term with a colon is P:D where it begins as a number would (a digit,
+ * a sign, a space or the colon: "1:", "-1:0" are errors, not names);
+ * else it is a name, which may hold colons (ROCm's
+ * "gfx90a:sramecc+:xnack-"). */
 static int parse_term(const char *spec, struct term *t) {
   const char *colon = t->len > 0 ? memchr(t->s, ':', (size_t)t->len) : NULL;
+  if (colon && !(is_digit((unsigned char)t->s[0]) || t->s[0] == '-' ||
+                 t->s[0] == '+' || t->s[0] == ':' || t->s[0] == ' ' ||
+                 t->s[0] == '\t'))
+    colon = NULL;
   int i;
 
   if (t->len == 0)
