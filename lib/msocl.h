@@ -800,7 +800,11 @@ MSOCL_EXTERN int msocl_reference_remove_collider(msocl_reference *r, int id);
 
 /* ---------------------------------------------------------------- export */
 
-/* Writes points and triangles as Wavefront OBJ (with normals when given). */
+/* Writes points and triangles as Wavefront OBJ (with normals when given).
+ * Both writers refuse what no reader takes back (a non-finite value, a
+ * triangle naming a point twice: MSOCL_ERR_NOT_FINITE, _BAD_VALUE), and
+ * write beside the path, renamed over it once whole: a failed write
+ * (MSOCL_ERR_IO) leaves the file that was there as it was. */
 MSOCL_EXTERN int msocl_write_obj(const char *path, int npoints,
                                  const float *xyz, const float *normals,
                                  int ntriangles, const int *ijk);

@@ -862,6 +862,12 @@ START_TEST(ply_rejected) {
   tri[2] = -1;
   EXPECT(msocl_write_ply(tmp_path, 3, xyz, NULL, 1, tri), MSOCL_ERR_BAD_INDEX);
   tri[2] = 2;
+  const int twice[3] = {0, 2, 0};
+  EXPECT(msocl_write_ply(tmp_path, 3, xyz, NULL, 1, twice),
+         MSOCL_ERR_BAD_VALUE);
+  SAYS("triangle 0 names point 0 twice");
+  EXPECT(msocl_write_obj(tmp_path, 3, xyz, NULL, 1, twice),
+         MSOCL_ERR_BAD_VALUE);
   EXPECT(msocl_write_ply("/nonexistent-msocl-dir/a.ply", 3, xyz, NULL, 1, tri),
          MSOCL_ERR_IO);
   SAYS("/nonexistent-msocl-dir/a.ply");

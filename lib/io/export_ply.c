@@ -35,6 +35,15 @@ int msocl__frame_check(const char *path, int npoints, const float *xyz,
       return msocl__fail(MSOCL_ERR_BAD_INDEX,
                          "triangle %d: index %d out of range [0, %d)", t / 3,
                          ijk[t], npoints);
+  /* no reader takes a triangle back that names a point twice (the
+   * library's own refuses it: it has no area) */
+  for (int t = 0; t < ntriangles; t++) {
+    const int *k = ijk + 3 * t;
+    if (k[0] == k[1] || k[1] == k[2] || k[0] == k[2])
+      return msocl__fail(MSOCL_ERR_BAD_VALUE,
+                         "%s not written: triangle %d names point %d twice",
+                         path, t, k[0] == k[1] || k[0] == k[2] ? k[0] : k[1]);
+  }
   int rc = finite_points(path, npoints, xyz, "coordinate");
   return rc == MSOCL_OK ? finite_points(path, npoints, normals, "normal")
                         : rc;
