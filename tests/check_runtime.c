@@ -205,7 +205,8 @@ START_TEST(test_bad_spec) {
   expect_failure("1:", MSOCL_ERR_BAD_SPEC);
   ck_assert_ptr_nonnull(strstr(msocl_last_error(), "'1:'"));
   expect_failure("cpu,", MSOCL_ERR_BAD_SPEC);
-  expect_failure("a:b", MSOCL_ERR_BAD_SPEC);
+  expect_failure("-1:0", MSOCL_ERR_BAD_SPEC);
+  expect_failure("a:b", MSOCL_ERR_NO_DEVICE); /* a name: none holds it */
   expect_failure("0,0", MSOCL_ERR_DUP_DEVICE);
 }
 END_TEST
