@@ -449,9 +449,11 @@ MSOCL_EXTERN int msocl_sim_layout(const msocl_sim *s, msocl_layout *layout);
  * is a launch (no sweep: another layout or device, a split); 0 while
  * AUTO still times the candidates. */
 MSOCL_EXTERN int msocl_sim_sweep_steps(const msocl_sim *s, int *steps);
-/* How the layout holds the springs: slots a point in its table (BUFFER
- * and IMAGE2D; GRID: the 12 implicit neighbours; EDGES: 0) and BUFFER's
- * spring classes (0: the values in every slot). Either may be NULL. */
+/* How the layout holds the springs: slots a point in its table (BUFFER,
+ * IMAGE2D, and EDGES, which keeps BUFFER's table beside its spring list
+ * for the planes engine's gathers; GRID: the 12 implicit neighbours) and
+ * BUFFER's spring classes (0: the values in every slot). Either may be
+ * NULL. */
 MSOCL_EXTERN int msocl_sim_connectivity(const msocl_sim *s, int *slots,
                                         int *classes);
 MSOCL_EXTERN int msocl_sim_device_info(const msocl_sim *s,
@@ -461,7 +463,9 @@ MSOCL_EXTERN int msocl_sim_read_positions(msocl_sim *s, float *xyz);
 MSOCL_EXTERN int msocl_sim_write_positions(msocl_sim *s, const float *xyz);
 MSOCL_EXTERN int msocl_sim_read_velocities(msocl_sim *s, float *xyz);
 MSOCL_EXTERN int msocl_sim_write_velocities(msocl_sim *s, const float *xyz);
-/* Unit normals from the model's triangles, computed on the device. */
+/* Unit normals from the model's triangles, computed on the device; a
+ * point on no triangle (a lattice's or a solid's inside, every point of a
+ * model without triangles) gets (0, 0, 0), not a direction. */
 MSOCL_EXTERN int msocl_sim_read_normals(msocl_sim *s, float *xyz);
 
 /* Wind: air moving at `velocity` pushes on the model's triangles, each

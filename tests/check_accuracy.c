@@ -110,6 +110,28 @@ START_TEST(reference_rejects_bad_input)
   o.dt = INFINITY;
   ck_assert_int_eq(msocl_reference_create(&r, m, &o), MSOCL_ERR_NOT_FINITE);
   ck_assert_ptr_null(r);
+  /* the physics the simulation refuses, refused alike (the reference
+   * took them: a NaN CG tolerance ran steps without a solve, 2e9 strain
+   * sweeps a step never returned) */
+  for (int k = 0; k < 10; k++) {
+    msocl_sim_options_init(&o);
+    o.dt = 1e-3f;
+    switch (k) {
+    case 0: o.strain_limit = -0.1f; break;
+    case 1: o.strain_limit = NAN; break;
+    case 2: o.cg_tolerance = 0.0f; break;
+    case 3: o.cg_tolerance = NAN; break;
+    case 4: o.cg_tolerance = -1.0f; break;
+    case 5: o.strain_iterations = 1001; break;
+    case 6: o.strain_iterations = 2000000000; break;
+    case 7: o.check_every = -1; break;
+    case 8: o.energy_factor = NAN; break;
+    default: o.math = (msocl_math)3;
+    }
+    ck_assert_msg(msocl_reference_create(&r, m, &o) == MSOCL_ERR_BAD_VALUE,
+                  "case %d: %s", k, msocl_last_error());
+    ck_assert_ptr_null(r);
+  }
   ck_assert_int_eq(msocl_reference_step(NULL, 1), MSOCL_ERR_NULL_HANDLE);
   msocl_model_destroy(m);
 }

@@ -65,6 +65,11 @@ int msocl__check_triples(const char *what, const char *item, const float *xyz,
  * (0, 1]), for the model, the simulation and the reference alike. */
 int msocl__check_damping(int air, float value);
 
+/* An msocl_sim_options' physics: dt, math, integrator, strain limiting,
+ * CG and the blow-up check's settings (core/options.c), for the
+ * simulation and the reference alike. */
+int msocl__check_physics(const msocl_sim_options *o);
+
 /* Checks wind's parameters (finite; density and drag >= 0) and gives
  * kd = rho Cd / 2 and kl = rho Cl / 2 (core/wind.c). */
 int msocl__wind_check(const msocl_wind *w, double *kd, double *kl);

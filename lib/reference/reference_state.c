@@ -20,17 +20,8 @@ int msocl_reference_create(msocl_reference **out, const msocl_model *m,
   msocl_sim_options_init(&o);
   if (opts)
     o = *opts;
-  if (!isfinite(o.dt))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE, "time step dt is %g", o.dt);
-  if (!(o.dt > 0))
-    return msocl__fail(MSOCL_ERR_BAD_DT, "time step dt = %g must be > 0",
-                       o.dt);
-  if (o.integrator < MSOCL_SYMPLECTIC_EULER ||
-      o.integrator > MSOCL_IMPLICIT_EULER ||
-      o.strain < MSOCL_STRAIN_NONE || o.strain > MSOCL_STRAIN_VELOCITY ||
-      o.strain_iterations < 1 || o.cg_max_iterations < 1)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "bad integrator, strain or CG options");
+  /* the simulation's checks of the physics it shares */
+  MSOCL__TRY(msocl__check_physics(&o));
   msocl_reference *r = calloc(1, sizeof *r);
   if (!r)
     return msocl__fail(MSOCL_ERR_NO_MEMORY, "reference");

@@ -21,17 +21,10 @@ static int check_choice(msocl_choice c, const char *name)
 static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
 {
   const msocl_tuning *t = &o->tuning;
-  if (!isfinite(o->dt))
-    return msocl__fail(MSOCL_ERR_NOT_FINITE, "time step dt is %g", o->dt);
-  if (!(o->dt > 0.0f))
-    return msocl__fail(MSOCL_ERR_BAD_DT, "time step dt = %g must be > 0",
-                       o->dt);
+  MSOCL__TRY(msocl__check_physics(o));
   if (t->layout < MSOCL_LAYOUT_AUTO || t->layout > MSOCL_LAYOUT_GRID)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown layout %d",
                        (int)t->layout);
-  if (o->math != MSOCL_MATH_PRECISE && o->math != MSOCL_MATH_RELAXED)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown math mode %d",
-                       (int)o->math);
   if (t->device < 0 || t->device >= rt->ndev)
     return msocl__fail(MSOCL_ERR_BAD_INDEX,
                        "device %d out of range: the runtime holds %d",
@@ -64,24 +57,6 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
                        "without strain limiting (strain sweeps run on one "
                        "device)",
                        parts);
-  if (o->integrator < MSOCL_SYMPLECTIC_EULER ||
-      o->integrator > MSOCL_IMPLICIT_EULER)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown integrator %d",
-                       (int)o->integrator);
-  if (o->strain < MSOCL_STRAIN_NONE || o->strain > MSOCL_STRAIN_VELOCITY)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE, "unknown strain limiting %d",
-                       (int)o->strain);
-  if (!(o->strain_limit >= 0.0f) || !isfinite(o->strain_limit) ||
-      o->strain_iterations < 1 || o->strain_iterations > 1000)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "strain limit %g must be >= 0 and iterations %d in "
-                       "[1, 1000]",
-                       o->strain_limit, o->strain_iterations);
-  if (!(o->cg_tolerance > 0.0f) || !isfinite(o->cg_tolerance) ||
-      o->cg_max_iterations < 1)
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "CG tolerance %g must be > 0 and iterations %d >= 1",
-                       o->cg_tolerance, o->cg_max_iterations);
   if (o->strain == MSOCL_STRAIN_VELOCITY &&
       o->integrator != MSOCL_SYMPLECTIC_EULER &&
       o->integrator != MSOCL_IMPLICIT_EULER)
@@ -121,11 +96,6 @@ static int check_options(const msocl_runtime *rt, const msocl_sim_options *o)
   if (t->calibrate_steps < 0)
     return msocl__fail(MSOCL_ERR_BAD_VALUE, "calibrate_steps %d is negative",
                        t->calibrate_steps);
-  if (o->check_every < 0 || !(o->energy_factor > 0.0f) ||
-      !isfinite(o->energy_factor))
-    return msocl__fail(MSOCL_ERR_BAD_VALUE,
-                       "check_every %d must be >= 0 and energy_factor %g > 0",
-                       o->check_every, o->energy_factor);
   return MSOCL_OK;
 }
 
